@@ -1,0 +1,184 @@
+# Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
+# Targets: all (libraries), check, examples, bench, stress, install, uninstall, clean.
+# SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
+
+VERSION   := 0.1.0
+SOVERSION := 0
+PREFIX    ?= /usr/local
+DESTDIR   ?=
+LIBDIR    ?= $(PREFIX)/lib
+INCDIR    ?= $(PREFIX)/include
+
+CC      ?= cc
+WARN    := -std=c99 -Wall -Wextra -Wpedantic -Werror
+DEFS    := -D_POSIX_C_SOURCE=200809L
+OPT     ?= -O2 -g
+CFLAGS  ?=
+LDFLAGS ?=
+
+ifeq ($(SANITIZE),1)
+BUILD   := build/san
+SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+else
+BUILD   := build/release
+SANFLAGS :=
+endif
+
+ALL_CFLAGS := $(WARN) $(DEFS) $(OPT) $(SANFLAGS) -fPIC -Iinclude -Isrc -I$(BUILD)/gen $(CFLAGS)
+ALL_LDFLAGS := $(SANFLAGS) $(LDFLAGS)
+
+MACS_LIBS := $(shell pkg-config --libs osmesa egl 2>/dev/null || echo -lOSMesa -lEGL) -lm
+BG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng16) -lpthread -lm
+TEST_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null || echo -lcmocka)
+
+# Shaders: glsl110/macs_* belong to MACS, every other file to Betelgeuse.
+MACS_SHADERS := $(sort $(wildcard glsl110/macs_*))
+BG_SHADERS   := $(sort $(filter-out $(MACS_SHADERS),$(wildcard glsl110/*)))
+
+MACS_SRC := $(sort $(wildcard src/macs/*.c))
+BG_SRC   := $(sort $(wildcard src/betelgeuse/*.c))
+MACS_OBJ := $(MACS_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/macs_shaders.o
+BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
+
+# Test helpers are tests/util_*.c; every tests/test_*.c is one cmocka suite.
+TEST_UTIL_SRC := $(sort $(wildcard tests/util_*.c))
+TEST_UTIL_OBJ := $(TEST_UTIL_SRC:%.c=$(BUILD)/%.o)
+TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+
+# Shared scene builders used by tests, examples and benchmarks.
+SCENES_SRC := $(sort $(wildcard examples/scenes/*.c))
+SCENES_OBJ := $(SCENES_SRC:%.c=$(BUILD)/%.o)
+
+EXAMPLE_SRC := $(sort $(wildcard examples/*.c))
+EXAMPLE_BIN := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/examples/%)
+
+BENCH_SRC := $(sort $(wildcard bench/*.c))
+BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
+
+MACS_A  := $(BUILD)/libmacs.a
+BG_A    := $(BUILD)/libbetelgeuse.a
+MACS_SO := $(BUILD)/libmacs.so.$(VERSION)
+BG_SO   := $(BUILD)/libbetelgeuse.so.$(VERSION)
+
+STATIC_LINK := $(BG_A) $(MACS_A) $(BG_LIBS) $(MACS_LIBS)
+
+.PHONY: all check examples bench stress install uninstall clean glsl-check
+all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
+
+$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*.h tests/*.h examples/scenes/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+# Each shader becomes a C string in a table {name, source}; the library looks shaders up by file name.
+$(BUILD)/gen/%_shaders.c: Makefile $(wildcard glsl110/*)
+	@mkdir -p $(dir $@)
+	@{ echo '/* Generated from glsl110/ by the Makefile: do not edit. */'; \
+	   echo '#include <stddef.h>'; \
+	   echo 'const char *const $*_shader_table[][2] = {'; \
+	   for f in $(if $(filter macs,$*),$(MACS_SHADERS),$(BG_SHADERS)); do \
+	     printf '  {"%s",\n' "$$(basename $$f)"; \
+	     sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/^/   "/' -e 's/$$/\\n"/' $$f; \
+	     echo '  },'; \
+	   done; \
+	   echo '  {NULL, NULL}'; echo '};'; } > $@
+
+$(BUILD)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
+	$(CC) $(ALL_CFLAGS) -Wno-overlength-strings -c $< -o $@
+
+$(MACS_A): $(MACS_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+$(BG_A): $(BG_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+$(MACS_SO): $(MACS_OBJ)
+	$(CC) -shared -Wl,-soname,libmacs.so.$(SOVERSION) $(ALL_LDFLAGS) -o $@ $^ $(MACS_LIBS)
+	ln -sf libmacs.so.$(VERSION) $(BUILD)/libmacs.so.$(SOVERSION)
+	ln -sf libmacs.so.$(SOVERSION) $(BUILD)/libmacs.so
+$(BG_SO): $(BG_OBJ) $(MACS_SO)
+	$(CC) -shared -Wl,-soname,libbetelgeuse.so.$(SOVERSION) $(ALL_LDFLAGS) -o $@ $(BG_OBJ) -L$(BUILD) -lmacs $(BG_LIBS)
+	ln -sf libbetelgeuse.so.$(VERSION) $(BUILD)/libbetelgeuse.so.$(SOVERSION)
+	ln -sf libbetelgeuse.so.$(SOVERSION) $(BUILD)/libbetelgeuse.so
+
+$(BUILD)/%.pc: Makefile
+	@mkdir -p $(dir $@)
+	@{ echo 'prefix=$(PREFIX)'; echo 'libdir=$(LIBDIR)'; echo 'includedir=$(INCDIR)'; echo; \
+	   if [ "$*" = macs ]; then \
+	     echo 'Name: macs'; echo 'Description: GPGPU render passes over OpenGL 2.1'; \
+	     echo 'Version: $(VERSION)'; echo 'Libs: -L$${libdir} -lmacs'; \
+	     echo 'Libs.private: $(MACS_LIBS)'; \
+	   else \
+	     echo 'Name: betelgeuse'; echo 'Description: Whitted ray tracing through OpenGL 2.1'; \
+	     echo 'Version: $(VERSION)'; echo 'Requires: macs'; echo 'Libs: -L$${libdir} -lbetelgeuse'; \
+	     echo 'Libs.private: $(BG_LIBS)'; \
+	   fi; \
+	   echo 'Cflags: -I$${includedir}'; } > $@
+
+$(BUILD)/tests/%: tests/%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(TEST_LIBS)
+
+$(BUILD)/examples/%: examples/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
+
+$(BUILD)/bench/%: bench/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
+
+examples: all $(EXAMPLE_BIN)
+
+# Every shader must compile as GLSL 1.10. Snippets (.glsl) are checked as fragment code with an empty main.
+glsl-check:
+	@command -v glslangValidator >/dev/null || { echo "glslangValidator missing (apt-get install glslang-tools)"; exit 1; }
+	@fail=0; for f in $(wildcard glsl110/*); do \
+	  head -n1 $$f | grep -q '^#version 110' || { echo "FAIL $$f: line 1 is not #version 110"; fail=1; continue; }; \
+	  case $$f in \
+	    *.vert) glslangValidator -S vert $$f >/tmp/glsl-check.$$$$ 2>&1 ;; \
+	    *.frag) glslangValidator -S frag $$f >/tmp/glsl-check.$$$$ 2>&1 ;; \
+	    *) { cat $$f; echo 'void main() {}'; } | glslangValidator --stdin -S frag >/tmp/glsl-check.$$$$ 2>&1 ;; \
+	  esac || { echo "FAIL $$f"; cat /tmp/glsl-check.$$$$; fail=1; }; \
+	done; rm -f /tmp/glsl-check.$$$$; \
+	[ $$fail = 0 ] && echo "glsl110: every shader passes glslangValidator as version 110"; exit $$fail
+
+# The test environment of DESIGN.md section 7: GL 2.1 and GLSL 1.10 forced, no shader disk cache.
+TEST_ENV := MESA_GL_VERSION_OVERRIDE=2.1 MESA_GLSL_VERSION_OVERRIDE=110 MESA_SHADER_CACHE_DISABLE=true
+# Suites that also run on EGL surfaceless and on softpipe (smoke subset).
+SMOKE_TESTS ?= $(filter $(BUILD)/tests/test_smoke%,$(TEST_BIN))
+
+check: all glsl-check $(TEST_BIN)
+	@TEST_ENV="$(TEST_ENV)" sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
+
+# valgrind over the MACS suites, leaks as errors; tests/valgrind.supp holds only Mesa/LLVM-internal leaks.
+VALGRIND_TESTS ?= $(filter $(BUILD)/tests/test_macs%,$(TEST_BIN))
+valgrind: $(VALGRIND_TESTS)
+	@for t in $(VALGRIND_TESTS); do \
+	  echo "valgrind $$t"; \
+	  env $(TEST_ENV) MACS_TEST_QUICK=1 valgrind --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+	    --show-leak-kinds=definite,indirect --suppressions=tests/valgrind.supp -q $$t >/dev/null || exit 1; \
+	done; echo "valgrind: clean"
+
+bench: all $(BENCH_BIN)
+	@for b in $(filter $(BUILD)/bench/bench%,$(BENCH_BIN)); do $$b || exit 1; done
+stress: all $(BENCH_BIN)
+	@for b in $(filter $(BUILD)/bench/stress%,$(BENCH_BIN)); do $$b || exit 1; done
+
+install: all
+	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
+	install -m 644 include/macs.h include/betelgeuse.h $(DESTDIR)$(INCDIR)/
+	install -m 644 $(MACS_A) $(BG_A) $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(MACS_SO) $(BG_SO) $(DESTDIR)$(LIBDIR)/
+	ln -sf libmacs.so.$(VERSION) $(DESTDIR)$(LIBDIR)/libmacs.so.$(SOVERSION)
+	ln -sf libmacs.so.$(SOVERSION) $(DESTDIR)$(LIBDIR)/libmacs.so
+	ln -sf libbetelgeuse.so.$(VERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse.so.$(SOVERSION)
+	ln -sf libbetelgeuse.so.$(SOVERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse.so
+	install -m 644 $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc $(DESTDIR)$(LIBDIR)/pkgconfig/
+
+uninstall:
+	rm -f $(DESTDIR)$(INCDIR)/macs.h $(DESTDIR)$(INCDIR)/betelgeuse.h
+	rm -f $(DESTDIR)$(LIBDIR)/libmacs.* $(DESTDIR)$(LIBDIR)/libbetelgeuse.*
+	rm -f $(DESTDIR)$(LIBDIR)/pkgconfig/macs.pc $(DESTDIR)$(LIBDIR)/pkgconfig/betelgeuse.pc
+
+clean:
+	rm -rf build

@@ -1,0 +1,328 @@
+/* Betelgeuse: Whitted ray tracing through OpenGL 2.1, with a double-precision CPU reference.
+ *
+ * A scene is created, filled and committed (Embree style). Both renderers read only committed
+ * state, so a scene that failed validation halfway still renders what was last committed.
+ * Every fallible call returns a bg_status; the scene keeps the first error and its message until
+ * it is cleared. The library never prints: diagnostics go to the optional logger.
+ *
+ * Conventions: right-handed world, y up by default (the camera's up vector decides); angles in
+ * degrees; colours are linear RGB; matrices are row-major, m[row][col], and transform column
+ * vectors (p' = M p), so bg_mat4_mul(a, b) applies b first. Handles (object, material, texture,
+ * light ids) are small positive integers; 0 is never a valid handle and means "none".
+ */
+#ifndef BETELGEUSE_H
+#define BETELGEUSE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdbool.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- status ------------------------------------------------------------------------------- */
+
+/* Every status with its default message, one list. */
+#define BG_STATUS_LIST(X)                                                              \
+    X(BG_OK, 0, "ok")                                                                  \
+    X(BG_ERR_INVALID_ARGUMENT, 1, "invalid argument")                                  \
+    X(BG_ERR_OUT_OF_MEMORY, 2, "out of memory")                                        \
+    X(BG_ERR_IO, 3, "file input/output failed")                                        \
+    X(BG_ERR_NOT_COMMITTED, 4, "the scene has no committed state")                     \
+    X(BG_ERR_GL, 5, "the GPU renderer failed (see the message)")                       \
+    X(BG_ERR_LIMIT, 6, "a hardware or library limit was exceeded")                     \
+    X(BG_ERR_THREAD, 7, "a worker thread could not be started")
+
+/* Result of every fallible call; BG_OK is 0. */
+typedef enum bg_status {
+#define BG_STATUS_ENUM_(name, value, message) name = value,
+    BG_STATUS_LIST(BG_STATUS_ENUM_)
+#undef BG_STATUS_ENUM_
+    BG_STATUS_COUNT_
+} bg_status;
+
+/* The default message of a status ("unknown status" for values outside the list). */
+const char *bg_status_string(bg_status status);
+
+/* ---- logging and allocation ---------------------------------------------------------------- */
+
+typedef enum bg_log_level { BG_LOG_ERROR = 0, BG_LOG_WARNING, BG_LOG_INFO, BG_LOG_DEBUG } bg_log_level;
+
+/* Receives diagnostics; the library never prints on its own. */
+typedef void (*bg_log_fn)(bg_log_level level, const char *message, void *user);
+
+/* Allocation hooks; all NULL means the C library's malloc, realloc and free. */
+typedef struct bg_allocator {
+    void *(*alloc)(size_t size, void *user);
+    void *(*realloc)(void *ptr, size_t size, void *user);
+    void (*free)(void *ptr, void *user);
+    void *user;
+} bg_allocator;
+
+/* ---- small math ---------------------------------------------------------------------------- */
+
+typedef struct bg_vec3 { double x, y, z; } bg_vec3;
+typedef struct bg_mat4 { double m[4][4]; } bg_mat4;
+
+/* Shorthand for a bg_vec3 literal. */
+bg_vec3 bg_vec3_make(double x, double y, double z);
+/* The identity transform. */
+bg_mat4 bg_mat4_identity(void);
+/* A translation by (x, y, z). */
+bg_mat4 bg_mat4_translate(double x, double y, double z);
+/* A scale by (x, y, z) about the origin. */
+bg_mat4 bg_mat4_scale(double x, double y, double z);
+/* A right-handed rotation by angle_degrees about axis (normalised inside; a zero axis gives identity). */
+bg_mat4 bg_mat4_rotate(bg_vec3 axis, double angle_degrees);
+/* The product a * b: applying the result applies b first, then a. */
+bg_mat4 bg_mat4_mul(bg_mat4 a, bg_mat4 b);
+
+/* ---- images -------------------------------------------------------------------------------- */
+
+typedef enum bg_pixel_format {
+    BG_PIXEL_RGBA8 = 0, /* 8 bits per channel, encoded as the render settings say (sRGB by default) */
+    BG_PIXEL_RGBA32F    /* linear float radiance, unclamped */
+} bg_pixel_format;
+
+/* A caller-owned image: the library reads or writes pixels, never allocates or frees them.
+ * stride is the distance between rows in bytes; 0 means tightly packed. */
+typedef struct bg_image {
+    int width, height;
+    bg_pixel_format format;
+    size_t stride;
+    void *pixels;
+} bg_image;
+
+/* Reads only the size of a PNG file (libpng simplified API), so the caller can allocate. */
+bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size);
+/* Reads a PNG into a caller-owned image of exactly its size (RGBA8 stores the file's bytes;
+ * RGBA32F stores them divided by 255, still encoded). */
+bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t message_size);
+/* Writes an image as an 8-bit RGBA PNG; RGBA32F images are clamped to [0, 1] and scaled by 255. */
+bg_status bg_png_save(const char *path, const bg_image *image, char *message, size_t message_size);
+
+/* ---- scene --------------------------------------------------------------------------------- */
+
+typedef struct bg_scene bg_scene;
+
+/* Defaults: no logger, the C library's allocator. */
+typedef struct bg_scene_desc {
+    bg_log_fn log;
+    void *log_user;
+    bg_allocator allocator;
+} bg_scene_desc;
+
+/* Creates an empty scene (no objects, no lights, a default camera); desc may be NULL. */
+bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene);
+/* Frees the scene and everything it owns; NULL is ignored. */
+void bg_scene_destroy(bg_scene *scene);
+/* The first error since the last clear (BG_OK if none). */
+bg_status bg_scene_error(const bg_scene *scene);
+/* The message of the first error, naming the field and object ("" if none). */
+const char *bg_scene_error_message(const bg_scene *scene);
+/* Forgets the stored error. */
+void bg_scene_clear_error(bg_scene *scene);
+
+/* Pinhole camera. Defaults (bg_camera_init): at (0, 0, 5) looking at the origin, up (0, 1, 0),
+ * vertical field of view 45 degrees. The aspect ratio comes from the image size. */
+typedef struct bg_camera {
+    bg_vec3 position;
+    bg_vec3 look_at;
+    bg_vec3 up;
+    double fov_y_degrees; /* in (0, 180) */
+} bg_camera;
+
+/* The default camera described above. */
+bg_camera bg_camera_init(void);
+/* Sets the camera; rejects non-finite values, look_at == position, up parallel to the view. */
+bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera);
+
+/* ---- textures ------------------------------------------------------------------------------ */
+
+typedef enum bg_texture_wrap { BG_WRAP_REPEAT = 0, BG_WRAP_CLAMP } bg_texture_wrap;
+
+typedef enum bg_texture_encoding {
+    BG_TEXTURE_SRGB = 0, /* colour data: RGBA8 texels are decoded from sRGB to linear on add */
+    BG_TEXTURE_LINEAR    /* data (roughness, masks): texels are used as stored, RGBA8 divided by 255 */
+} bg_texture_encoding;
+
+/* Defaults: repeat, sRGB colour data. */
+typedef struct bg_texture_desc {
+    bg_texture_wrap wrap;
+    bg_texture_encoding encoding;
+} bg_texture_desc;
+
+/* Copies a caller image into the scene as a texture (stored as linear float); desc may be NULL. */
+bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
+                               uint32_t *out_texture);
+/* Loads a PNG file as a texture; missing or corrupt files give BG_ERR_IO naming the path. */
+bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_texture_desc *desc,
+                                    uint32_t *out_texture);
+
+/* ---- materials ----------------------------------------------------------------------------- */
+
+/* A colour property: the constant, multiplied texel by texel with the texture's RGB when texture
+ * is non-zero. */
+typedef struct bg_color_param {
+    double r, g, b;
+    uint32_t texture;
+} bg_color_param;
+
+/* A scalar property: the constant, multiplied by one channel (0..3) of the texture when texture
+ * is non-zero. */
+typedef struct bg_scalar_param {
+    double value;
+    uint32_t texture;
+    int channel;
+} bg_scalar_param;
+
+/* One layer of Schlick's 1994 model: reflectance at normal incidence C, roughness r in [0, 1]
+ * (0 perfect mirror, 1 Lambertian), isotropy p in [0, 1] (0 fully anisotropic, 1 isotropic). */
+typedef struct bg_schlick_layer {
+    bg_color_param reflectance;
+    bg_scalar_param roughness;
+    bg_scalar_param isotropy;
+} bg_schlick_layer;
+
+/* A material. docs/shading.md gives every formula. The perfectly specular share of a layer
+ * (roughness below 1/2) is traced as a mirror ray; transparency in [0, 1] blends in a dielectric
+ * interface of index ior (> 0) with exact Fresnel weights and total internal reflection.
+ * Defaults (bg_material_init): a white Lambertian base (C = 0.8, r = 1, p = 1), no coat,
+ * ambient (0.1, 0.1, 0.1), no emission, opaque, ior 1.5. */
+typedef struct bg_material {
+    bg_schlick_layer base;
+    bool has_coat;           /* the two-layer form: coat is a glossy layer over the base */
+    bg_schlick_layer coat;
+    bg_color_param ambient;  /* multiplies the scene's ambient light */
+    bg_color_param emission; /* added as is */
+    bg_scalar_param transparency;
+    double ior;
+} bg_material;
+
+/* The default material described above. */
+bg_material bg_material_init(void);
+/* Adds a material; every field is validated and the message names the first bad one. */
+bg_status bg_scene_add_material(bg_scene *scene, const bg_material *material, uint32_t *out_material);
+/* Replaces a material's values (cheap re-commit: no new geometry). */
+bg_status bg_scene_set_material(bg_scene *scene, uint32_t material, const bg_material *values);
+
+/* ---- objects ------------------------------------------------------------------------------- */
+
+/* Every primitive is convex and is its prototype placed by an affine transform:
+ *   SPHERE     unit sphere at the origin
+ *   PLANE      the infinite plane y = 0, front side +y
+ *   BOX        the cube [-1, 1]^3
+ *   CYLINDER   radius 1 about the y axis, y in [-1, 1], capped
+ *   RECTANGLE  the square [-1, 1] x [-1, 1] in the plane y = 0, front side +y */
+typedef enum bg_shape {
+    BG_SHAPE_SPHERE = 0,
+    BG_SHAPE_PLANE,
+    BG_SHAPE_BOX,
+    BG_SHAPE_CYLINDER,
+    BG_SHAPE_RECTANGLE,
+    BG_SHAPE_COUNT_
+} bg_shape;
+
+/* How an object maps its prototype hit point to texture coordinates (docs/shading.md). */
+typedef enum bg_uv_mapping {
+    BG_UV_DEFAULT = 0,  /* the shape's natural one: sphere spherical, plane and rectangle planar,
+                           box per face, cylinder cylindrical */
+    BG_UV_SPHERICAL,
+    BG_UV_PLANAR,
+    BG_UV_BOX,
+    BG_UV_CYLINDRICAL,
+    BG_UV_COUNT_
+} bg_uv_mapping;
+
+/* Defaults (bg_object_desc_init): identity transform, the default UV mapping with scale (1, 1),
+ * casts shadows. material must name an added material. */
+typedef struct bg_object_desc {
+    bg_shape shape;
+    bg_mat4 transform;
+    uint32_t material;
+    bg_uv_mapping uv_mapping;
+    double uv_scale[2];  /* texture repeats per prototype unit (planar) or per turn (others); > 0 */
+    bool casts_shadows;
+} bg_object_desc;
+
+/* The default object of a shape, described above. */
+bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material);
+/* Adds an object; singular or non-finite transforms, unknown shapes or materials are rejected. */
+bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object);
+/* Shorthand: a sphere of the given centre and radius (> 0). */
+bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, uint32_t material,
+                              uint32_t *out_object);
+/* Shorthand: the plane through point with the given normal (non-zero); its planar UV axes are
+ * chosen from the normal as docs/shading.md says. */
+bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t material,
+                             uint32_t *out_object);
+/* Moves an object (cheap re-commit). */
+bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4 *transform);
+
+/* ---- lights -------------------------------------------------------------------------------- */
+
+typedef enum bg_light_type { BG_LIGHT_POINT = 0, BG_LIGHT_DIRECTIONAL, BG_LIGHT_TYPE_COUNT_ } bg_light_type;
+
+/* Defaults (bg_light_init): a white point light of intensity 1 at (0, 0, 0), attenuation
+ * (1, 0, 0) (none), no spot cone (spot_cutoff_degrees 180). Radiance arriving from a point light
+ * is color * intensity * spot / (constant + linear d + quadratic d^2); a directional light has
+ * no attenuation and shines along direction. */
+typedef struct bg_light {
+    bg_light_type type;
+    bg_vec3 position;   /* point lights */
+    bg_vec3 direction;  /* directional lights, and the axis of a spot cone */
+    double color[3];
+    double intensity;
+    double attenuation[3];       /* constant, linear, quadratic; >= 0, not all 0 */
+    double spot_cutoff_degrees;  /* (0, 90], or 180 for no cone */
+    double spot_exponent;        /* >= 0 */
+} bg_light;
+
+/* The default light described above. */
+bg_light bg_light_init(void);
+/* Adds a light; every field is validated. */
+bg_status bg_scene_add_light(bg_scene *scene, const bg_light *light, uint32_t *out_light);
+/* Replaces a light's values (cheap re-commit). */
+bg_status bg_scene_set_light(bg_scene *scene, uint32_t light, const bg_light *values);
+/* Sets the scene's ambient light colour (linear, >= 0; default (1, 1, 1)); each material's
+ * ambient colour multiplies it. */
+bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
+
+/* ---- commit -------------------------------------------------------------------------------- */
+
+/* Validates the whole scene and makes it what the renderers see: computes bounds, inverse
+ * transforms (in double) and what the renderers need. Cheap when only values changed. */
+bg_status bg_scene_commit(bg_scene *scene);
+/* Bumped by every successful commit; renderers use it to tell what changed. */
+uint64_t bg_scene_commit_count(const bg_scene *scene);
+
+/* ---- rendering ----------------------------------------------------------------------------- */
+
+typedef enum bg_output_encoding {
+    BG_ENCODING_SRGB = 0, /* RGBA8 output is the sRGB transfer function of clamped linear radiance */
+    BG_ENCODING_LINEAR    /* RGBA8 output is clamped linear radiance x 255 */
+} bg_output_encoding;
+
+/* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
+ * min_weight 1/512, sRGB encoding, threads 0 (the online cores). */
+typedef struct bg_render_settings {
+    double background[3];
+    int max_depth;      /* bounce levels after the primary hit, 0 .. 64 */
+    double min_weight;  /* a ray whose path weight is below this in every channel is not followed */
+    bg_output_encoding encoding;
+    int threads;        /* CPU renderer only; 0 = online cores, at most 256 */
+} bg_render_settings;
+
+/* The default settings described above. */
+bg_render_settings bg_render_settings_init(void);
+
+/* Renders the committed scene with the double-precision CPU reference renderer into a
+ * caller-owned image (size 1 .. 16384 per side). The output does not depend on the thread count. */
+bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,57 @@
+/* The committed scene as both renderers read it. scene.c owns it; renderers never see the
+ * pending (uncommitted) state. Everything here is validated and finite. */
+#ifndef BG_SCENE_INTERNAL_H
+#define BG_SCENE_INTERNAL_H
+
+#include "betelgeuse.h"
+
+/* A texture as stored in the scene: linear float RGBA, rows in GL order (row 0 is v = 0, the
+ * bottom of the source image; PNG and bg_image rows are flipped on add). */
+typedef struct bg_texture_data {
+    int width, height;
+    bg_texture_wrap wrap;
+    float *texels; /* width * height * 4 */
+} bg_texture_data;
+
+/* An object with everything derived at commit. Handles are 1-based in the API and 0-based here. */
+typedef struct bg_object_data {
+    bg_shape shape;
+    double to_world[4][4];       /* the object's transform */
+    double to_object[4][4];      /* its inverse, computed in double */
+    double normal_to_world[3][3];/* inverse transpose of the linear part */
+    uint32_t material;           /* index into materials */
+    bg_uv_mapping uv_mapping;    /* resolved: never BG_UV_DEFAULT */
+    double uv_scale[2];
+    bool casts_shadows;
+    bool bounded;                /* false for planes */
+    double bounds_min[3], bounds_max[3]; /* world-space box; meaningful when bounded */
+} bg_object_data;
+
+/* The camera with its derived orthonormal basis (forward, right, up: right-handed). */
+typedef struct bg_camera_data {
+    bg_camera camera;
+    double forward[3], right[3], up[3];
+    double tan_half_fov_y;
+} bg_camera_data;
+
+/* What a commit produces. Lights' directions are normalised; materials keep their public form. */
+typedef struct bg_scene_state {
+    bg_camera_data camera;
+    double ambient[3];
+    uint32_t object_count, material_count, texture_count, light_count;
+    const bg_object_data *objects;
+    const bg_material *materials;
+    const bg_texture_data *textures;
+    const bg_light *lights;
+    bool has_bounded_objects;
+    double bounds_min[3], bounds_max[3]; /* union of the bounded objects' boxes */
+    uint64_t commit_count;
+} bg_scene_state;
+
+/* The committed state, or NULL when the scene was never committed successfully. */
+const bg_scene_state *bg_scene_committed(const bg_scene *scene);
+
+/* Records an error on the scene (first one sticks) and sends it to the logger; returns status. */
+bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, ...);
+
+#endif
