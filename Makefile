@@ -63,7 +63,9 @@ BG_SO   := $(BUILD)/libbetelgeuse.so.$(VERSION)
 
 STATIC_LINK := $(BG_A) $(MACS_A) $(BG_LIBS) $(MACS_LIBS)
 
-.PHONY: all check examples bench stress install uninstall clean glsl-check
+.PHONY: all check examples bench stress install uninstall clean glsl-check valgrind
+# Keep generated sources and objects: they are intermediate files of pattern chains.
+.SECONDARY:
 all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
 
 $(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*.h tests/*.h examples/scenes/*.h)
