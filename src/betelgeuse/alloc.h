@@ -1,0 +1,18 @@
+/* Allocation through the caller's hooks. Every caller checks the result. */
+#ifndef BG_ALLOC_H
+#define BG_ALLOC_H
+
+#include "betelgeuse.h"
+
+/* True when the hooks are usable: all NULL, or alloc and free both set (realloc optional). */
+bool bg_allocator_valid(const bg_allocator *a);
+/* size bytes, or NULL (also for size 0, so callers never keep a zero-size block). */
+void *bg_alloc(const bg_allocator *a, size_t size);
+/* Resizes a block of old_size bytes; on failure returns NULL and leaves ptr untouched. */
+void *bg_realloc(const bg_allocator *a, void *ptr, size_t old_size, size_t new_size);
+/* Frees a block from bg_alloc or bg_realloc; NULL is ignored. */
+void bg_free(const bg_allocator *a, void *ptr);
+/* a * b into *out; false on overflow of size_t. */
+bool bg_size_mul(size_t a, size_t b, size_t *out);
+
+#endif

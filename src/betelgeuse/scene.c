@@ -1,0 +1,158 @@
+/* Scene lifetime, the sticky first error, the camera and the ambient light. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "alloc.h"
+#include "scene_private.h"
+
+bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
+{
+    if (!out_scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    *out_scene = NULL;
+    bg_scene_desc d;
+    memset(&d, 0, sizeof d);
+    if (desc)
+        d = *desc;
+    if (!bg_allocator_valid(&d.allocator)) {
+        if (d.log)
+            d.log(BG_LOG_ERROR, "bg_scene_create: allocator must set alloc and free together (realloc is optional), or nothing", d.log_user);
+        return BG_ERR_INVALID_ARGUMENT;
+    }
+    bg_scene *s = bg_alloc(&d.allocator, sizeof *s);
+    if (!s) {
+        if (d.log)
+            d.log(BG_LOG_ERROR, "bg_scene_create: out of memory", d.log_user);
+        return BG_ERR_OUT_OF_MEMORY;
+    }
+    memset(s, 0, sizeof *s);
+    s->allocator = d.allocator;
+    s->log = d.log;
+    s->log_user = d.log_user;
+    s->camera = bg_camera_init();
+    s->ambient[0] = s->ambient[1] = s->ambient[2] = 1.0;
+    *out_scene = s;
+    return BG_OK;
+}
+
+void bg_scene_destroy(bg_scene *scene)
+{
+    if (!scene)
+        return;
+    bg_texture_data *t = scene->textures.data;
+    for (uint32_t i = 0; i < scene->textures.count; i++)
+        bg_free(&scene->allocator, t[i].texels);
+    bg_array *arrays[] = {&scene->objects, &scene->materials, &scene->lights, &scene->textures,
+                          &scene->c_objects, &scene->c_materials, &scene->c_lights, &scene->c_textures};
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
+        bg_array_release(scene, arrays[i]);
+    bg_allocator a = scene->allocator;
+    bg_free(&a, scene);
+}
+
+bg_status bg_scene_error(const bg_scene *scene)
+{
+    return scene ? scene->error : BG_ERR_INVALID_ARGUMENT;
+}
+
+const char *bg_scene_error_message(const bg_scene *scene)
+{
+    return scene ? scene->message : "scene is NULL";
+}
+
+void bg_scene_clear_error(bg_scene *scene)
+{
+    if (!scene)
+        return;
+    scene->error = BG_OK;
+    scene->message[0] = '\0';
+}
+
+bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, ...)
+{
+    char buffer[BG_MESSAGE_SIZE];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(buffer, sizeof buffer, format, args);
+    va_end(args);
+    if (scene->error == BG_OK && status != BG_OK) {
+        scene->error = status;
+        memcpy(scene->message, buffer, sizeof buffer);
+    }
+    if (scene->log)
+        scene->log(BG_LOG_ERROR, buffer, scene->log_user);
+    return status;
+}
+
+bg_status bg_array_reserve(bg_scene *scene, bg_array *array, uint32_t need, size_t elem,
+                           const char *where)
+{
+    if (need <= array->capacity)
+        return BG_OK;
+    if (need > BG_MAX_ITEMS)
+        return bg_scene_fail(scene, BG_ERR_LIMIT, "%s: more than %u items", where, BG_MAX_ITEMS);
+    uint32_t cap = array->capacity ? array->capacity : 4;
+    while (cap < need)
+        cap = cap > BG_MAX_ITEMS / 2 ? BG_MAX_ITEMS : cap * 2;
+    void *p = bg_realloc(&scene->allocator, array->data, (size_t)array->capacity * elem,
+                         (size_t)cap * elem);
+    if (!p)
+        return bg_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: out of memory growing to %u items",
+                             where, cap);
+    array->data = p;
+    array->capacity = cap;
+    return BG_OK;
+}
+
+void bg_array_release(bg_scene *scene, bg_array *array)
+{
+    bg_free(&scene->allocator, array->data);
+    memset(array, 0, sizeof *array);
+}
+
+bg_status bg_scene_handle(bg_scene *scene, const char *where, const char *kind, uint32_t handle,
+                          uint32_t count, uint32_t *out_index)
+{
+    if (handle == 0 || handle > count)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: %s = %u is not a handle of this scene (%u added)",
+                             where, kind, handle, count);
+    *out_index = handle - 1;
+    return BG_OK;
+}
+
+bg_camera bg_camera_init(void)
+{
+    bg_camera c;
+    c.position = bg_vec3_make(0, 0, 5);
+    c.look_at = bg_vec3_make(0, 0, 0);
+    c.up = bg_vec3_make(0, 1, 0);
+    c.fov_y_degrees = 45.0;
+    return c;
+}
+
+bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera)
+{
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    if (!camera)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_camera: camera is NULL");
+    bg_status st = bg_validate_camera(scene, "bg_scene_set_camera", camera);
+    if (st != BG_OK)
+        return st;
+    scene->camera = *camera;
+    return BG_OK;
+}
+
+bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3])
+{
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    if (!rgb)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_ambient: rgb is NULL");
+    bg_status st = bg_validate_color3(scene, "bg_scene_set_ambient", "rgb", rgb);
+    if (st != BG_OK)
+        return st;
+    memcpy(scene->ambient, rgb, sizeof scene->ambient);
+    return BG_OK;
+}

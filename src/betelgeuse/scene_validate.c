@@ -1,0 +1,180 @@
+/* Field-by-field validation. Each message names the call (or commit and the item), the field
+ * and the offending value, so a caller can fix the first bad field without a debugger. */
+#include <math.h>
+#include <stdio.h>
+
+#include "affine.h"
+#include "scene_private.h"
+
+#define FAIL(...) bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, __VA_ARGS__)
+
+/* Cosine of the angle below which the up vector counts as parallel to the view (about 0.06 deg). */
+#define BG_UP_PARALLEL_SIN 1e-3
+
+static bool finite3(const double v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static bg_status vec3_finite(bg_scene *scene, const char *where, const char *field, bg_vec3 v)
+{
+    if (!bg_vec3_finite(v))
+        return FAIL("%s: %s = (%g, %g, %g) is not finite", where, field, v.x, v.y, v.z);
+    return BG_OK;
+}
+
+bg_status bg_validate_camera(bg_scene *scene, const char *where, const bg_camera *c)
+{
+    bg_status st;
+    if ((st = vec3_finite(scene, where, "position", c->position)) != BG_OK ||
+        (st = vec3_finite(scene, where, "look_at", c->look_at)) != BG_OK ||
+        (st = vec3_finite(scene, where, "up", c->up)) != BG_OK)
+        return st;
+    if (!(c->fov_y_degrees > 0.0 && c->fov_y_degrees < 180.0))
+        return FAIL("%s: fov_y_degrees = %g is outside (0, 180)", where, c->fov_y_degrees);
+    bg_vec3 f = bg_vec3_make(c->look_at.x - c->position.x, c->look_at.y - c->position.y,
+                             c->look_at.z - c->position.z);
+    double fl = bg_vec3_length(f);
+    if (fl == 0.0)
+        return FAIL("%s: look_at equals position (%g, %g, %g)", where, c->position.x,
+                    c->position.y, c->position.z);
+    if (!isfinite(fl))
+        return FAIL("%s: look_at - position overflows", where);
+    double ul = bg_vec3_length(c->up);
+    if (ul == 0.0)
+        return FAIL("%s: up = (0, 0, 0) is zero", where);
+    f.x /= fl; f.y /= fl; f.z /= fl;
+    bg_vec3 u = bg_vec3_make(c->up.x / ul, c->up.y / ul, c->up.z / ul);
+    bg_vec3 x = bg_vec3_make(f.y * u.z - f.z * u.y, f.z * u.x - f.x * u.z, f.x * u.y - f.y * u.x);
+    if (bg_vec3_length(x) < BG_UP_PARALLEL_SIN)
+        return FAIL("%s: up = (%g, %g, %g) is parallel to the view direction", where, c->up.x,
+                    c->up.y, c->up.z);
+    return BG_OK;
+}
+
+bg_status bg_validate_color3(bg_scene *scene, const char *where, const char *field, const double rgb[3])
+{
+    if (!finite3(rgb))
+        return FAIL("%s: %s = (%g, %g, %g) is not finite", where, field, rgb[0], rgb[1], rgb[2]);
+    if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
+        return FAIL("%s: %s = (%g, %g, %g) has a negative component", where, field, rgb[0], rgb[1], rgb[2]);
+    return BG_OK;
+}
+
+static bg_status texture_ref(bg_scene *scene, const char *where, const char *field,
+                             uint32_t texture, uint32_t texture_count)
+{
+    if (texture != 0 && texture > texture_count)
+        return FAIL("%s: %s.texture = %u is not a texture of this scene (%u added)", where, field,
+                    texture, texture_count);
+    return BG_OK;
+}
+
+static bg_status color_param(bg_scene *scene, const char *where, const char *field,
+                             const bg_color_param *p, uint32_t texture_count)
+{
+    double rgb[3] = {p->r, p->g, p->b};
+    if (!finite3(rgb))
+        return FAIL("%s: %s = (%g, %g, %g) is not finite", where, field, p->r, p->g, p->b);
+    if (p->r < 0 || p->g < 0 || p->b < 0)
+        return FAIL("%s: %s = (%g, %g, %g) has a negative component", where, field, p->r, p->g, p->b);
+    return texture_ref(scene, where, field, p->texture, texture_count);
+}
+
+/* A scalar parameter in [0, 1] (unit) or just finite and positive (not unit). */
+static bg_status scalar_param(bg_scene *scene, const char *where, const char *field,
+                              const bg_scalar_param *p, uint32_t texture_count)
+{
+    if (!isfinite(p->value))
+        return FAIL("%s: %s.value = %g is not finite", where, field, p->value);
+    if (p->value < 0.0 || p->value > 1.0)
+        return FAIL("%s: %s.value = %g is outside [0, 1]", where, field, p->value);
+    if (p->channel < 0 || p->channel > 3)
+        return FAIL("%s: %s.channel = %d is outside 0..3", where, field, p->channel);
+    return texture_ref(scene, where, field, p->texture, texture_count);
+}
+
+static bg_status layer(bg_scene *scene, const char *where, const char *name, const bg_schlick_layer *l,
+                       uint32_t texture_count)
+{
+    char field[64];
+    bg_status st;
+    snprintf(field, sizeof field, "%s.reflectance", name);
+    if ((st = color_param(scene, where, field, &l->reflectance, texture_count)) != BG_OK)
+        return st;
+    snprintf(field, sizeof field, "%s.roughness", name);
+    if ((st = scalar_param(scene, where, field, &l->roughness, texture_count)) != BG_OK)
+        return st;
+    snprintf(field, sizeof field, "%s.isotropy", name);
+    return scalar_param(scene, where, field, &l->isotropy, texture_count);
+}
+
+bg_status bg_validate_material(bg_scene *scene, const char *where, const bg_material *m,
+                               uint32_t texture_count)
+{
+    bg_status st;
+    /* The coat is checked even when unused, so a committed material never holds garbage. */
+    if ((st = layer(scene, where, "base", &m->base, texture_count)) != BG_OK ||
+        (st = layer(scene, where, "coat", &m->coat, texture_count)) != BG_OK ||
+        (st = color_param(scene, where, "ambient", &m->ambient, texture_count)) != BG_OK ||
+        (st = color_param(scene, where, "emission", &m->emission, texture_count)) != BG_OK ||
+        (st = scalar_param(scene, where, "transparency", &m->transparency, texture_count)) != BG_OK)
+        return st;
+    if (!isfinite(m->ior) || m->ior <= 0.0)
+        return FAIL("%s: ior = %g must be finite and > 0", where, m->ior);
+    return BG_OK;
+}
+
+bg_status bg_validate_light(bg_scene *scene, const char *where, const bg_light *l)
+{
+    bg_status st;
+    if ((int)l->type < 0 || l->type >= BG_LIGHT_TYPE_COUNT_)
+        return FAIL("%s: type = %d is not a bg_light_type", where, (int)l->type);
+    if ((st = vec3_finite(scene, where, "position", l->position)) != BG_OK ||
+        (st = vec3_finite(scene, where, "direction", l->direction)) != BG_OK ||
+        (st = bg_validate_color3(scene, where, "color", l->color)) != BG_OK)
+        return st;
+    if (!isfinite(l->intensity) || l->intensity < 0.0)
+        return FAIL("%s: intensity = %g must be finite and >= 0", where, l->intensity);
+    const double *a = l->attenuation;
+    if (!finite3(a))
+        return FAIL("%s: attenuation = (%g, %g, %g) is not finite", where, a[0], a[1], a[2]);
+    if (a[0] < 0 || a[1] < 0 || a[2] < 0)
+        return FAIL("%s: attenuation = (%g, %g, %g) has a negative term", where, a[0], a[1], a[2]);
+    if (a[0] == 0 && a[1] == 0 && a[2] == 0)
+        return FAIL("%s: attenuation = (0, 0, 0) must not be all zero", where);
+    double cut = l->spot_cutoff_degrees;
+    if (!(cut == 180.0 || (cut > 0.0 && cut <= 90.0)))
+        return FAIL("%s: spot_cutoff_degrees = %g is outside (0, 90] and not 180", where, cut);
+    if (!isfinite(l->spot_exponent) || l->spot_exponent < 0.0)
+        return FAIL("%s: spot_exponent = %g must be finite and >= 0", where, l->spot_exponent);
+    bool needs_direction = l->type == BG_LIGHT_DIRECTIONAL || cut != 180.0;
+    if (needs_direction && bg_vec3_length(l->direction) == 0.0)
+        return FAIL("%s: direction = (0, 0, 0) is zero but the %s needs it", where,
+                    l->type == BG_LIGHT_DIRECTIONAL ? "directional light" : "spot cone");
+    return BG_OK;
+}
+
+bg_status bg_validate_transform(bg_scene *scene, const char *where, const bg_mat4 *t)
+{
+    bg_affine_check c = bg_affine_inverse(t, NULL);
+    if (c != BG_AFFINE_OK)
+        return FAIL("%s: transform %s", where, bg_affine_check_string(c));
+    return BG_OK;
+}
+
+bg_status bg_validate_object(bg_scene *scene, const char *where, const bg_object_desc *d,
+                             uint32_t material_count)
+{
+    if ((int)d->shape < 0 || d->shape >= BG_SHAPE_COUNT_)
+        return FAIL("%s: shape = %d is not a bg_shape", where, (int)d->shape);
+    if ((int)d->uv_mapping < 0 || d->uv_mapping >= BG_UV_COUNT_)
+        return FAIL("%s: uv_mapping = %d is not a bg_uv_mapping", where, (int)d->uv_mapping);
+    for (int i = 0; i < 2; i++)
+        if (!isfinite(d->uv_scale[i]) || d->uv_scale[i] <= 0.0)
+            return FAIL("%s: uv_scale[%d] = %g must be finite and > 0", where, i, d->uv_scale[i]);
+    if (d->material == 0 || d->material > material_count)
+        return FAIL("%s: material = %u is not a material of this scene (%u added)", where,
+                    d->material, material_count);
+    return bg_validate_transform(scene, where, &d->transform);
+}
