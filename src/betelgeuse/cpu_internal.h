@@ -1,0 +1,171 @@
+/* The CPU reference renderer's internals, exposed so that tests can check each step on its own.
+ * Every formula follows docs/shading.md; everything is double precision. */
+#ifndef BG_CPU_INTERNAL_H
+#define BG_CPU_INTERNAL_H
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "scene_internal.h"
+
+/* "No object" for the skip and inside indices of a ray. */
+#define BG_CPU_NONE UINT32_MAX
+
+/* ---- small vector helpers (header-local so every file inlines them) ------------------------ */
+
+static inline double bg_v3_dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void bg_v3_set(double out[3], double x, double y, double z)
+{
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+}
+
+static inline void bg_v3_cross(const double a[3], const double b[3], double out[3])
+{
+    double x = a[1] * b[2] - a[2] * b[1];
+    double y = a[2] * b[0] - a[0] * b[2];
+    double z = a[0] * b[1] - a[1] * b[0];
+    bg_v3_set(out, x, y, z);
+}
+
+/* Normalises in place; a zero (or non-finite-length) vector is left unchanged and false returned. */
+static inline bool bg_v3_normalize(double v[3])
+{
+    double len = sqrt(bg_v3_dot(v, v));
+    if (!(len > 0.0) || !isfinite(len))
+        return false;
+    v[0] /= len;
+    v[1] /= len;
+    v[2] /= len;
+    return true;
+}
+
+/* ---- intersection (intersect.c) ------------------------------------------------------------ */
+
+/* Where a ray meets a prototype, in object space. Closed shapes (sphere, box, cylinder) give the
+ * interval [t[0], t[1]] of the line inside the solid; thin shapes (plane, rectangle) give one t. */
+typedef struct bg_cpu_span {
+    int count;             /* 0 miss, 1 thin surface, 2 closed interval (t[0] <= t[1]) */
+    double t[2];           /* entry and exit parameters along the unnormalised object-space ray */
+    double normal[2][3];   /* outward (front, +y for thin shapes) prototype normals, unnormalised */
+} bg_cpu_span;
+
+/* Intersects the object-space ray o + t d (d not normalised) with a prototype shape. */
+void bg_cpu_intersect_prototype(bg_shape shape, const double o[3], const double d[3], bg_cpu_span *span);
+
+/* A candidate hit on one object, before its attributes are computed. */
+typedef struct bg_cpu_candidate {
+    double t;       /* world ray parameter (the same in object space) */
+    int root;       /* 0 the entry (or the only) root, 1 the exit root */
+    double p[3];    /* object-space point */
+    double n[3];    /* object-space outward normal (unnormalised) */
+} bg_cpu_candidate;
+
+/* Transforms a world ray into the object's space (direction not normalised). */
+void bg_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
+                       double od[3]);
+
+/* The hit of a world ray on an object with t in (0, t_max]: the nearest root, or with far_root the
+ * exit root of a closed shape (a refracted ray travelling inside it). */
+bool bg_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
+                             double t_max, bg_cpu_candidate *candidate);
+
+/* True when the segment o + t l, t in (0, t_max), meets the object (shadow test). */
+bool bg_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max);
+
+/* A finished hit with everything shading needs. */
+typedef struct bg_cpu_hit {
+    uint32_t object;      /* 0-based object index */
+    double t;
+    double position[3];   /* world */
+    double normal[3];     /* world, unit, facing the ray */
+    double tangent[3];    /* world, unit, perpendicular to normal (dP/du orthogonalised) */
+    double uv[2];         /* after uv_scale */
+    bool entering;        /* closed: the ray arrives from outside; thin: it arrives on the +y side */
+} bg_cpu_hit;
+
+/* Fills the hit's attributes from a candidate on object (index) for the world ray o + t d. */
+void bg_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
+                           const bg_cpu_candidate *candidate, bg_cpu_hit *hit);
+
+/* ---- UV mappings (uv_map.c) ---------------------------------------------------------------- */
+
+/* The texture coordinates (before uv_scale) and dP/du of an object-space point. */
+void bg_cpu_uv_map(bg_uv_mapping mapping, const double p[3], double uv[2], double dpdu[3]);
+
+/* ---- textures and material parameters (texture_sample.c) ------------------------------------ */
+
+/* GL_LINEAR sampling (no mipmaps) of a texture at (u, v) with its wrap mode. */
+void bg_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4]);
+
+/* A material evaluated at one surface point, every value clamped to its range. */
+typedef struct bg_cpu_layer {
+    double c[3];  /* reflectance at normal incidence, [0, 1] */
+    double r;     /* roughness, [0, 1] */
+    double p;     /* isotropy, [0, 1] */
+} bg_cpu_layer;
+
+typedef struct bg_cpu_surface {
+    bg_cpu_layer base;
+    bool has_coat;
+    bg_cpu_layer coat;
+    double ambient[3];
+    double emission[3];
+    double transparency;
+    double ior;
+} bg_cpu_surface;
+
+/* Evaluates every (possibly textured) material parameter at texture coordinates uv. */
+void bg_cpu_surface_eval(const bg_scene_state *state, const bg_material *material, const double uv[2],
+                         bg_cpu_surface *surface);
+
+/* ---- Schlick's BRDF (brdf.c) ---------------------------------------------------------------- */
+
+/* Spectral factor S(u) = C + (1 - C)(1 - u)^5 per channel. */
+void bg_cpu_schlick_s(const double c[3], double u, double s[3]);
+/* Lambertian, glossy and specular shares (a, b, c) of a layer of roughness r. */
+void bg_cpu_schlick_split(double r, double *a, double *b, double *c);
+/* The glossy directional factor D(t, v, v', w) of roughness r and isotropy p (0 when v or v' <= 0). */
+double bg_cpu_schlick_d(double r, double p, double t, double v, double vl, double w);
+/* The non-Dirac BRDF f (single or coat over base) for unit normal n, tangent, unit view direction
+ * (towards the viewer) and unit light direction (towards the light). */
+void bg_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double tangent[3], const double view[3],
+                 const double light[3], double f[3]);
+/* The weight of the perfectly specular (mirror) share for the view cosine v = n.view. */
+void bg_cpu_mirror_weight(const bg_cpu_surface *surface, double v, double m[3]);
+/* Exact unpolarised dielectric Fresnel reflectance for cosine cos_i and index ratio n1 -> n2;
+ * returns 1 on total internal reflection and sets *cos_t otherwise. */
+double bg_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t);
+
+/* ---- tracing (shade.c) ---------------------------------------------------------------------- */
+
+/* The nearest hit of a world ray (unit d) skipping object skip and taking the far root of object
+ * inside (either may be BG_CPU_NONE); false on a miss. */
+bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
+                        uint32_t inside, bg_cpu_hit *hit);
+
+/* Adds weight x the radiance along a ray at bounce level `level` into out. */
+void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,
+                  double out[3]);
+
+/* The linear radiance of one primary ray (o, unit d). */
+void bg_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+                      const double d[3], double rgb[3]);
+
+/* The primary ray through the centre of pixel (x, y) of a width x height image (row 0 at the top). */
+void bg_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
+                        double d[3]);
+
+/* The sRGB transfer function of a linear value clamped to [0, 1]. */
+double bg_cpu_srgb_encode(double linear);
+/* An 8-bit channel: floor(clamp(x, 0, 1) * 255 + 0.5) after the encoding. */
+uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding);
+
+#endif

@@ -1,0 +1,189 @@
+/* The CPU reference renderer: argument checks, rows handed to worker threads, output encoding
+ * (docs/shading.md sections 1 and 10). Each pixel depends only on the scene and its position, so
+ * the image is the same for every thread count. */
+#include <pthread.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cpu_internal.h"
+
+#define MAX_SIDE 16384
+#define MAX_THREADS 256
+
+bg_render_settings bg_render_settings_init(void)
+{
+    bg_render_settings s;
+    memset(&s, 0, sizeof s);
+    s.max_depth = 5;
+    s.min_weight = 1.0 / 512.0;
+    s.encoding = BG_ENCODING_SRGB;
+    s.threads = 0;
+    return s;
+}
+
+double bg_cpu_srgb_encode(double linear)
+{
+    double x = linear < 0.0 ? 0.0 : (linear > 1.0 ? 1.0 : linear);
+    if (x <= 0.0031308)
+        return 12.92 * x;
+    return 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+}
+
+uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding)
+{
+    double x = linear < 0.0 ? 0.0 : (linear > 1.0 ? 1.0 : linear);
+    if (encoding == BG_ENCODING_SRGB)
+        x = bg_cpu_srgb_encode(x);
+    double y = floor(x * 255.0 + 0.5);
+    return (uint8_t)(y < 0.0 ? 0.0 : (y > 255.0 ? 255.0 : y));
+}
+
+typedef struct job {
+    const bg_scene_state *state;
+    const bg_render_settings *settings;
+    const bg_image *image;
+    size_t stride;
+    pthread_mutex_t lock;
+    int next_row;
+} job;
+
+static void render_row(const job *jb, int y)
+{
+    const bg_image *img = jb->image;
+    unsigned char *row = (unsigned char *)img->pixels + (size_t)y * jb->stride;
+    for (int x = 0; x < img->width; x++) {
+        double o[3], d[3], rgb[3];
+        bg_cpu_primary_ray(&jb->state->camera, img->width, img->height, x, y, o, d);
+        bg_cpu_shade_ray(jb->state, jb->settings, o, d, rgb);
+        if (img->format == BG_PIXEL_RGBA32F) {
+            float px[4] = {(float)rgb[0], (float)rgb[1], (float)rgb[2], 1.0f};
+            memcpy(row + (size_t)x * sizeof px, px, sizeof px);
+        } else {
+            unsigned char *px = row + (size_t)x * 4;
+            for (int i = 0; i < 3; i++)
+                px[i] = bg_cpu_encode_channel(rgb[i], jb->settings->encoding);
+            px[3] = 255;
+        }
+    }
+}
+
+/* Takes rows from the shared counter until none is left (C99 has no atomics, hence the mutex). */
+static void *worker(void *arg)
+{
+    job *jb = arg;
+    for (;;) {
+        pthread_mutex_lock(&jb->lock);
+        int y = jb->next_row;
+        if (y < jb->image->height)
+            jb->next_row = y + 1;
+        pthread_mutex_unlock(&jb->lock);
+        if (y >= jb->image->height)
+            break;
+        render_row(jb, y);
+    }
+    return NULL;
+}
+
+static bool finite3(const double v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static bg_status check_settings(bg_scene *scene, const bg_render_settings *s)
+{
+    if (!finite3(s->background) || s->background[0] < 0.0 || s->background[1] < 0.0 || s->background[2] < 0.0)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                             "bg_render_cpu: settings.background must be finite and >= 0");
+    if (s->max_depth < 0 || s->max_depth > 64)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings.max_depth %d is not in 0..64",
+                             s->max_depth);
+    if (!isfinite(s->min_weight) || s->min_weight < 0.0)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                             "bg_render_cpu: settings.min_weight must be finite and >= 0");
+    if (s->encoding != BG_ENCODING_SRGB && s->encoding != BG_ENCODING_LINEAR)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings.encoding %d is unknown",
+                             (int)s->encoding);
+    if (s->threads < 0 || s->threads > MAX_THREADS)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings.threads %d is not in 0..%d",
+                             s->threads, MAX_THREADS);
+    return BG_OK;
+}
+
+static bg_status check_image(bg_scene *scene, const bg_image *image, size_t *stride)
+{
+    if (!image->pixels)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image.pixels is NULL");
+    if (image->width < 1 || image->width > MAX_SIDE || image->height < 1 || image->height > MAX_SIDE)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image size %dx%d is not in 1..%d",
+                             image->width, image->height, MAX_SIDE);
+    size_t bpp;
+    if (image->format == BG_PIXEL_RGBA8)
+        bpp = 4;
+    else if (image->format == BG_PIXEL_RGBA32F)
+        bpp = 16;
+    else
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image.format %d is unknown",
+                             (int)image->format);
+    size_t row = (size_t)image->width * bpp;
+    if (image->stride != 0 && image->stride < row)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                             "bg_render_cpu: image.stride %zu is below the row size %zu", image->stride, row);
+    if (image->format == BG_PIXEL_RGBA32F && image->stride % sizeof(float) != 0)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                             "bg_render_cpu: image.stride %zu of a float image is not a multiple of 4",
+                             image->stride);
+    *stride = image->stride ? image->stride : row;
+    return BG_OK;
+}
+
+bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image)
+{
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    if (!settings)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings is NULL");
+    if (!image)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image is NULL");
+    bg_status st = check_settings(scene, settings);
+    if (st != BG_OK)
+        return st;
+    size_t stride = 0;
+    st = check_image(scene, image, &stride);
+    if (st != BG_OK)
+        return st;
+    const bg_scene_state *state = bg_scene_committed(scene);
+    if (!state)
+        return bg_scene_fail(scene, BG_ERR_NOT_COMMITTED, "bg_render_cpu: the scene was never committed");
+
+    int threads = settings->threads;
+    if (threads == 0) {
+        long online = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = online < 1 ? 1 : (online > MAX_THREADS ? MAX_THREADS : (int)online);
+    }
+    if (threads > image->height)
+        threads = image->height;
+
+    job jb;
+    jb.state = state;
+    jb.settings = settings;
+    jb.image = image;
+    jb.stride = stride;
+    jb.next_row = 0;
+    if (pthread_mutex_init(&jb.lock, NULL) != 0)
+        return bg_scene_fail(scene, BG_ERR_THREAD, "bg_render_cpu: pthread_mutex_init failed");
+
+    /* The calling thread is worker 0; if a thread cannot be started the others (at least the caller)
+     * take its rows, so the image is always complete. */
+    pthread_t pool[MAX_THREADS];
+    int started = 0;
+    for (int i = 1; i < threads; i++) {
+        if (pthread_create(&pool[started], NULL, worker, &jb) != 0)
+            break;
+        started++;
+    }
+    worker(&jb);
+    for (int i = 0; i < started; i++)
+        pthread_join(pool[i], NULL);
+    pthread_mutex_destroy(&jb.lock);
+    return BG_OK;
+}

@@ -1,0 +1,196 @@
+/* Whitted tracing of one ray: nearest hit, lights with shadows, ambient and emission, mirror and
+ * dielectric secondary rays (docs/shading.md sections 7-9). */
+#include <float.h>
+
+#include "cpu_internal.h"
+
+#define PI 3.14159265358979323846264338327950288
+
+static bool is_thin(bg_shape shape)
+{
+    return shape == BG_SHAPE_PLANE || shape == BG_SHAPE_RECTANGLE;
+}
+
+bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
+                        uint32_t inside, bg_cpu_hit *hit)
+{
+    bg_cpu_candidate best = {0.0, 0, {0, 0, 0}, {0, 0, 0}}, c;
+    uint32_t best_index = BG_CPU_NONE;
+    double t_max = DBL_MAX;
+    for (uint32_t j = 0; j < state->object_count; j++) {
+        if (j == skip)
+            continue;
+        if (!bg_cpu_intersect_object(&state->objects[j], o, d, j == inside, t_max, &c))
+            continue;
+        if (best_index == BG_CPU_NONE || c.t < best.t) {
+            best = c;
+            best_index = j;
+            t_max = c.t;
+        }
+    }
+    if (best_index == BG_CPU_NONE)
+        return false;
+    bg_cpu_hit_attributes(&state->objects[best_index], best_index, o, d, &best, hit);
+    return true;
+}
+
+static bool shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self)
+{
+    for (uint32_t j = 0; j < state->object_count; j++) {
+        if (j == self || !state->objects[j].casts_shadows)
+            continue;
+        if (bg_cpu_segment_blocked(&state->objects[j], p, l, t_max))
+            return true;
+    }
+    return false;
+}
+
+/* Radiance arriving from a light at p (0 outside a spot cone), its unit direction and the shadow
+ * segment length; false when the light cannot contribute. */
+static bool light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3])
+{
+    double scale = light->intensity;
+    if (light->type == BG_LIGHT_DIRECTIONAL) {
+        bg_v3_set(l, -light->direction.x, -light->direction.y, -light->direction.z);
+        if (!bg_v3_normalize(l))
+            return false;
+        *t_max = DBL_MAX;
+    } else {
+        const double lp[3] = {light->position.x, light->position.y, light->position.z};
+        bg_v3_set(l, lp[0] - p[0], lp[1] - p[1], lp[2] - p[2]);
+        double dist = sqrt(bg_v3_dot(l, l));
+        if (!(dist > 0.0) || !bg_v3_normalize(l))
+            return false;
+        *t_max = dist;
+        if (light->spot_cutoff_degrees < 180.0) {
+            double axis[3] = {light->direction.x, light->direction.y, light->direction.z};
+            if (!bg_v3_normalize(axis))
+                return false;
+            double cos_angle = -bg_v3_dot(l, axis);
+            if (cos_angle < cos(light->spot_cutoff_degrees * (PI / 180.0)))
+                return false;
+            if (light->spot_exponent > 0.0)
+                scale *= pow(cos_angle > 0.0 ? cos_angle : 0.0, light->spot_exponent);
+        }
+        double att = light->attenuation[0] + light->attenuation[1] * dist + light->attenuation[2] * dist * dist;
+        if (!(att > 0.0))
+            return false;
+        scale /= att;
+    }
+    for (int i = 0; i < 3; i++)
+        radiance[i] = light->color[i] * scale;
+    return scale > 0.0;
+}
+
+static bool worth_following(const double w[3], double min_weight)
+{
+    double m = w[0] > w[1] ? w[0] : w[1];
+    m = m > w[2] ? m : w[2];
+    return m > 0.0 && m >= min_weight;
+}
+
+void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,
+                  double out[3])
+{
+    bg_cpu_hit hit;
+    if (!bg_cpu_nearest_hit(state, o, d, skip, inside, &hit)) {
+        for (int i = 0; i < 3; i++)
+            out[i] += weight[i] * settings->background[i];
+        return;
+    }
+    const bg_object_data *object = &state->objects[hit.object];
+    const bg_material *material = &state->materials[object->material];
+    bg_cpu_surface surface;
+    bg_cpu_surface_eval(state, material, hit.uv, &surface);
+
+    const double *n = hit.normal;
+    const double view[3] = {-d[0], -d[1], -d[2]};
+    double v = bg_v3_dot(n, view);
+    double opaque = 1.0 - surface.transparency;
+    bool thin = is_thin(object->shape);
+
+    for (int i = 0; i < 3; i++)
+        out[i] += weight[i] * (surface.emission[i] + opaque * state->ambient[i] * surface.ambient[i]);
+
+    /* Direct light reaches a closed object's surface only from outside. */
+    if (opaque > 0.0 && v > 0.0 && (thin || hit.entering)) {
+        for (uint32_t k = 0; k < state->light_count; k++) {
+            double l[3], radiance[3], t_max;
+            if (!light_arrival(&state->lights[k], hit.position, l, &t_max, radiance))
+                continue;
+            double vl = bg_v3_dot(n, l);
+            if (!(vl > 0.0))
+                continue; /* facing away from the light: none of it */
+            if (shadowed(state, hit.position, l, t_max, hit.object))
+                continue;
+            double f[3];
+            bg_cpu_brdf(&surface, n, hit.tangent, view, l, f);
+            for (int i = 0; i < 3; i++)
+                out[i] += weight[i] * opaque * PI * f[i] * radiance[i] * vl;
+        }
+    }
+
+    if (level >= settings->max_depth)
+        return;
+
+    /* Interface: exact dielectric Fresnel for closed shapes; thin shapes pass light straight on. */
+    double fresnel = 0.0, cos_t = 0.0, eta = 1.0;
+    double cos_i = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0;
+    if (surface.transparency > 0.0 && !thin) {
+        double n1 = hit.entering ? 1.0 : surface.ior, n2 = hit.entering ? surface.ior : 1.0;
+        fresnel = bg_cpu_fresnel(cos_i, n1, n2, &cos_t);
+        eta = n1 / n2;
+    }
+
+    double mirror[3], w_refl[3], w_refr[3];
+    bg_cpu_mirror_weight(&surface, cos_i, mirror);
+    for (int i = 0; i < 3; i++) {
+        w_refl[i] = weight[i] * (opaque * mirror[i] + surface.transparency * fresnel);
+        w_refr[i] = weight[i] * surface.transparency * (1.0 - fresnel);
+    }
+
+    /* A ray leaving a closed object's inside stays inside after reflection (far root); any other
+     * secondary ray leaves the object it starts on and skips it. */
+    bool stays_inside = !thin && !hit.entering;
+    if (worth_following(w_refl, settings->min_weight)) {
+        double dn = bg_v3_dot(d, n);
+        double r[3] = {d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]};
+        if (bg_v3_normalize(r))
+            bg_cpu_trace(state, settings, hit.position, r, level + 1, w_refl, stays_inside ? BG_CPU_NONE : hit.object,
+                         stays_inside ? hit.object : BG_CPU_NONE, out);
+    }
+    if (worth_following(w_refr, settings->min_weight)) {
+        double t[3] = {d[0], d[1], d[2]};
+        if (!thin) {
+            double k = eta * cos_i - cos_t;
+            for (int i = 0; i < 3; i++)
+                t[i] = eta * d[i] + k * n[i];
+        }
+        if (bg_v3_normalize(t)) {
+            bool enters = !thin && hit.entering;
+            bg_cpu_trace(state, settings, hit.position, t, level + 1, w_refr, enters ? BG_CPU_NONE : hit.object,
+                         enters ? hit.object : BG_CPU_NONE, out);
+        }
+    }
+}
+
+void bg_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+                      const double d[3], double rgb[3])
+{
+    const double one[3] = {1.0, 1.0, 1.0};
+    bg_v3_set(rgb, 0.0, 0.0, 0.0);
+    bg_cpu_trace(state, settings, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, rgb);
+}
+
+void bg_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
+                        double d[3])
+{
+    double aspect = (double)width / (double)height;
+    double sx = (2.0 * (x + 0.5) / width - 1.0) * aspect * camera->tan_half_fov_y;
+    double sy = (1.0 - 2.0 * (y + 0.5) / height) * camera->tan_half_fov_y;
+    bg_v3_set(o, camera->camera.position.x, camera->camera.position.y, camera->camera.position.z);
+    for (int i = 0; i < 3; i++)
+        d[i] = camera->forward[i] + sx * camera->right[i] + sy * camera->up[i];
+    bg_v3_normalize(d);
+}
