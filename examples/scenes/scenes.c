@@ -1,0 +1,474 @@
+/* The shared scenes. Each builder fills an empty scene; scenes_build_ex commits it. */
+#include "scenes.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TRY(call)                   \
+    do {                            \
+        bg_status st_ = (call);     \
+        if (st_ != BG_OK)           \
+            return st_;             \
+    } while (0)
+
+static const double PI = 3.14159265358979323846;
+
+static const char *const names[SCENE_COUNT] = {
+    "paper_earth", "paper_earth_shadow", "mirror", "glass",
+    "many_spheres", "many_lights", "all_primitives", "textured_aniso",
+};
+
+const char *scenes_name(scene_id id)
+{
+    return (int)id >= 0 && id < SCENE_COUNT ? names[id] : NULL;
+}
+
+bool scenes_find(const char *name, scene_id *out_id)
+{
+    for (int i = 0; name && i < SCENE_COUNT; i++)
+        if (strcmp(name, names[i]) == 0) {
+            *out_id = (scene_id)i;
+            return true;
+        }
+    return false;
+}
+
+/* ---- textures ---- */
+
+static unsigned char mix8(double a, double b, double t)
+{
+    double v = a + (b - a) * (t < 0 ? 0 : t > 1 ? 1 : t);
+    return (unsigned char)(v + 0.5);
+}
+
+/* Continents are where a few sums of sines exceed a threshold; integer frequencies in longitude
+ * keep the date line seamless. Ice where |latitude| passes a wavy 65 degrees. */
+void scenes_earth_pixels(int width, int height, unsigned char *pixels)
+{
+    for (int y = 0; y < height; y++) {
+        double lat = PI / 2 - (y + 0.5) / height * PI;
+        for (int x = 0; x < width; x++) {
+            double lon = (x + 0.5) / width * 2 * PI - PI;
+            double f = sin(2 * lon + 0.4) * cos(2.1 * lat - 0.3) +
+                       0.6 * sin(3 * lon - 1.2 + 1.5 * sin(2 * lat)) * cos(3.7 * lat + 0.8) +
+                       0.35 * sin(5 * lon + 2.9 * lat + 0.5) + 0.2 * sin(9 * lon - 6.1 * lat);
+            double ice = 65.0 + 6.0 * sin(4 * lon) + 3.0 * sin(11 * lon);
+            unsigned char *p = pixels + ((size_t)y * width + x) * 4;
+            if (fabs(lat) * 180 / PI > ice) {
+                p[0] = 236; p[1] = 240; p[2] = 246;
+            } else if (f > 0.25) {
+                /* Land: green, turning to desert brown near the subtropics. */
+                double dry = exp(-pow((fabs(lat) * 180 / PI - 25) / 10, 2)) * (0.5 + 0.5 * sin(7 * lon));
+                p[0] = mix8(52, 170, dry);
+                p[1] = mix8(118, 140, dry);
+                p[2] = mix8(46, 84, dry);
+            } else {
+                /* Ocean: lighter towards the coast. */
+                double coast = (f + 1.2) / 1.45;
+                p[0] = mix8(12, 40, coast);
+                p[1] = mix8(38, 96, coast);
+                p[2] = mix8(100, 168, coast);
+            }
+            p[3] = 255;
+        }
+    }
+}
+
+bg_status scenes_add_earth_texture(bg_scene *scene, uint32_t *out_texture)
+{
+    enum { W = 256, H = 128 };
+    unsigned char *pixels = malloc((size_t)W * H * 4);
+    if (!pixels)
+        return BG_ERR_OUT_OF_MEMORY;
+    scenes_earth_pixels(W, H, pixels);
+    bg_image image = {W, H, BG_PIXEL_RGBA8, 0, pixels};
+    bg_texture_desc desc = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB};
+    bg_status st = bg_scene_add_texture(scene, &image, &desc, out_texture);
+    free(pixels);
+    return st;
+}
+
+bg_status scenes_add_checker_texture(bg_scene *scene, const unsigned char a[3], const unsigned char b[3],
+                                     uint32_t *out_texture)
+{
+    enum { N = 64, CELL = 8 };
+    unsigned char pixels[N * N * 4];
+    for (int y = 0; y < N; y++)
+        for (int x = 0; x < N; x++) {
+            const unsigned char *c = ((x / CELL + y / CELL) % 2) ? b : a;
+            unsigned char *p = pixels + (y * N + x) * 4;
+            p[0] = c[0]; p[1] = c[1]; p[2] = c[2]; p[3] = 255;
+        }
+    bg_image image = {N, N, BG_PIXEL_RGBA8, 0, pixels};
+    return bg_scene_add_texture(scene, &image, NULL, out_texture);
+}
+
+/* ---- materials, objects and lights ---- */
+
+static bg_material diffuse(double r, double g, double b)
+{
+    bg_material m = bg_material_init();
+    m.base.reflectance.r = r;
+    m.base.reflectance.g = g;
+    m.base.reflectance.b = b;
+    return m;
+}
+
+static bg_material mirror(double c)
+{
+    bg_material m = diffuse(c, c, c);
+    m.base.roughness.value = 0.0;
+    m.ambient.r = m.ambient.g = m.ambient.b = 0.0;
+    return m;
+}
+
+static bg_material glass(void)
+{
+    bg_material m = diffuse(0.04, 0.04, 0.04);
+    m.base.roughness.value = 0.0;
+    m.transparency.value = 1.0;
+    m.ior = 1.5;
+    m.ambient.r = m.ambient.g = m.ambient.b = 0.0;
+    return m;
+}
+
+/* A glossy, coated or anisotropic variant of a colour, for variety in the grid scenes. */
+static bg_material glossy(double r, double g, double b, double roughness, double isotropy)
+{
+    bg_material m = diffuse(r, g, b);
+    m.base.roughness.value = roughness;
+    m.base.isotropy.value = isotropy;
+    return m;
+}
+
+static bg_material coated(double r, double g, double b)
+{
+    bg_material m = diffuse(r, g, b);
+    m.has_coat = true;
+    m.coat.reflectance.r = m.coat.reflectance.g = m.coat.reflectance.b = 0.05;
+    m.coat.roughness.value = 0.05;
+    return m;
+}
+
+static bg_status material(bg_scene *scene, bg_material m, uint32_t *out)
+{
+    return bg_scene_add_material(scene, &m, out);
+}
+
+static bg_status object(bg_scene *scene, bg_shape shape, bg_mat4 transform, uint32_t mat)
+{
+    bg_object_desc d = bg_object_desc_init(shape, mat);
+    d.transform = transform;
+    uint32_t id;
+    return bg_scene_add_object(scene, &d, &id);
+}
+
+static bg_status sphere(bg_scene *scene, double x, double y, double z, double r, uint32_t mat)
+{
+    uint32_t id;
+    return bg_scene_add_sphere(scene, bg_vec3_make(x, y, z), r, mat, &id);
+}
+
+static bg_status plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t mat)
+{
+    uint32_t id;
+    return bg_scene_add_plane(scene, point, normal, mat, &id);
+}
+
+static bg_status point_light(bg_scene *scene, double x, double y, double z, double r, double g,
+                             double b, double intensity)
+{
+    bg_light l = bg_light_init();
+    l.position = bg_vec3_make(x, y, z);
+    l.color[0] = r; l.color[1] = g; l.color[2] = b;
+    l.intensity = intensity;
+    uint32_t id;
+    return bg_scene_add_light(scene, &l, &id);
+}
+
+static bg_status camera(bg_scene *scene, bg_vec3 position, bg_vec3 look_at, double fov)
+{
+    bg_camera c = bg_camera_init();
+    c.position = position;
+    c.look_at = look_at;
+    c.fov_y_degrees = fov;
+    return bg_scene_set_camera(scene, &c);
+}
+
+static bg_status ambient(bg_scene *scene, double v)
+{
+    double rgb[3] = {v, v, v};
+    return bg_scene_set_ambient(scene, rgb);
+}
+
+/* ---- scenes ---- */
+
+/* The earth, tilted by 23.4 degrees and turned so Atlantic-like ocean and two continents face the
+ * camera; it fills about 85% of the frame height. Used by both paper scenes. */
+static bg_status earth(bg_scene *scene, double z)
+{
+    uint32_t tex, mat;
+    TRY(scenes_add_earth_texture(scene, &tex));
+    bg_material m = diffuse(1, 1, 1);
+    m.base.reflectance.texture = tex;
+    m.base.roughness.value = 0.7;
+    m.ambient.texture = tex;
+    TRY(material(scene, m, &mat));
+    bg_mat4 t = bg_mat4_mul(bg_mat4_translate(0, 0, z),
+                            bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 0, 1), 23.4),
+                                        bg_mat4_rotate(bg_vec3_make(0, 1, 0), -30)));
+    return object(scene, BG_SHAPE_SPHERE, t, mat);
+}
+
+static bg_status paper_earth(bg_scene *scene)
+{
+    TRY(earth(scene, 0));
+    TRY(point_light(scene, 4, 3, 5, 1, 1, 1, 1.0));
+    TRY(point_light(scene, -5, 1, 3, 0.8, 0.85, 1, 0.4));
+    TRY(ambient(scene, 0.5));
+    return camera(scene, bg_vec3_make(0, 0, 3.1), bg_vec3_make(0, 0, 0), 45);
+}
+
+/* The lights sit up and to the right in front, so the shadow falls down-left on the wall, clear
+ * of the sphere's own silhouette. */
+static bg_status paper_earth_shadow(bg_scene *scene)
+{
+    uint32_t white;
+    TRY(earth(scene, 0));
+    TRY(material(scene, diffuse(0.9, 0.9, 0.9), &white));
+    TRY(plane(scene, bg_vec3_make(0, 0, -1.6), bg_vec3_make(0, 0, 1), white));
+    TRY(point_light(scene, 5, 4, 6, 1, 1, 1, 0.9));
+    TRY(point_light(scene, 3, 5, 3, 1, 0.95, 0.9, 0.4));
+    TRY(ambient(scene, 0.4));
+    return camera(scene, bg_vec3_make(0, 0, 4.5), bg_vec3_make(-0.4, -0.3, 0), 45);
+}
+
+static bg_status mirror_scene(bg_scene *scene)
+{
+    uint32_t floor, chrome, red, green, blue, yellow;
+    TRY(material(scene, diffuse(0.7, 0.7, 0.7), &floor));
+    TRY(material(scene, mirror(0.9), &chrome));
+    TRY(material(scene, diffuse(0.8, 0.15, 0.1), &red));
+    TRY(material(scene, diffuse(0.15, 0.7, 0.2), &green));
+    TRY(material(scene, diffuse(0.1, 0.25, 0.85), &blue));
+    TRY(material(scene, diffuse(0.85, 0.75, 0.1), &yellow));
+    TRY(plane(scene, bg_vec3_make(0, -1, 0), bg_vec3_make(0, 1, 0), floor));
+    TRY(sphere(scene, 0, 0, 0, 1, chrome));
+    TRY(sphere(scene, -2.1, -0.5, 0.6, 0.5, red));
+    TRY(sphere(scene, 2.1, -0.5, 0.6, 0.5, green));
+    TRY(sphere(scene, 0.3, -0.5, -2.2, 0.5, blue));
+    TRY(sphere(scene, -1.0, -0.6, 1.9, 0.4, yellow));
+    TRY(point_light(scene, 4, 6, 5, 1, 1, 1, 0.8));
+    TRY(point_light(scene, -5, 4, 2, 1, 1, 1, 0.4));
+    TRY(ambient(scene, 0.5));
+    return camera(scene, bg_vec3_make(0, 1.6, 5.8), bg_vec3_make(0, -0.3, 0), 45);
+}
+
+static bg_status glass_scene(bg_scene *scene)
+{
+    static const unsigned char light[3] = {230, 230, 230}, dark[3] = {40, 40, 40};
+    uint32_t checker, floor, glass_m, chrome;
+    TRY(scenes_add_checker_texture(scene, light, dark, &checker));
+    bg_material f = diffuse(1, 1, 1);
+    f.base.reflectance.texture = checker;
+    TRY(material(scene, f, &floor));
+    TRY(material(scene, glass(), &glass_m));
+    TRY(material(scene, mirror(0.85), &chrome));
+    /* A quarter texture per unit: one checker cell (1/8 texture) is half a unit. */
+    bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, floor);
+    d.transform = bg_mat4_translate(0, -1, 0);
+    d.uv_scale[0] = d.uv_scale[1] = 0.25;
+    uint32_t id;
+    TRY(bg_scene_add_object(scene, &d, &id));
+    TRY(sphere(scene, -1.1, 0, 0.4, 1, glass_m));
+    TRY(sphere(scene, 1.2, 0, -0.8, 1, chrome));
+    TRY(point_light(scene, 3, 6, 4, 1, 1, 1, 0.9));
+    TRY(point_light(scene, -4, 5, -2, 1, 1, 1, 0.3));
+    TRY(ambient(scene, 0.5));
+    return camera(scene, bg_vec3_make(0, 1.4, 5.5), bg_vec3_make(0, -0.2, 0), 45);
+}
+
+/* A wall of spheres facing the camera, in a near-square grid, with a white wall behind. */
+static bg_status many_spheres(bg_scene *scene, int n)
+{
+    uint32_t mats[6], wall;
+    TRY(material(scene, diffuse(0.8, 0.2, 0.15), &mats[0]));
+    TRY(material(scene, glossy(0.2, 0.5, 0.8, 0.3, 1.0), &mats[1]));
+    TRY(material(scene, mirror(0.8), &mats[2]));
+    TRY(material(scene, glass(), &mats[3]));
+    TRY(material(scene, coated(0.2, 0.7, 0.25), &mats[4]));
+    TRY(material(scene, glossy(0.85, 0.65, 0.2, 0.6, 0.2), &mats[5]));
+    TRY(material(scene, diffuse(0.85, 0.85, 0.85), &wall));
+    int side = (int)ceil(sqrt((double)n));
+    int rows = (n + side - 1) / side;
+    const double spacing = 2.2;
+    for (int i = 0; i < n; i++) {
+        double x = (i % side - (side - 1) / 2.0) * spacing;
+        double y = ((rows - 1) / 2.0 - i / side) * spacing;
+        TRY(sphere(scene, x, y, 0, 0.9, mats[i % 6]));
+    }
+    TRY(plane(scene, bg_vec3_make(0, 0, -2), bg_vec3_make(0, 0, 1), wall));
+    double half = 0.5 * side * spacing;
+    TRY(point_light(scene, half, half, half + 6, 1, 1, 1, 0.8));
+    TRY(point_light(scene, -half, 0.3 * half, half + 4, 1, 1, 1, 0.3));
+    TRY(ambient(scene, 0.5));
+    double distance = 1.05 * half / tan(22.5 * PI / 180) + 1.0;
+    return camera(scene, bg_vec3_make(0, 0, distance), bg_vec3_make(0, 0, 0), 45);
+}
+
+/* Lights of different hues on a circle above the objects; total intensity independent of L. */
+static bg_status many_lights(bg_scene *scene, int lights)
+{
+    uint32_t floor, white, box, cyl;
+    TRY(material(scene, diffuse(0.8, 0.8, 0.8), &floor));
+    TRY(material(scene, glossy(0.9, 0.9, 0.9, 0.6, 1.0), &white));
+    TRY(material(scene, diffuse(0.7, 0.7, 0.7), &box));
+    TRY(material(scene, coated(0.6, 0.6, 0.6), &cyl));
+    TRY(plane(scene, bg_vec3_make(0, -1, 0), bg_vec3_make(0, 1, 0), floor));
+    TRY(sphere(scene, 0, 0, 0, 1, white));
+    TRY(object(scene, BG_SHAPE_BOX,
+               bg_mat4_mul(bg_mat4_translate(-2.4, -0.4, -0.5),
+                           bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 1, 0), 35), bg_mat4_scale(0.6, 0.6, 0.6))),
+               box));
+    TRY(object(scene, BG_SHAPE_CYLINDER,
+               bg_mat4_mul(bg_mat4_translate(2.4, -0.3, -0.5), bg_mat4_scale(0.6, 0.7, 0.6)), cyl));
+    for (int i = 0; i < lights; i++) {
+        double a = 2 * PI * (i + 0.25) / lights;
+        /* Hue around the colour wheel, as three shifted cosines in [0, 1]. */
+        double r = 0.5 + 0.5 * cos(a), g = 0.5 + 0.5 * cos(a - 2 * PI / 3), b = 0.5 + 0.5 * cos(a + 2 * PI / 3);
+        TRY(point_light(scene, 5 * cos(a), 4, 5 * sin(a) + 1, r, g, b, 2.0 / lights));
+    }
+    TRY(ambient(scene, 0.3));
+    return camera(scene, bg_vec3_make(0, 2.5, 7.5), bg_vec3_make(0, -0.3, 0), 45);
+}
+
+static bg_status all_primitives(bg_scene *scene)
+{
+    uint32_t floor, red, green, blue, yellow;
+    TRY(material(scene, diffuse(0.75, 0.75, 0.75), &floor));
+    TRY(material(scene, diffuse(0.8, 0.2, 0.15), &red));
+    TRY(material(scene, glossy(0.2, 0.7, 0.3, 0.6, 1.0), &green));
+    TRY(material(scene, diffuse(0.2, 0.35, 0.85), &blue));
+    TRY(material(scene, diffuse(0.9, 0.75, 0.2), &yellow));
+    bg_vec3 y = bg_vec3_make(0, 1, 0);
+    TRY(plane(scene, bg_vec3_make(0, -1, 0), y, floor));
+    TRY(sphere(scene, -3, 0, 0, 1, red));
+    TRY(object(scene, BG_SHAPE_BOX,
+               bg_mat4_mul(bg_mat4_translate(-0.9, -0.2, 0),
+                           bg_mat4_mul(bg_mat4_rotate(y, 30), bg_mat4_scale(0.8, 0.8, 0.8))),
+               green));
+    TRY(object(scene, BG_SHAPE_CYLINDER,
+               bg_mat4_mul(bg_mat4_translate(1.1, 0, 0),
+                           bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 0, 1), 20), bg_mat4_scale(0.7, 1, 0.7))),
+               blue));
+    /* The rectangle stands up, tilted 70 degrees towards the camera and turned a little. */
+    TRY(object(scene, BG_SHAPE_RECTANGLE,
+               bg_mat4_mul(bg_mat4_translate(3.1, 0, 0),
+                           bg_mat4_mul(bg_mat4_rotate(y, -20),
+                                       bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(1, 0, 0), 70), bg_mat4_scale(0.9, 1, 0.9)))),
+               yellow));
+    TRY(point_light(scene, 3, 6, 6, 1, 1, 1, 0.8));
+    TRY(point_light(scene, -6, 4, 3, 1, 1, 1, 0.35));
+    TRY(ambient(scene, 0.4));
+    return camera(scene, bg_vec3_make(0, 2.2, 10), bg_vec3_make(0, -0.2, 0), 45);
+}
+
+/* A coated earth, an anisotropic box and cylinder (the box's roughness from a stripe texture),
+ * on a checkered floor under a spot light and a sun. */
+static bg_status textured_aniso(bg_scene *scene)
+{
+    static const unsigned char a[3] = {200, 190, 170}, b[3] = {90, 60, 40};
+    uint32_t earth_tex, checker, stripes, mat_earth, mat_floor, mat_box, mat_cyl;
+    TRY(scenes_add_earth_texture(scene, &earth_tex));
+    TRY(scenes_add_checker_texture(scene, a, b, &checker));
+    enum { S = 32 };
+    unsigned char px[S * S * 4];
+    for (int i = 0; i < S * S; i++) {
+        unsigned char v = (unsigned char)((i % S) / 4 % 2 ? 230 : 60); /* roughness stripes in red */
+        px[4 * i] = v; px[4 * i + 1] = v; px[4 * i + 2] = v; px[4 * i + 3] = 255;
+    }
+    bg_image img = {S, S, BG_PIXEL_RGBA8, 0, px};
+    bg_texture_desc lin = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR};
+    TRY(bg_scene_add_texture(scene, &img, &lin, &stripes));
+
+    bg_material m = coated(1, 1, 1);
+    m.base.reflectance.texture = earth_tex;
+    m.ambient.texture = earth_tex;
+    TRY(material(scene, m, &mat_earth));
+    m = diffuse(1, 1, 1);
+    m.base.reflectance.texture = checker;
+    TRY(material(scene, m, &mat_floor));
+    m = glossy(0.9, 0.6, 0.3, 1.0, 0.15);
+    m.base.roughness.texture = stripes;
+    m.base.roughness.channel = 0;
+    TRY(material(scene, m, &mat_box));
+    m = glossy(0.7, 0.75, 0.8, 0.55, 0.1);
+    m.has_coat = true;
+    m.coat.reflectance.r = m.coat.reflectance.g = m.coat.reflectance.b = 0.04;
+    m.coat.roughness.value = 0.2;
+    TRY(material(scene, m, &mat_cyl));
+
+    bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, mat_floor);
+    d.transform = bg_mat4_translate(0, -1, 0);
+    d.uv_scale[0] = d.uv_scale[1] = 0.25;
+    uint32_t id;
+    TRY(bg_scene_add_object(scene, &d, &id));
+    TRY(object(scene, BG_SHAPE_SPHERE,
+               bg_mat4_mul(bg_mat4_translate(0, 0, 0), bg_mat4_rotate(bg_vec3_make(0, 0, 1), 23.4)), mat_earth));
+    TRY(object(scene, BG_SHAPE_BOX,
+               bg_mat4_mul(bg_mat4_translate(-2.3, -0.3, 0.2),
+                           bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 1, 0), 25), bg_mat4_scale(0.7, 0.7, 0.7))),
+               mat_box));
+    d = bg_object_desc_init(BG_SHAPE_CYLINDER, mat_cyl);
+    d.transform = bg_mat4_mul(bg_mat4_translate(2.3, -0.2, 0.2), bg_mat4_scale(0.7, 0.8, 0.7));
+    d.uv_scale[0] = 2;
+    TRY(bg_scene_add_object(scene, &d, &id));
+
+    bg_light spot = bg_light_init();
+    spot.position = bg_vec3_make(0, 6, 4);
+    spot.direction = bg_vec3_make(0, -6, -4);
+    spot.spot_cutoff_degrees = 40;
+    spot.spot_exponent = 6;
+    spot.intensity = 1.0;
+    TRY(bg_scene_add_light(scene, &spot, &id));
+    bg_light sun = bg_light_init();
+    sun.type = BG_LIGHT_DIRECTIONAL;
+    sun.direction = bg_vec3_make(-0.5, -1, -0.4);
+    sun.color[0] = 1; sun.color[1] = 0.95; sun.color[2] = 0.85;
+    sun.intensity = 0.5;
+    TRY(bg_scene_add_light(scene, &sun, &id));
+    TRY(ambient(scene, 0.3));
+    return camera(scene, bg_vec3_make(0, 2, 7), bg_vec3_make(0, -0.3, 0), 45);
+}
+
+bg_status scenes_build_ex(scene_id id, const scene_params *params, bg_scene *scene)
+{
+    scene_params p = {0, 0};
+    if (params)
+        p = *params;
+    if (p.spheres == 0)
+        p.spheres = 16;
+    if (p.lights == 0)
+        p.lights = 4;
+    if (!scene || p.spheres < 1 || p.spheres > 4096 || p.lights < 1 || p.lights > 256)
+        return BG_ERR_INVALID_ARGUMENT;
+    bg_status st;
+    switch (id) {
+    case SCENE_PAPER_EARTH: st = paper_earth(scene); break;
+    case SCENE_PAPER_EARTH_SHADOW: st = paper_earth_shadow(scene); break;
+    case SCENE_MIRROR: st = mirror_scene(scene); break;
+    case SCENE_GLASS: st = glass_scene(scene); break;
+    case SCENE_MANY_SPHERES: st = many_spheres(scene, p.spheres); break;
+    case SCENE_MANY_LIGHTS: st = many_lights(scene, p.lights); break;
+    case SCENE_ALL_PRIMITIVES: st = all_primitives(scene); break;
+    case SCENE_TEXTURED_ANISO: st = textured_aniso(scene); break;
+    default: return BG_ERR_INVALID_ARGUMENT;
+    }
+    return st != BG_OK ? st : bg_scene_commit(scene);
+}
+
+bg_status scenes_build(scene_id id, bg_scene *scene)
+{
+    return scenes_build_ex(id, NULL, scene);
+}
