@@ -1,0 +1,425 @@
+/* MACS: Massive Arbitrary Computations by Shaders.
+ * GPGPU render passes over OpenGL 2.1 + ARB_framebuffer_object, with every shader in GLSL 1.10.
+ * A pass runs GLSL fragment code over float textures; a pass whose outputs do not fit the hardware's
+ * draw buffers is split into several programs and framebuffers and still gives the same bits. */
+#ifndef MACS_H
+#define MACS_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdbool.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Status codes                                                                                    */
+
+/* Every status with its message, in one list so that codes and strings never disagree. */
+#define MACS_STATUS_LIST(X) \
+    X(MACS_OK, "no error") \
+    X(MACS_ERR_INVALID_ARGUMENT, "invalid argument") \
+    X(MACS_ERR_OUT_OF_MEMORY, "out of memory") \
+    X(MACS_ERR_GL_UNSUPPORTED, "the OpenGL implementation lacks a required version, extension or function") \
+    X(MACS_ERR_CONTEXT, "could not create or make current a headless OpenGL context") \
+    X(MACS_ERR_SHADER_COMPILE, "a shader failed to compile") \
+    X(MACS_ERR_SHADER_LINK, "a shader program failed to link") \
+    X(MACS_ERR_LIMIT, "an implementation or configured limit was exceeded") \
+    X(MACS_ERR_FRAMEBUFFER, "a framebuffer is incomplete") \
+    X(MACS_ERR_GPU_OUT_OF_MEMORY, "the OpenGL implementation ran out of memory") \
+    X(MACS_ERR_GL, "unexpected OpenGL error") \
+    X(MACS_ERR_NO_RESULT, "no result is available yet")
+
+#define MACS_STATUS_ENUM_ENTRY_(name, message) name,
+/* Result of every fallible call; MACS_OK is 0. */
+typedef enum macs_status { MACS_STATUS_LIST(MACS_STATUS_ENUM_ENTRY_) MACS_STATUS_COUNT } macs_status;
+#undef MACS_STATUS_ENUM_ENTRY_
+
+/* Returns the fixed English message of a status ("unknown status" for values outside the list). */
+const char *macs_status_string(macs_status status);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Logging, allocation, GL loading                                                                 */
+
+/* Severity of a logged message. */
+typedef enum macs_log_level { MACS_LOG_ERROR = 1, MACS_LOG_WARNING = 2, MACS_LOG_INFO = 3 } macs_log_level;
+
+/* Receives diagnostics (level is a macs_log_level); the library itself never prints. */
+typedef void (*macs_log_fn)(int level, const char *message, void *user);
+
+/* Returns the address of a GL function by name (NULL if absent); user is passed through. */
+typedef void *(*macs_get_proc_address_fn)(const char *name, void *user);
+
+/* Defaults: all NULL = malloc, realloc and free of the C library.
+ * Set alloc, realloc and free together or none of them. */
+typedef struct macs_allocator {
+    void *(*alloc)(size_t size, void *user);
+    void *(*realloc)(void *ptr, size_t size, void *user);
+    void (*free)(void *ptr, void *user);
+    void *user;
+} macs_allocator;
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Headless OpenGL contexts                                                                        */
+
+/* Which headless backend to use; DEFAULT tries OSMesa first and EGL surfaceless second. */
+typedef enum macs_headless_backend {
+    MACS_HEADLESS_DEFAULT = 0,
+    MACS_HEADLESS_OSMESA,
+    MACS_HEADLESS_EGL
+} macs_headless_backend;
+
+/* Defaults: backend DEFAULT (OSMesa, else EGL surfaceless), libc allocator, no logger.
+ * The library never reads environment variables to choose the backend. */
+typedef struct macs_headless_desc {
+    macs_headless_backend backend;
+    macs_allocator allocator;
+    macs_log_fn logger;
+    void *logger_user;
+} macs_headless_desc;
+
+/* An OpenGL 2.1 (compatibility) context without a window, current on the creating thread. */
+typedef struct macs_headless macs_headless;
+
+/* Creates a headless context and makes it current; on failure message (if not NULL) gets the reason. */
+macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless **out, char *message,
+                                 size_t message_size);
+
+/* Releases and destroys a headless context (NULL is ignored). */
+void macs_headless_destroy(macs_headless *headless);
+
+/* Makes the headless context current on the calling thread again. */
+macs_status macs_headless_make_current(macs_headless *headless);
+
+/* Returns the backend that was actually created. */
+macs_headless_backend macs_headless_backend_used(const macs_headless *headless);
+
+/* Returns the get_proc_address matching this backend (OSMesaGetProcAddress or eglGetProcAddress). */
+macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *headless);
+
+/* Returns the user pointer to pass along with macs_headless_get_proc_address(). */
+void *macs_headless_proc_user(const macs_headless *headless);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Context                                                                                         */
+
+/* Hardware limits that decide how passes are split; in a caps override 0 means "what GL reports". */
+typedef struct macs_limits {
+    int max_draw_buffers;      /* GL_MAX_DRAW_BUFFERS */
+    int max_color_attachments; /* GL_MAX_COLOR_ATTACHMENTS */
+    int max_texture_units;     /* GL_MAX_TEXTURE_IMAGE_UNITS: inputs of one pass */
+    int max_texture_size;      /* GL_MAX_TEXTURE_SIZE (and GL_MAX_RENDERBUFFER_SIZE) */
+} macs_limits;
+
+/* Defaults: get_proc_address is required; no logger; libc allocator; caps all 0 (no override; a cap
+ * can only lower a limit, never raise it); allow_float_depth false (24-bit fixed depth). */
+typedef struct macs_context_desc {
+    macs_get_proc_address_fn get_proc_address;
+    void *get_proc_address_user;
+    macs_log_fn logger;
+    void *logger_user;
+    macs_allocator allocator;
+    macs_limits caps;
+    bool allow_float_depth; /* use DEPTH32F_STENCIL8 when ARB_depth_buffer_float is present */
+} macs_context_desc;
+
+/* Optional OpenGL features found in the extension string. */
+typedef struct macs_features {
+    bool arb_framebuffer_object; /* false: the EXT_framebuffer_object + EXT_packed_depth_stencil path */
+    bool depth_buffer_float;     /* ARB_depth_buffer_float */
+    bool color_buffer_float;     /* ARB_color_buffer_float */
+    bool half_float_pixel;       /* ARB_half_float_pixel */
+} macs_features;
+
+/* The GL strings of the current context; any of them may be NULL (Mesa returns NULL for the shading
+ * language version under MESA_GLSL_VERSION_OVERRIDE=110). */
+typedef struct macs_gl_info {
+    const char *vendor;
+    const char *renderer;
+    const char *version;
+    const char *shading_language_version;
+} macs_gl_info;
+
+/* A MACS context: works on the GL context current on the calling thread, which must stay current for
+ * every call on this context and its objects. One thread per context. */
+typedef struct macs_context macs_context;
+
+/* Creates a context over the current GL context; on failure message (if not NULL) gets the reason. */
+macs_status macs_context_create(const macs_context_desc *desc, macs_context **out, char *message,
+                                size_t message_size);
+
+/* Destroys a context and every texture, depth/stencil object and pass still alive in it (NULL ok). */
+void macs_context_destroy(macs_context *ctx);
+
+/* Returns the first error recorded since creation or the last clear (MACS_OK if none). */
+macs_status macs_context_error(const macs_context *ctx);
+
+/* Returns the message of the first recorded error ("" if none); it holds shader info logs. */
+const char *macs_context_error_message(const macs_context *ctx);
+
+/* Forgets the recorded error so that the next one is kept. */
+void macs_context_clear_error(macs_context *ctx);
+
+/* Copies the limits GL reports (real) and the ones passes obey after caps (effective); either may be NULL. */
+void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
+
+/* Copies the GL strings read at creation. */
+void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info);
+
+/* Copies which optional extensions were found. */
+void macs_context_features(const macs_context *ctx, macs_features *features);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Textures                                                                                        */
+
+/* Texel format of a texture; float formats exchange float data, RGBA8 exchanges uint8_t data. */
+typedef enum macs_format {
+    MACS_FORMAT_DEFAULT = 0, /* RGBA32F */
+    MACS_FORMAT_RGBA32F,
+    MACS_FORMAT_RGBA16F,
+    MACS_FORMAT_RGBA8
+} macs_format;
+
+/* Sampling filter of a texture input (no mipmaps ever). */
+typedef enum macs_filter { MACS_FILTER_DEFAULT = 0, MACS_FILTER_NEAREST, MACS_FILTER_LINEAR } macs_filter;
+
+/* Wrap mode of a texture input in both directions. */
+typedef enum macs_wrap { MACS_WRAP_DEFAULT = 0, MACS_WRAP_CLAMP_TO_EDGE, MACS_WRAP_REPEAT } macs_wrap;
+
+/* Defaults: width and height required (1 .. max_texture_size); format RGBA32F; filter NEAREST;
+ * wrap CLAMP_TO_EDGE; data NULL (contents undefined until written); stride 0 (tight rows).
+ * data holds height rows of width RGBA texels, bottom row first; stride is in bytes and must be a
+ * multiple of the texel size (16 bytes for float formats, 4 for RGBA8). */
+typedef struct macs_texture_desc {
+    int width;
+    int height;
+    macs_format format;
+    macs_filter filter;
+    macs_wrap wrap;
+    const void *data;
+    size_t stride;
+} macs_texture_desc;
+
+/* A 2D RGBA texture usable as pass input and output. */
+typedef struct macs_texture macs_texture;
+
+/* Creates a texture, optionally with initial contents. */
+macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc, macs_texture **out);
+
+/* Destroys a texture; passes that used it lose that input or output until another is set (NULL ok). */
+void macs_texture_destroy(macs_texture *texture);
+
+/* Replaces the whole contents from caller memory (float for float formats, uint8_t for RGBA8). */
+macs_status macs_texture_upload(macs_texture *texture, const void *data, size_t stride);
+
+/* Reads the whole contents back into caller memory; RGBA32F returns exactly the bits written. */
+macs_status macs_texture_read(macs_texture *texture, void *data, size_t stride);
+
+/* Sets every texel to one value (for RGBA8 the value is scaled from 0..1). */
+macs_status macs_texture_clear(macs_texture *texture, const float rgba[4]);
+
+/* Reports the size of a texture (either pointer may be NULL). */
+void macs_texture_size(const macs_texture *texture, int *width, int *height);
+
+/* Reports the format of a texture. */
+macs_format macs_texture_format(const macs_texture *texture);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Depth/stencil buffers                                                                           */
+
+/* Stencil bits MACS owns to split passes exactly; callers own the other bits (0x7F), which keep their
+ * values across passes. MACS keeps the reserved bit 0 between runs. */
+#define MACS_STENCIL_RESERVED_BITS 0x80u
+
+/* Depth format of a depth/stencil object. */
+typedef enum macs_depth_format {
+    MACS_DEPTH24_STENCIL8 = 1, /* the GL 2.1 baseline */
+    MACS_DEPTH32F_STENCIL8     /* ARB_depth_buffer_float, when present and allowed by the context */
+} macs_depth_format;
+
+/* Defaults: width and height required (they must equal the size of the outputs of passes using it). */
+typedef struct macs_depth_stencil_desc {
+    int width;
+    int height;
+} macs_depth_stencil_desc;
+
+/* A packed depth + 8-bit stencil buffer, cleared to depth 1 and stencil 0 at creation. */
+typedef struct macs_depth_stencil macs_depth_stencil;
+
+/* Creates a depth/stencil object. */
+macs_status macs_depth_stencil_create(macs_context *ctx, const macs_depth_stencil_desc *desc,
+                                      macs_depth_stencil **out);
+
+/* Destroys a depth/stencil object; passes using it refuse to run until given another (NULL ok). */
+void macs_depth_stencil_destroy(macs_depth_stencil *ds);
+
+/* Reports the depth format actually allocated. */
+macs_depth_format macs_depth_stencil_format(const macs_depth_stencil *ds);
+
+/* Sets depth to depth (clamped to 0..1) and the stencil bits in write_mask to stencil; the reserved
+ * bits are always cleared to 0, whatever the mask. */
+macs_status macs_depth_stencil_clear(macs_depth_stencil *ds, float depth, unsigned stencil, unsigned write_mask);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Passes                                                                                          */
+
+/* GLSL type of a pass uniform. */
+typedef enum macs_uniform_type {
+    MACS_UNIFORM_FLOAT = 1,
+    MACS_UNIFORM_VEC2,
+    MACS_UNIFORM_VEC3,
+    MACS_UNIFORM_VEC4,
+    MACS_UNIFORM_INT,
+    MACS_UNIFORM_BOOL,
+    MACS_UNIFORM_MAT3,
+    MACS_UNIFORM_MAT4
+} macs_uniform_type;
+
+/* A uniform of a pass: count 0 declares a single value, count n > 0 an array of n. */
+typedef struct macs_uniform_desc {
+    const char *name;
+    macs_uniform_type type;
+    int count;
+} macs_uniform_desc;
+
+/* A texture input, declared as `uniform sampler2D name;` (sample it at texture2D(name, macs_uv) to
+ * read the texel under the output pixel, or anywhere else). */
+typedef struct macs_input_desc {
+    const char *name;
+} macs_input_desc;
+
+/* An output: name (an identifier used in messages) and a GLSL vec4 expression written to it, evaluated
+ * after the pass's main code in the same scope. */
+typedef struct macs_output_desc {
+    const char *name;
+    const char *value;
+} macs_output_desc;
+
+/* Comparison function of the depth and stencil tests. */
+typedef enum macs_compare {
+    MACS_COMPARE_DEFAULT = 0, /* LESS for depth, ALWAYS for stencil */
+    MACS_COMPARE_NEVER,
+    MACS_COMPARE_LESS,
+    MACS_COMPARE_EQUAL,
+    MACS_COMPARE_LEQUAL,
+    MACS_COMPARE_GREATER,
+    MACS_COMPARE_NOTEQUAL,
+    MACS_COMPARE_GEQUAL,
+    MACS_COMPARE_ALWAYS
+} macs_compare;
+
+/* Stencil operation. */
+typedef enum macs_stencil_op {
+    MACS_STENCIL_OP_DEFAULT = 0, /* KEEP */
+    MACS_STENCIL_OP_KEEP,
+    MACS_STENCIL_OP_ZERO,
+    MACS_STENCIL_OP_REPLACE,
+    MACS_STENCIL_OP_INCR,
+    MACS_STENCIL_OP_DECR,
+    MACS_STENCIL_OP_INVERT
+} macs_stencil_op;
+
+/* Defaults: test off; func LESS; write off (depth writes happen only with test and write on). */
+typedef struct macs_depth_state {
+    bool test;
+    bool write;
+    macs_compare func;
+} macs_depth_state;
+
+/* Defaults: test off; func ALWAYS; ref 0; read_mask and write_mask 0 = every caller bit (0x7F); all ops
+ * KEEP. The reserved bits are removed from ref and both masks. A pass that needs splitting accepts only
+ * KEEP for fail and depth_fail and KEEP or REPLACE for pass (else MACS_ERR_LIMIT at creation). */
+typedef struct macs_stencil_state {
+    bool test;
+    macs_compare func;
+    unsigned ref;
+    unsigned read_mask;
+    unsigned write_mask;
+    macs_stencil_op fail;
+    macs_stencil_op depth_fail;
+    macs_stencil_op pass;
+} macs_stencil_state;
+
+/* Blending of every output with its texture's contents. */
+typedef enum macs_blend {
+    MACS_BLEND_NONE = 0,  /* replace */
+    MACS_BLEND_ADD,       /* ONE, ONE */
+    MACS_BLEND_MULTIPLY   /* DST_COLOR, ZERO */
+} macs_blend;
+
+/* Colour write mask bits; MACS_COLOR_MASK_NONE writes no channel at all. */
+enum {
+    MACS_COLOR_MASK_R = 1,
+    MACS_COLOR_MASK_G = 2,
+    MACS_COLOR_MASK_B = 4,
+    MACS_COLOR_MASK_A = 8,
+    MACS_COLOR_MASK_NONE = 16
+};
+
+/* Defaults: functions and main NULL (empty); no inputs; no uniforms; outputs required (output_count >= 1,
+ * output_textures[i] for each output, all of one size); input_textures NULL (bind them later with
+ * macs_pass_set_input); depth_stencil NULL; depth and stencil tests off; blend NONE; color_mask 0 = RGBA.
+ * In the generated shader, source string 1 is functions, 2 is main and 3 + i is output i, so info logs
+ * give lines within the caller's own strings. Identifiers starting with gl_ or macs_ are reserved. */
+typedef struct macs_pass_desc {
+    const char *functions;
+    const char *main;
+    const macs_input_desc *inputs;
+    int input_count;
+    const macs_uniform_desc *uniforms;
+    int uniform_count;
+    const macs_output_desc *outputs;
+    int output_count;
+    macs_texture *const *output_textures;
+    macs_texture *const *input_textures;
+    macs_depth_stencil *depth_stencil;
+    macs_depth_state depth;
+    macs_stencil_state stencil;
+    macs_blend blend;
+    unsigned color_mask;
+} macs_pass_desc;
+
+/* A compiled render pass: one or more programs and framebuffers, run as a full-screen quad. */
+typedef struct macs_pass macs_pass;
+
+/* Compiles (or reuses from the context's cache) the programs of a pass and builds its framebuffers. */
+macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs_pass **out);
+
+/* Destroys a pass (NULL ok). */
+void macs_pass_destroy(macs_pass *pass);
+
+/* Binds a texture (or NULL) to input index; it must not be one of the pass's outputs. */
+macs_status macs_pass_set_input(macs_pass *pass, int index, macs_texture *texture);
+
+/* Binds a texture to output index; it must have the size of the pass's outputs. */
+macs_status macs_pass_set_output(macs_pass *pass, int index, macs_texture *texture);
+
+/* Binds another depth/stencil object (or NULL if no test is enabled); it must have the output size. */
+macs_status macs_pass_set_depth_stencil(macs_pass *pass, macs_depth_stencil *ds);
+
+/* Stores a uniform value, applied at every run: float data for float/vec/mat types (column-major
+ * matrices), int data for int and bool; arrays take count elements. */
+macs_status macs_pass_set_uniform(macs_pass *pass, const char *name, const void *value);
+
+/* Returns how many program/framebuffer chunks the pass runs as (1 when it fits the limits). */
+int macs_pass_chunk_count(const macs_pass *pass);
+
+/* Defaults: scissor off (whole output); occlusion_query off. */
+typedef struct macs_run_desc {
+    bool scissor;
+    int scissor_x, scissor_y, scissor_width, scissor_height;
+    bool occlusion_query; /* count the samples that pass the tests (of the first chunk) */
+} macs_run_desc;
+
+/* Runs the pass once over its outputs (run may be NULL for defaults). */
+macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run);
+
+/* Waits for and returns the sample count of the last run with occlusion_query set. */
+macs_status macs_pass_occlusion_result(macs_pass *pass, uint64_t *samples);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MACS_H */

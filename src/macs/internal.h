@@ -1,0 +1,200 @@
+/* Private declarations shared by the files of libmacs: the GL table, object layouts, helpers. */
+#ifndef MACS_INTERNAL_H
+#define MACS_INTERNAL_H
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include "macs.h"
+#include "gl_functions.h"
+
+/* Size of the buffer that keeps the first error's message (info logs are truncated to it). */
+#define MACS_MESSAGE_SIZE 4096
+/* The caller's stencil bits: everything but the bits MACS reserves for splitting. */
+#define MACS_STENCIL_CALLER_BITS (0xFFu & ~MACS_STENCIL_RESERVED_BITS)
+
+/* Every GL function MACS calls; nothing in the library calls GL any other way. */
+typedef struct macs_gl {
+#define MACS_GL_MEMBER_(ret, name, params) ret (GLAPIENTRY *name) params;
+    MACS_GL_CORE(MACS_GL_MEMBER_)
+    MACS_GL_FBO(MACS_GL_MEMBER_)
+    MACS_GL_OPTIONAL(MACS_GL_MEMBER_)
+#undef MACS_GL_MEMBER_
+} macs_gl;
+
+/* A linked program in the context's cache, shared by every pass chunk with the same source. */
+typedef struct macs_program {
+    char *source;
+    uint64_t hash;
+    GLuint id;
+    int refs;
+    struct macs_program *next;
+} macs_program;
+
+struct macs_texture {
+    macs_context *ctx;
+    GLuint id;
+    int width, height;
+    macs_format format;
+    struct macs_texture *prev, *next;
+};
+
+struct macs_depth_stencil {
+    macs_context *ctx;
+    GLuint renderbuffer;
+    int width, height;
+    macs_depth_format format;
+    bool internal; /* owned by the context for split passes without a caller depth/stencil */
+    struct macs_depth_stencil *prev, *next;
+};
+
+/* One uniform of a pass: its value lives on the CPU and is applied to each chunk's program at run. */
+typedef struct macs_pass_uniform {
+    char *name;
+    macs_uniform_type type;
+    int count;      /* 0 = not an array */
+    size_t size;    /* bytes of value */
+    void *value;
+} macs_pass_uniform;
+
+/* One program + framebuffer of a pass, writing outputs [first_output, first_output + output_count). */
+typedef struct macs_chunk {
+    macs_program *program;
+    GLuint fbo;
+    int first_output;
+    int output_count;
+    GLint *uniform_locations; /* one per pass uniform, -1 when the program does not use it */
+} macs_chunk;
+
+struct macs_pass {
+    macs_context *ctx;
+    int width, height;
+    int input_count;
+    char **input_names;
+    macs_texture **inputs;
+    int output_count;
+    char **output_names;
+    macs_texture **outputs;
+    int uniform_count;
+    macs_pass_uniform *uniforms;
+    int chunk_count;
+    macs_chunk *chunks;
+    macs_depth_stencil *depth_stencil;
+    macs_depth_stencil *attached_ds; /* what the framebuffers currently hold (caller's or internal) */
+    macs_depth_state depth;
+    macs_stencil_state stencil;
+    macs_blend blend;
+    unsigned color_mask;
+    bool attachments_dirty;
+    GLuint query;
+    bool query_issued;
+    struct macs_pass *prev, *next;
+};
+
+struct macs_context {
+    macs_gl gl;
+    macs_allocator allocator;
+    macs_log_fn logger;
+    void *logger_user;
+    macs_limits real, effective;
+    macs_features features;
+    char *gl_strings[4];
+    bool allow_float_depth;
+    macs_status error;
+    char error_message[MACS_MESSAGE_SIZE];
+    GLuint vertex_shader;
+    GLuint vertex_buffer;
+    GLuint scratch_fbo;
+    macs_program *programs;
+    macs_texture *textures;
+    macs_depth_stencil *depth_stencils;
+    macs_pass *passes;
+};
+
+/* alloc.c: allocation through the caller's hooks; every result must be checked. */
+bool macs_allocator_valid(const macs_allocator *a);
+void *macs_alloc(const macs_allocator *a, size_t size);
+void *macs_calloc(const macs_allocator *a, size_t count, size_t size);
+void macs_free(const macs_allocator *a, void *ptr);
+char *macs_strdup(const macs_allocator *a, const char *s);
+
+/* error.c: recording and reporting errors. */
+macs_status macs_fail(macs_context *ctx, macs_status status, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((__format__(__printf__, 3, 4)))
+#endif
+    ;
+void macs_report(macs_log_fn logger, void *user, char *message, size_t size, macs_status status,
+                 const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((__format__(__printf__, 6, 7)))
+#endif
+    ;
+void macs_log(const macs_context *ctx, int level, const char *message);
+void macs_gl_drain(macs_context *ctx);
+macs_status macs_gl_check(macs_context *ctx, const char *what);
+
+/* gl_load.c: filling the GL table. */
+bool macs_gl_has_extension(const char *extensions, const char *name);
+macs_status macs_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user, bool ext_fbo, char *missing,
+                         size_t missing_size);
+
+/* limits.c */
+void macs_limits_query(macs_context *ctx);
+macs_status macs_limits_check_caps(const macs_limits *caps, char *message, size_t size);
+int macs_outputs_per_chunk(const macs_context *ctx);
+void macs_apply_caps(macs_context *ctx, const macs_limits *caps);
+
+/* program_cache.c */
+macs_status macs_program_acquire(macs_context *ctx, const char *fragment_source, int input_count,
+                                 char *const *input_names, macs_program **out);
+void macs_program_release(macs_context *ctx, macs_program *program);
+void macs_program_cache_destroy(macs_context *ctx);
+
+/* pass_source.c */
+char *macs_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count);
+size_t macs_uniform_value_size(macs_uniform_type type, int count);
+
+/* depth_stencil.c */
+macs_status macs_depth_stencil_internal(macs_context *ctx, int width, int height, macs_depth_stencil **out);
+void macs_fbo_attach_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
+macs_status macs_fbo_check(macs_context *ctx, const char *what);
+
+/* split.c */
+macs_status macs_split_check_state(macs_context *ctx, const macs_stencil_state *stencil, int chunk_count);
+void macs_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bool any_ds);
+
+/* query.c */
+macs_status macs_query_begin(macs_pass *pass);
+void macs_query_end(macs_pass *pass);
+void macs_query_destroy(macs_pass *pass);
+
+/* pass.c: detaching destroyed objects from passes */
+void macs_pass_forget_texture(macs_context *ctx, const macs_texture *texture);
+void macs_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
+
+/* GL enum of a comparison, with the default given. */
+GLenum macs_gl_compare(macs_compare c, GLenum fallback);
+GLenum macs_gl_stencil_op(macs_stencil_op op);
+
+/* Doubly linked list helpers for the context's object lists. */
+#define MACS_LIST_PUSH(head, node) \
+    do { \
+        (node)->prev = NULL; \
+        (node)->next = (head); \
+        if (head) \
+            (head)->prev = (node); \
+        (head) = (node); \
+    } while (0)
+#define MACS_LIST_REMOVE(head, node) \
+    do { \
+        if ((node)->prev) \
+            (node)->prev->next = (node)->next; \
+        else \
+            (head) = (node)->next; \
+        if ((node)->next) \
+            (node)->next->prev = (node)->prev; \
+        (node)->prev = (node)->next = NULL; \
+    } while (0)
+
+#endif

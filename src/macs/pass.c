@@ -1,0 +1,347 @@
+/* Render passes: validation of the description, chunk programs and framebuffers, inputs, outputs
+ * and uniforms that change between runs. */
+#include <stdio.h>
+#include <string.h>
+
+#include "internal.h"
+
+static bool valid_identifier(const char *s)
+{
+    if (!s || !((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || *s == '_'))
+        return false;
+    /* gl_ and macs_ belong to GL and to the generated code; "__" is reserved by GLSL. */
+    if (strncmp(s, "gl_", 3) == 0 || strncmp(s, "macs_", 5) == 0 || strstr(s, "__"))
+        return false;
+    size_t n = 0;
+    for (const char *p = s; *p; p++, n++)
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '_'))
+            return false;
+    return n <= 128;
+}
+
+static bool name_taken(const macs_pass_desc *d, int inputs, int uniforms, const char *name)
+{
+    for (int i = 0; i < inputs; i++)
+        if (strcmp(d->inputs[i].name, name) == 0)
+            return true;
+    for (int i = 0; i < uniforms; i++)
+        if (strcmp(d->uniforms[i].name, name) == 0)
+            return true;
+    return false;
+}
+
+static macs_status validate(macs_context *ctx, const macs_pass_desc *d)
+{
+#define BAD(...) return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: " __VA_ARGS__)
+    if (d->output_count < 1 || !d->outputs || !d->output_textures)
+        BAD("at least one output, with outputs and output_textures, is required");
+    if (d->input_count < 0 || (d->input_count > 0 && !d->inputs))
+        BAD("input_count %d without inputs", d->input_count);
+    if (d->uniform_count < 0 || (d->uniform_count > 0 && !d->uniforms))
+        BAD("uniform_count %d without uniforms", d->uniform_count);
+    const macs_texture *first = d->output_textures[0];
+    for (int i = 0; i < d->output_count; i++) {
+        const macs_texture *t = d->output_textures[i];
+        if (!valid_identifier(d->outputs[i].name) || !d->outputs[i].value)
+            BAD("output %d needs an identifier name and a value expression", i);
+        if (!t || t->ctx != ctx)
+            BAD("output %d (%s) has no texture of this context", i, d->outputs[i].name);
+        if (t->width != first->width || t->height != first->height)
+            BAD("output %d (%s) is %dx%d but output 0 is %dx%d", i, d->outputs[i].name, t->width, t->height,
+                first->width, first->height);
+        for (int j = 0; j < i; j++)
+            if (d->output_textures[j] == t)
+                BAD("outputs %d and %d are the same texture", j, i);
+    }
+    for (int i = 0; i < d->input_count; i++) {
+        if (!valid_identifier(d->inputs[i].name) || name_taken(d, i, 0, d->inputs[i].name))
+            BAD("input %d: name is missing, not an identifier, reserved or used twice", i);
+        const macs_texture *t = d->input_textures ? d->input_textures[i] : NULL;
+        if (t && t->ctx != ctx)
+            BAD("input %d (%s) is a texture of another context", i, d->inputs[i].name);
+        for (int j = 0; t && j < d->output_count; j++)
+            if (d->output_textures[j] == t)
+                BAD("input %d (%s) is also output %d", i, d->inputs[i].name, j);
+    }
+    for (int i = 0; i < d->uniform_count; i++) {
+        const macs_uniform_desc *u = &d->uniforms[i];
+        if (!valid_identifier(u->name) || name_taken(d, d->input_count, i, u->name))
+            BAD("uniform %d: name is missing, not an identifier, reserved or used twice", i);
+        if (u->type < MACS_UNIFORM_FLOAT || u->type > MACS_UNIFORM_MAT4 || u->count < 0 || u->count > 65536)
+            BAD("uniform %d (%s): unknown type or bad count", i, u->name);
+    }
+    if (d->depth_stencil && (d->depth_stencil->ctx != ctx || d->depth_stencil->internal))
+        BAD("depth_stencil belongs to another context");
+    if (d->depth_stencil && (d->depth_stencil->width != first->width || d->depth_stencil->height != first->height))
+        BAD("depth_stencil is %dx%d but the outputs are %dx%d", d->depth_stencil->width, d->depth_stencil->height,
+            first->width, first->height);
+    if ((d->depth.test || d->stencil.test) && !d->depth_stencil)
+        BAD("a depth or stencil test needs a depth_stencil object");
+    if ((unsigned)d->depth.func > MACS_COMPARE_ALWAYS || (unsigned)d->stencil.func > MACS_COMPARE_ALWAYS ||
+        (unsigned)d->stencil.fail > MACS_STENCIL_OP_INVERT || (unsigned)d->stencil.depth_fail > MACS_STENCIL_OP_INVERT ||
+        (unsigned)d->stencil.pass > MACS_STENCIL_OP_INVERT || (unsigned)d->blend > MACS_BLEND_MULTIPLY ||
+        d->color_mask > 31)
+        BAD("unknown compare function, stencil op, blend mode or colour mask");
+#undef BAD
+    if (d->input_count > ctx->effective.max_texture_units)
+        return macs_fail(ctx, MACS_ERR_LIMIT, "macs_pass_create: %d inputs but only %d texture units",
+                         d->input_count, ctx->effective.max_texture_units);
+    return MACS_OK;
+}
+
+static void free_pass(macs_pass *p)
+{
+    macs_context *ctx = p->ctx;
+    const macs_allocator *a = &ctx->allocator;
+    for (int c = 0; p->chunks && c < p->chunk_count; c++) {
+        macs_program_release(ctx, p->chunks[c].program);
+        if (p->chunks[c].fbo)
+            ctx->gl.DeleteFramebuffers(1, &p->chunks[c].fbo);
+        macs_free(a, p->chunks[c].uniform_locations);
+    }
+    macs_free(a, p->chunks);
+    macs_query_destroy(p);
+    for (int i = 0; p->input_names && i < p->input_count; i++)
+        macs_free(a, p->input_names[i]);
+    for (int i = 0; p->output_names && i < p->output_count; i++)
+        macs_free(a, p->output_names[i]);
+    for (int i = 0; p->uniforms && i < p->uniform_count; i++) {
+        macs_free(a, p->uniforms[i].name);
+        macs_free(a, p->uniforms[i].value);
+    }
+    macs_free(a, p->input_names);
+    macs_free(a, p->output_names);
+    macs_free(a, p->inputs);
+    macs_free(a, p->outputs);
+    macs_free(a, p->uniforms);
+    macs_free(a, p);
+}
+
+static macs_status copy_desc(macs_pass *p, const macs_pass_desc *d)
+{
+    const macs_allocator *a = &p->ctx->allocator;
+    p->input_count = d->input_count;
+    p->output_count = d->output_count;
+    p->uniform_count = d->uniform_count;
+    p->input_names = macs_calloc(a, (size_t)d->input_count, sizeof *p->input_names);
+    p->inputs = macs_calloc(a, (size_t)d->input_count, sizeof *p->inputs);
+    p->output_names = macs_calloc(a, (size_t)d->output_count, sizeof *p->output_names);
+    p->outputs = macs_calloc(a, (size_t)d->output_count, sizeof *p->outputs);
+    p->uniforms = macs_calloc(a, (size_t)d->uniform_count, sizeof *p->uniforms);
+    if (!p->input_names || !p->inputs || !p->output_names || !p->outputs || !p->uniforms)
+        return MACS_ERR_OUT_OF_MEMORY;
+    for (int i = 0; i < d->input_count; i++) {
+        if (!(p->input_names[i] = macs_strdup(a, d->inputs[i].name)))
+            return MACS_ERR_OUT_OF_MEMORY;
+        p->inputs[i] = d->input_textures ? d->input_textures[i] : NULL;
+    }
+    for (int i = 0; i < d->output_count; i++) {
+        if (!(p->output_names[i] = macs_strdup(a, d->outputs[i].name)))
+            return MACS_ERR_OUT_OF_MEMORY;
+        p->outputs[i] = d->output_textures[i];
+    }
+    for (int i = 0; i < d->uniform_count; i++) {
+        macs_pass_uniform *u = &p->uniforms[i];
+        u->type = d->uniforms[i].type;
+        u->count = d->uniforms[i].count;
+        u->size = macs_uniform_value_size(u->type, u->count);
+        u->name = macs_strdup(a, d->uniforms[i].name);
+        u->value = macs_calloc(a, 1, u->size); /* unset uniforms read as zero, like fresh GL uniforms */
+        if (!u->name || !u->value)
+            return MACS_ERR_OUT_OF_MEMORY;
+    }
+    return MACS_OK;
+}
+
+static macs_status build_chunks(macs_pass *p, const macs_pass_desc *d)
+{
+    macs_context *ctx = p->ctx;
+    const macs_allocator *a = &ctx->allocator;
+    int per_chunk = macs_outputs_per_chunk(ctx);
+    p->chunk_count = (d->output_count + per_chunk - 1) / per_chunk;
+    p->chunks = macs_calloc(a, (size_t)p->chunk_count, sizeof *p->chunks);
+    if (!p->chunks) {
+        p->chunk_count = 0;
+        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating pass chunks");
+    }
+    for (int c = 0; c < p->chunk_count; c++) {
+        macs_chunk *ch = &p->chunks[c];
+        ch->first_output = c * per_chunk;
+        ch->output_count = d->output_count - ch->first_output < per_chunk ? d->output_count - ch->first_output
+                                                                          : per_chunk;
+        ch->uniform_locations = macs_calloc(a, (size_t)p->uniform_count, sizeof *ch->uniform_locations);
+        char *source = macs_pass_source(a, d, ch->first_output, ch->output_count);
+        if (!ch->uniform_locations || !source) {
+            macs_free(a, source);
+            return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "building the shader source of a pass");
+        }
+        macs_status st = macs_program_acquire(ctx, source, p->input_count, p->input_names, &ch->program);
+        macs_free(a, source);
+        if (st != MACS_OK)
+            return st;
+        for (int i = 0; i < p->uniform_count; i++)
+            ch->uniform_locations[i] = ctx->gl.GetUniformLocation(ch->program->id, p->uniforms[i].name);
+        ctx->gl.GenFramebuffers(1, &ch->fbo);
+    }
+    return macs_gl_check(ctx, "building pass chunks");
+}
+
+macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs_pass **out)
+{
+    if (out)
+        *out = NULL;
+    if (!ctx)
+        return MACS_ERR_INVALID_ARGUMENT;
+    if (!desc || !out)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc and out are required");
+    macs_status st = validate(ctx, desc);
+    if (st != MACS_OK)
+        return st;
+    int per_chunk = macs_outputs_per_chunk(ctx);
+    st = macs_split_check_state(ctx, &desc->stencil, (desc->output_count + per_chunk - 1) / per_chunk);
+    if (st != MACS_OK)
+        return st;
+    macs_gl_drain(ctx);
+    macs_pass *p = macs_calloc(&ctx->allocator, 1, sizeof *p);
+    if (!p)
+        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a pass");
+    p->ctx = ctx;
+    p->width = desc->output_textures[0]->width;
+    p->height = desc->output_textures[0]->height;
+    p->depth_stencil = desc->depth_stencil;
+    p->depth = desc->depth;
+    p->stencil = desc->stencil;
+    p->blend = desc->blend;
+    p->color_mask = desc->color_mask;
+    p->attachments_dirty = true;
+    st = copy_desc(p, desc);
+    if (st != MACS_OK) {
+        free_pass(p);
+        return macs_fail(ctx, st, "copying the pass description");
+    }
+    st = build_chunks(p, desc);
+    if (st != MACS_OK) {
+        free_pass(p);
+        return st;
+    }
+    MACS_LIST_PUSH(ctx->passes, p);
+    *out = p;
+    return MACS_OK;
+}
+
+void macs_pass_destroy(macs_pass *pass)
+{
+    if (!pass)
+        return;
+    MACS_LIST_REMOVE(pass->ctx->passes, pass);
+    free_pass(pass);
+}
+
+int macs_pass_chunk_count(const macs_pass *pass)
+{
+    return pass ? pass->chunk_count : 0;
+}
+
+macs_status macs_pass_set_input(macs_pass *pass, int index, macs_texture *texture)
+{
+    if (!pass)
+        return MACS_ERR_INVALID_ARGUMENT;
+    if (index < 0 || index >= pass->input_count)
+        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_input: index %d outside 0..%d", index,
+                         pass->input_count - 1);
+    if (texture && texture->ctx != pass->ctx)
+        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_input: texture of another context");
+    for (int i = 0; texture && i < pass->output_count; i++)
+        if (pass->outputs[i] == texture)
+            return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT,
+                             "macs_pass_set_input: input %d (%s) would also be output %d", index,
+                             pass->input_names[index], i);
+    pass->inputs[index] = texture;
+    return MACS_OK;
+}
+
+macs_status macs_pass_set_output(macs_pass *pass, int index, macs_texture *texture)
+{
+    if (!pass)
+        return MACS_ERR_INVALID_ARGUMENT;
+    macs_context *ctx = pass->ctx;
+    if (index < 0 || index >= pass->output_count)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: index %d outside 0..%d", index,
+                         pass->output_count - 1);
+    if (!texture || texture->ctx != ctx)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: no texture of this context");
+    if (texture->width != pass->width || texture->height != pass->height)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is %dx%d, the pass is %dx%d",
+                         texture->width, texture->height, pass->width, pass->height);
+    for (int i = 0; i < pass->output_count; i++)
+        if (i != index && pass->outputs[i] == texture)
+            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is already output %d", i);
+    for (int i = 0; i < pass->input_count; i++)
+        if (pass->inputs[i] == texture)
+            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is input %d (%s)", i,
+                             pass->input_names[i]);
+    if (pass->outputs[index] != texture) {
+        pass->outputs[index] = texture;
+        pass->attachments_dirty = true;
+    }
+    return MACS_OK;
+}
+
+macs_status macs_pass_set_depth_stencil(macs_pass *pass, macs_depth_stencil *ds)
+{
+    if (!pass)
+        return MACS_ERR_INVALID_ARGUMENT;
+    macs_context *ctx = pass->ctx;
+    if (ds && (ds->ctx != ctx || ds->internal))
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_depth_stencil: object of another context");
+    if (ds && (ds->width != pass->width || ds->height != pass->height))
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_depth_stencil: it is %dx%d, the pass %dx%d",
+                         ds->width, ds->height, pass->width, pass->height);
+    if (!ds && (pass->depth.test || pass->stencil.test))
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT,
+                         "macs_pass_set_depth_stencil: the pass tests depth or stencil and needs one");
+    pass->depth_stencil = ds;
+    pass->attachments_dirty = true;
+    return MACS_OK;
+}
+
+macs_status macs_pass_set_uniform(macs_pass *pass, const char *name, const void *value)
+{
+    if (!pass)
+        return MACS_ERR_INVALID_ARGUMENT;
+    if (!name || !value)
+        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_uniform: name and value are required");
+    for (int i = 0; i < pass->uniform_count; i++)
+        if (strcmp(pass->uniforms[i].name, name) == 0) {
+            memcpy(pass->uniforms[i].value, value, pass->uniforms[i].size);
+            return MACS_OK;
+        }
+    return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_uniform: the pass has no uniform \"%s\"",
+                     name);
+}
+
+void macs_pass_forget_texture(macs_context *ctx, const macs_texture *texture)
+{
+    for (macs_pass *p = ctx->passes; p; p = p->next) {
+        for (int i = 0; i < p->input_count; i++)
+            if (p->inputs[i] == texture)
+                p->inputs[i] = NULL;
+        for (int i = 0; i < p->output_count; i++)
+            if (p->outputs[i] == texture) {
+                p->outputs[i] = NULL;
+                p->attachments_dirty = true;
+            }
+    }
+}
+
+void macs_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds)
+{
+    for (macs_pass *p = ctx->passes; p; p = p->next) {
+        if (p->depth_stencil == ds)
+            p->depth_stencil = NULL;
+        if (p->attached_ds == ds) {
+            p->attached_ds = NULL;
+            p->attachments_dirty = true;
+        }
+    }
+}

@@ -1,0 +1,115 @@
+/* Builds the GLSL 1.10 fragment source of one pass chunk from the caller's strings. */
+#include <stdio.h>
+#include <string.h>
+
+#include "internal.h"
+
+static const char *glsl_type(macs_uniform_type t)
+{
+    switch (t) {
+    case MACS_UNIFORM_FLOAT: return "float";
+    case MACS_UNIFORM_VEC2: return "vec2";
+    case MACS_UNIFORM_VEC3: return "vec3";
+    case MACS_UNIFORM_VEC4: return "vec4";
+    case MACS_UNIFORM_INT: return "int";
+    case MACS_UNIFORM_BOOL: return "bool";
+    case MACS_UNIFORM_MAT3: return "mat3";
+    case MACS_UNIFORM_MAT4: return "mat4";
+    default: return NULL;
+    }
+}
+
+size_t macs_uniform_value_size(macs_uniform_type t, int count)
+{
+    size_t n;
+    switch (t) {
+    case MACS_UNIFORM_FLOAT: case MACS_UNIFORM_INT: case MACS_UNIFORM_BOOL: n = 1; break;
+    case MACS_UNIFORM_VEC2: n = 2; break;
+    case MACS_UNIFORM_VEC3: n = 3; break;
+    case MACS_UNIFORM_VEC4: n = 4; break;
+    case MACS_UNIFORM_MAT3: n = 9; break;
+    case MACS_UNIFORM_MAT4: n = 16; break;
+    default: return 0;
+    }
+    /* int and float are both 4 bytes on every platform GL runs on; bool travels as int. */
+    return n * 4 * (size_t)(count > 0 ? count : 1);
+}
+
+/* A growing string; on allocation failure it stays failed and the result is NULL. */
+typedef struct text {
+    const macs_allocator *a;
+    char *s;
+    size_t len, cap;
+    bool failed;
+} text;
+
+static void append(text *t, const char *s)
+{
+    if (t->failed || !s)
+        return;
+    size_t n = strlen(s);
+    if (t->len + n + 1 > t->cap) {
+        size_t cap = (t->cap ? t->cap * 2 : 1024);
+        while (cap < t->len + n + 1)
+            cap *= 2;
+        char *grown = macs_alloc(t->a, cap);
+        if (!grown) {
+            t->failed = true;
+            return;
+        }
+        if (t->s)
+            memcpy(grown, t->s, t->len + 1);
+        macs_free(t->a, t->s);
+        t->s = grown;
+        t->cap = cap;
+    }
+    memcpy(t->s + t->len, s, n + 1);
+    t->len += n;
+}
+
+static void append_line_directive(text *t, int source)
+{
+    /* Mesa's preprocessor numbers the line after "#line L S" as L, as GLSL 3.30 and later define
+     * (GLSL 1.10 said L + 1); with L = 1 logs show 1-based lines on Mesa, and at worst off by one. */
+    char buf[48];
+    snprintf(buf, sizeof buf, "\n#line 1 %d\n", source);
+    append(t, buf);
+}
+
+char *macs_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count)
+{
+    text t = {a, NULL, 0, 0, false};
+    char buf[256];
+    append(&t, "#version 110\nvarying vec2 macs_uv;\n");
+    for (int i = 0; i < desc->input_count; i++) {
+        snprintf(buf, sizeof buf, "uniform sampler2D %s;\n", desc->inputs[i].name);
+        append(&t, buf);
+    }
+    for (int i = 0; i < desc->uniform_count; i++) {
+        const macs_uniform_desc *u = &desc->uniforms[i];
+        if (u->count > 0)
+            snprintf(buf, sizeof buf, "uniform %s %s[%d];\n", glsl_type(u->type), u->name, u->count);
+        else
+            snprintf(buf, sizeof buf, "uniform %s %s;\n", glsl_type(u->type), u->name);
+        append(&t, buf);
+    }
+    append_line_directive(&t, 1);
+    append(&t, desc->functions);
+    append(&t, "\n#line 1 0\nvoid main()\n{");
+    append_line_directive(&t, 2);
+    append(&t, desc->main);
+    for (int i = 0; i < output_count; i++) {
+        append_line_directive(&t, 3 + first_output + i);
+        /* No vec4() around the value: a float expression must be an error, not a silent splat. */
+        snprintf(buf, sizeof buf, "gl_FragData[%d] = (", i);
+        append(&t, buf);
+        append(&t, desc->outputs[first_output + i].value);
+        append(&t, ");");
+    }
+    append(&t, "\n}\n");
+    if (t.failed) {
+        macs_free(a, t.s);
+        return NULL;
+    }
+    return t.s;
+}

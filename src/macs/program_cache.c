@@ -1,0 +1,121 @@
+/* Context-level cache of linked programs keyed on the full fragment source: identical pass chunks
+ * share one program, and a program is deleted when the last chunk using it goes. */
+#include <string.h>
+
+#include "internal.h"
+
+static uint64_t hash_source(const char *s)
+{
+    uint64_t h = 1469598103934665603ull; /* FNV-1a: cheap, and strcmp settles collisions anyway */
+    for (; *s; s++) {
+        h ^= (unsigned char)*s;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+static macs_status compile_and_link(macs_context *ctx, const char *source, int input_count,
+                                    char *const *input_names, GLuint *out)
+{
+    const macs_gl *gl = &ctx->gl;
+    char log[MACS_MESSAGE_SIZE - 256];
+    GLint ok = 0;
+    GLuint fs = gl->CreateShader(GL_FRAGMENT_SHADER);
+    gl->ShaderSource(fs, 1, &source, NULL);
+    gl->CompileShader(fs);
+    gl->GetShaderiv(fs, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        log[0] = '\0';
+        gl->GetShaderInfoLog(fs, (GLsizei)sizeof log, NULL, log);
+        gl->DeleteShader(fs);
+        return macs_fail(ctx, MACS_ERR_SHADER_COMPILE,
+                         "fragment shader (source 1 = functions, 2 = main, 3+i = output i):\n%s", log);
+    }
+    GLuint program = gl->CreateProgram();
+    gl->AttachShader(program, ctx->vertex_shader);
+    gl->AttachShader(program, fs);
+    gl->BindAttribLocation(program, 0, "macs_position");
+    gl->LinkProgram(program);
+    /* The program keeps the shader alive as long as it needs it. */
+    gl->DeleteShader(fs);
+    gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        log[0] = '\0';
+        gl->GetProgramInfoLog(program, (GLsizei)sizeof log, NULL, log);
+        gl->DeleteProgram(program);
+        return macs_fail(ctx, MACS_ERR_SHADER_LINK, "%s", log);
+    }
+    /* Input i always samples texture unit i; the source names the inputs in order, so every pass
+     * sharing this program binds its inputs the same way. */
+    gl->UseProgram(program);
+    for (int i = 0; i < input_count; i++) {
+        GLint loc = gl->GetUniformLocation(program, input_names[i]);
+        if (loc >= 0)
+            gl->Uniform1i(loc, i);
+    }
+    gl->UseProgram(0);
+    macs_status st = macs_gl_check(ctx, "linking a pass program");
+    if (st != MACS_OK) {
+        gl->DeleteProgram(program);
+        return st;
+    }
+    *out = program;
+    return MACS_OK;
+}
+
+macs_status macs_program_acquire(macs_context *ctx, const char *source, int input_count,
+                                 char *const *input_names, macs_program **out)
+{
+    uint64_t h = hash_source(source);
+    for (macs_program *p = ctx->programs; p; p = p->next)
+        if (p->hash == h && strcmp(p->source, source) == 0) {
+            p->refs++;
+            *out = p;
+            return MACS_OK;
+        }
+    macs_program *p = macs_calloc(&ctx->allocator, 1, sizeof *p);
+    char *copy = macs_strdup(&ctx->allocator, source);
+    if (!p || !copy) {
+        macs_free(&ctx->allocator, p);
+        macs_free(&ctx->allocator, copy);
+        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a program cache entry");
+    }
+    macs_status st = compile_and_link(ctx, source, input_count, input_names, &p->id);
+    if (st != MACS_OK) {
+        macs_free(&ctx->allocator, p);
+        macs_free(&ctx->allocator, copy);
+        return st;
+    }
+    p->source = copy;
+    p->hash = h;
+    p->refs = 1;
+    p->next = ctx->programs;
+    ctx->programs = p;
+    *out = p;
+    return MACS_OK;
+}
+
+void macs_program_release(macs_context *ctx, macs_program *program)
+{
+    if (!program || --program->refs > 0)
+        return;
+    for (macs_program **pp = &ctx->programs; *pp; pp = &(*pp)->next)
+        if (*pp == program) {
+            *pp = program->next;
+            break;
+        }
+    ctx->gl.DeleteProgram(program->id);
+    macs_free(&ctx->allocator, program->source);
+    macs_free(&ctx->allocator, program);
+}
+
+void macs_program_cache_destroy(macs_context *ctx)
+{
+    while (ctx->programs) {
+        macs_program *p = ctx->programs;
+        ctx->programs = p->next;
+        ctx->gl.DeleteProgram(p->id);
+        macs_free(&ctx->allocator, p->source);
+        macs_free(&ctx->allocator, p);
+    }
+}
