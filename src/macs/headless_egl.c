@@ -40,7 +40,8 @@ macs_status macs_egl_create(macs_headless *h, char *message, size_t size)
     }
     /* The display is shared by every user of this platform in the process; it is never terminated
      * here, so that destroying one headless context cannot pull the display from under another. */
-    if (!has_token(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context")) {
+    const char *display_ext = eglQueryString(display, EGL_EXTENSIONS);
+    if (!has_token(display_ext, "EGL_KHR_surfaceless_context")) {
         snprintf(message, size, "EGL_KHR_surfaceless_context missing");
         return MACS_ERR_CONTEXT;
     }
@@ -48,10 +49,15 @@ macs_status macs_egl_create(macs_headless *h, char *message, size_t size)
         snprintf(message, size, "eglBindAPI(EGL_OPENGL_API) failed: no desktop OpenGL");
         return MACS_ERR_CONTEXT;
     }
-    static const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    EGLConfig config = NULL;
-    EGLint count = 0;
-    if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count < 1) {
+    /* No surface will ever exist, so no config is needed where the driver allows that; otherwise any
+     * config that renders desktop GL, whatever surfaces it could have had (the default asks for windows,
+     * which the surfaceless platform has none of). */
+    static const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_DONT_CARE,
+                                            EGL_NONE};
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    EGLint count = 1;
+    if (!has_token(display_ext, "EGL_KHR_no_config_context") &&
+        (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count < 1)) {
         snprintf(message, size, "no EGL config renders desktop OpenGL");
         return MACS_ERR_CONTEXT;
     }

@@ -69,10 +69,10 @@ static void append(text *t, const char *s)
 
 static void append_line_directive(text *t, int source)
 {
-    /* Mesa's preprocessor numbers the line after "#line L S" as L, as GLSL 3.30 and later define
-     * (GLSL 1.10 said L + 1); with L = 1 logs show 1-based lines on Mesa, and at worst off by one. */
+    /* GLSL 1.10: the line after "#line L S" is line L + 1 of source string S, so L = 0 makes info logs
+     * count lines from 1 within the caller's own string. (Mesa honours the line but prints source 0.) */
     char buf[48];
-    snprintf(buf, sizeof buf, "\n#line 1 %d\n", source);
+    snprintf(buf, sizeof buf, "\n#line 0 %d\n", source);
     append(t, buf);
 }
 
@@ -95,7 +95,7 @@ char *macs_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int 
     }
     append_line_directive(&t, 1);
     append(&t, desc->functions);
-    append(&t, "\n#line 1 0\nvoid main()\n{");
+    append(&t, "\n#line 0 0\nvoid main()\n{");
     append_line_directive(&t, 2);
     append(&t, desc->main);
     for (int i = 0; i < output_count; i++) {

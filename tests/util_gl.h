@@ -1,0 +1,29 @@
+/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl) and MACS contexts with caps. */
+#ifndef UTIL_GL_H
+#define UTIL_GL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "macs.h"
+
+/* True when MACS_TEST_QUICK is set (valgrind): loops shrink but still assert. */
+bool util_quick(void);
+
+/* Creates the headless context the environment asks for; fails the test if it cannot. */
+macs_headless *util_headless(void);
+
+/* Creates a MACS context on the current headless context with optional caps; fails the test on error. */
+macs_context *util_context(macs_headless *headless, const macs_limits *caps);
+
+/* cmocka group fixtures: *state becomes a macs_headless. */
+int util_group_setup(void **state);
+int util_group_teardown(void **state);
+
+/* Creates a texture of the given size and format with no contents, failing the test on error. */
+macs_texture *util_texture(macs_context *ctx, int width, int height, macs_format format);
+
+/* Fills n floats with a deterministic pattern of signs and magnitudes. */
+void util_fill_pattern(float *data, size_t n, unsigned seed);
+
+#endif
