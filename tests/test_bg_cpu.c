@@ -300,6 +300,44 @@ static void test_glass_slab(void **state)
     bg_scene_destroy(scene);
 }
 
+/* Two facing mirror planes with emission 1 and S(1) = C = 0.5: the centre ray collects
+ * sum_k 0.5^k over bounce levels k = 0 .. max_depth, cut where 0.5^k < min_weight. */
+static void test_depth_and_min_weight(void **state)
+{
+    (void)state;
+    bg_scene *scene = new_scene();
+    bg_material m = bg_material_init();
+    m.base.reflectance.r = m.base.reflectance.g = m.base.reflectance.b = 0.5;
+    m.base.roughness.value = 0.0;
+    m.ambient.r = m.ambient.g = m.ambient.b = 0.0;
+    m.emission.r = m.emission.g = m.emission.b = 1.0;
+    uint32_t mat = add_material(scene, &m), id = 0;
+    assert_int_equal(bg_scene_add_plane(scene, bg_vec3_make(0, 0, -1), bg_vec3_make(0, 0, 1), mat, &id), BG_OK);
+    assert_int_equal(bg_scene_add_plane(scene, bg_vec3_make(0, 0, 1), bg_vec3_make(0, 0, -1), mat, &id), BG_OK);
+    bg_camera cam = bg_camera_init();
+    cam.position = bg_vec3_make(0, 0, 0);
+    cam.look_at = bg_vec3_make(0, 0, -1);
+    assert_int_equal(bg_scene_set_camera(scene, &cam), BG_OK);
+    assert_int_equal(bg_scene_commit(scene), BG_OK);
+    bg_render_settings s = bg_render_settings_init();
+    double rgb[3];
+    /* defaults: max_depth 5 bounds it first */
+    centre_ray(scene, &s, rgb);
+    rel_near(rgb[0], 2.0 - pow(0.5, 5), 1e-12);
+    /* max_depth 64: min_weight 1/512 keeps levels 0 .. 9 */
+    s.max_depth = 64;
+    centre_ray(scene, &s, rgb);
+    rel_near(rgb[1], 2.0 - pow(0.5, 9), 1e-12);
+    /* no pruning: all 65 levels */
+    s.min_weight = 0.0;
+    centre_ray(scene, &s, rgb);
+    rel_near(rgb[2], 2.0 - pow(0.5, 64), 1e-12);
+    s.max_depth = 0;
+    centre_ray(scene, &s, rgb);
+    rel_near(rgb[0], 1.0, 1e-12);
+    bg_scene_destroy(scene);
+}
+
 static void test_empty_and_unlit(void **state)
 {
     (void)state;
@@ -573,6 +611,7 @@ int main(void)
         cmocka_unit_test(test_shadow_ambient_only),
         cmocka_unit_test(test_mirror_reflects_emitter),
         cmocka_unit_test(test_glass_slab),
+        cmocka_unit_test(test_depth_and_min_weight),
         cmocka_unit_test(test_empty_and_unlit),
         cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_stride_and_encoding),
