@@ -338,6 +338,57 @@ static void test_depth_and_min_weight(void **state)
     bg_scene_destroy(scene);
 }
 
+/* GL_LINEAR with GL's texel centres, both wrap modes, and the row order (texture row 0 is v = 0,
+ * the bottom row of the source image). Texels: top row red, green; bottom row blue, white. */
+static void test_texture_sampling(void **state)
+{
+    (void)state;
+    bg_scene *scene = new_scene();
+    unsigned char px[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+    bg_image img = {2, 2, BG_PIXEL_RGBA8, 0, px};
+    bg_texture_desc rep = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR}, clamp = {BG_WRAP_CLAMP, BG_TEXTURE_LINEAR};
+    uint32_t tr = 0, tc = 0;
+    assert_int_equal(bg_scene_add_texture(scene, &img, &rep, &tr), BG_OK);
+    assert_int_equal(bg_scene_add_texture(scene, &img, &clamp, &tc), BG_OK);
+    assert_int_equal(bg_scene_commit(scene), BG_OK);
+    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_texture_data *r = &st->textures[tr - 1], *c = &st->textures[tc - 1];
+    double v[4];
+    bg_cpu_texture_sample(r, 0.25, 0.25, v); /* texel centre (0, 0): bottom-left = blue */
+    assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0 && v[3] == 1.0);
+    bg_cpu_texture_sample(r, 0.25, 0.75, v); /* top-left = red */
+    assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
+    bg_cpu_texture_sample(r, 0.5, 0.5, v); /* the mean of all four */
+    assert_true(v[0] == 0.5 && v[1] == 0.5 && v[2] == 0.5);
+    bg_cpu_texture_sample(r, 0.375, 0.25, v); /* a quarter of the way from blue to white */
+    assert_true(v[0] == 0.25 && v[1] == 0.25 && v[2] == 1.0);
+    bg_cpu_texture_sample(r, 0.0, 0.25, v); /* REPEAT: half white (column -1 = 1), half blue */
+    assert_true(v[0] == 0.5 && v[1] == 0.5 && v[2] == 1.0);
+    bg_cpu_texture_sample(r, 1.25, -0.75, v); /* REPEAT: same as (0.25, 0.25) */
+    assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
+    bg_cpu_texture_sample(c, 0.0, 0.25, v); /* CLAMP_TO_EDGE: blue only */
+    assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
+    bg_cpu_texture_sample(c, -3.0, 7.0, v); /* far outside: the top-left corner texel */
+    assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
+
+    /* material parameters: constant x texel, scalar from one channel, then clamped */
+    bg_material m = bg_material_init();
+    m.base.reflectance.r = m.base.reflectance.g = m.base.reflectance.b = 0.5;
+    m.base.reflectance.texture = tr;
+    m.base.roughness.value = 1.0;
+    m.base.roughness.texture = tc;
+    m.base.roughness.channel = 1;
+    bg_cpu_surface surf;
+    const double uv[2] = {0.75, 0.75}; /* top-right = green */
+    bg_cpu_surface_eval(st, &m, uv, &surf);
+    assert_true(surf.base.c[0] == 0.0 && surf.base.c[1] == 0.5 && surf.base.c[2] == 0.0);
+    assert_true(surf.base.r == 1.0);
+    const double uv2[2] = {0.25, 0.25}; /* blue: green channel 0 */
+    bg_cpu_surface_eval(st, &m, uv2, &surf);
+    assert_true(surf.base.r == 0.0);
+    bg_scene_destroy(scene);
+}
+
 static void test_empty_and_unlit(void **state)
 {
     (void)state;
@@ -612,6 +663,7 @@ int main(void)
         cmocka_unit_test(test_mirror_reflects_emitter),
         cmocka_unit_test(test_glass_slab),
         cmocka_unit_test(test_depth_and_min_weight),
+        cmocka_unit_test(test_texture_sampling),
         cmocka_unit_test(test_empty_and_unlit),
         cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_stride_and_encoding),
