@@ -142,7 +142,9 @@ typedef struct macs_gl_info {
 } macs_gl_info;
 
 /* A MACS context: works on the GL context current on the calling thread, which must stay current for
- * every call on this context and its objects. One thread per context. */
+ * every call on this context and its objects. One thread per context. MACS sets the GL state it needs
+ * (framebuffer, program, textures, tests, blending, viewport, scissor) on every call and leaves it
+ * changed, apart from restoring framebuffer 0, program 0 and the pixel-store defaults. */
 typedef struct macs_context macs_context;
 
 /* Creates a context over the current GL context; on failure message (if not NULL) gets the reason. */
@@ -360,8 +362,11 @@ enum {
 /* Defaults: functions and main NULL (empty); no inputs; no uniforms; outputs required (output_count >= 1,
  * output_textures[i] for each output, all of one size); input_textures NULL (bind them later with
  * macs_pass_set_input); depth_stencil NULL; depth and stencil tests off; blend NONE; color_mask 0 = RGBA.
- * In the generated shader, source string 1 is functions, 2 is main and 3 + i is output i, so info logs
- * give lines within the caller's own strings. Identifiers starting with gl_ or macs_ are reserved. */
+ * In the generated shader, source string 1 is functions, 2 is main and 3 + i is output i, and lines
+ * count from 1 within each, so info logs point into the caller's own strings (Mesa prints the line
+ * right but every source number as 0). Identifiers starting with gl_ or macs_, or holding "__", are
+ * reserved. Each chunk of a split pass runs main again, so main must give the same result (and make
+ * the same discard decision) each time it runs for a pixel: no side effects, as GLSL 1.10 allows none. */
 typedef struct macs_pass_desc {
     const char *functions;
     const char *main;
