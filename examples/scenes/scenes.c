@@ -313,7 +313,7 @@ static bg_status many_spheres(bg_scene *scene, int n)
     TRY(point_light(scene, half, half, half + 6, 1, 1, 1, 0.8));
     TRY(point_light(scene, -half, 0.3 * half, half + 4, 1, 1, 1, 0.3));
     TRY(ambient(scene, 0.5));
-    double distance = 1.05 * half / tan(22.5 * PI / 180) + 1.0;
+    double distance = 1.15 * half / tan(22.5 * PI / 180) + 1.0;
     return camera(scene, bg_vec3_make(0, 0, distance), bg_vec3_make(0, 0, 0), 45);
 }
 
@@ -371,7 +371,7 @@ static bg_status all_primitives(bg_scene *scene)
     TRY(point_light(scene, 3, 6, 6, 1, 1, 1, 0.8));
     TRY(point_light(scene, -6, 4, 3, 1, 1, 1, 0.35));
     TRY(ambient(scene, 0.4));
-    return camera(scene, bg_vec3_make(0, 2.2, 10), bg_vec3_make(0, -0.2, 0), 45);
+    return camera(scene, bg_vec3_make(0, 1.8, 9.5), bg_vec3_make(0, 0.4, 0), 45);
 }
 
 /* A coated earth, an anisotropic box and cylinder (the box's roughness from a stripe texture),

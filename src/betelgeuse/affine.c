@@ -21,7 +21,7 @@ const char *bg_affine_check_string(bg_affine_check check)
 {
     switch (check) {
     case BG_AFFINE_OK: return "is fine";
-    case BG_AFFINE_NOT_FINITE: return "has a NaN or infinite element";
+    case BG_AFFINE_NOT_FINITE: return "is not finite (a NaN or infinite element, or an inverse that overflows)";
     case BG_AFFINE_NOT_AFFINE: return "is not affine (bottom row must be 0 0 0 1)";
     case BG_AFFINE_SINGULAR: return "is singular";
     }
@@ -38,16 +38,26 @@ bg_affine_check bg_affine_inverse(const bg_mat4 *transform, double inv[4][4])
     if (m[3][0] != 0 || m[3][1] != 0 || m[3][2] != 0 || m[3][3] != 1)
         return BG_AFFINE_NOT_AFFINE;
 
-    /* The determinant of the rows scaled to unit length is the scale-free ratio; computing it on
-     * unit rows also keeps it clear of overflow and underflow for very large or small scales. */
-    double u[3][3];
-    for (int i = 0; i < 3; i++) {
-        double n = bg_vec3_length(bg_vec3_make(m[i][0], m[i][1], m[i][2]));
-        if (n == 0.0 || !isfinite(n))
-            return n == 0.0 ? BG_AFFINE_SINGULAR : BG_AFFINE_NOT_FINITE;
+    /* The determinant of L / s, where s is the root mean square of L's row norms (||L||_F / sqrt 3):
+     * scale-free, invariant under rotation (so a thin slab is judged the same however it is turned),
+     * and at most 1 (Hadamard and AM-GM), reached by scaled rotations. Computing it on the scaled
+     * matrix keeps it clear of overflow and underflow for very large or small scales. */
+    double big = 0;
+    for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
-            u[i][j] = m[i][j] / n;
-    }
+            big = fmax(big, fabs(m[i][j]));
+    if (big == 0.0)
+        return BG_AFFINE_SINGULAR;
+    double u[3][3], sum = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            u[i][j] = m[i][j] / big;
+            sum += u[i][j] * u[i][j];
+        }
+    double rms = sqrt(sum / 3.0);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            u[i][j] /= rms;
     double ratio = u[0][0] * (u[1][1] * u[2][2] - u[1][2] * u[2][1]) -
                    u[0][1] * (u[1][0] * u[2][2] - u[1][2] * u[2][0]) +
                    u[0][2] * (u[1][0] * u[2][1] - u[1][1] * u[2][0]);

@@ -11,8 +11,10 @@ typedef enum bg_affine_check {
     BG_AFFINE_SINGULAR      /* the linear part is (nearly) singular for its scale */
 } bg_affine_check;
 
-/* Below this, |det L| / (|row 0| |row 1| |row 2|) counts as singular. By Hadamard's inequality the
- * ratio is at most 1 (orthogonal rows); it is scale-free, so a tiny but well-shaped object passes. */
+/* Below this, |det L| / s^3 counts as singular, where L is the linear part and s = ||L||_F / sqrt 3
+ * the root mean square of its row norms. The ratio is at most 1 (a scaled rotation), scale-free (a
+ * tiny but well-shaped object passes) and rotation-invariant (a slab 1e-13 thin is singular whether
+ * axis-aligned or turned; a test on the product of row norms would pass the axis-aligned one). */
 #define BG_AFFINE_SINGULAR_RATIO 1e-12
 
 /* Checks m and, when it is fine and inv is not NULL, writes its inverse (also checked finite). */
