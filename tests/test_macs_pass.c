@@ -362,6 +362,54 @@ static void programs_are_shared(void **state)
     macs_context_destroy(ctx);
 }
 
+/* Counts the pixels of a 4x4 pass that pass a stencil EQUAL ref test and a depth LESS test at depth z. */
+static uint64_t count_passing(macs_context *ctx, macs_depth_stencil *ds, macs_texture *t, unsigned ref, float z)
+{
+    macs_uniform_desc u = {"z", MACS_UNIFORM_FLOAT, 0};
+    macs_output_desc o = {"o", "vec4(1.0)"};
+    macs_pass_desc d = {0};
+    d.main = "gl_FragDepth = z;\n";
+    d.uniforms = &u;
+    d.uniform_count = 1;
+    d.outputs = &o;
+    d.output_count = 1;
+    d.output_textures = &t;
+    d.depth_stencil = ds;
+    d.depth.test = true;
+    d.stencil.test = true;
+    d.stencil.func = MACS_COMPARE_EQUAL;
+    d.stencil.ref = ref;
+    macs_pass *p = NULL;
+    assert_int_equal(macs_pass_create(ctx, &d, &p), MACS_OK);
+    assert_int_equal(macs_pass_set_uniform(p, "z", &z), MACS_OK);
+    macs_run_desc run = {0};
+    run.occlusion_query = true;
+    assert_int_equal(macs_pass_run(p, &run), MACS_OK);
+    uint64_t n = 0;
+    assert_int_equal(macs_pass_occlusion_result(p, &n), MACS_OK);
+    macs_pass_destroy(p);
+    return n;
+}
+
+static void depth_stencil_clear_honours_values_and_mask(void **state)
+{
+    macs_context *ctx = util_context(*state, NULL);
+    macs_texture *t = util_texture(ctx, 4, 4, 0);
+    macs_depth_stencil_desc dd = {4, 4};
+    macs_depth_stencil *ds = NULL;
+    assert_int_equal(macs_depth_stencil_create(ctx, &dd, &ds), MACS_OK);
+    assert_int_equal(macs_depth_stencil_clear(ds, 0.5f, 0x0F, 0xFF), MACS_OK);
+    assert_int_equal(count_passing(ctx, ds, t, 0x0F, 0.25f), 16);
+    assert_int_equal(count_passing(ctx, ds, t, 0x0F, 0.75f), 0);  /* behind the cleared depth */
+    assert_int_equal(count_passing(ctx, ds, t, 0x0E, 0.25f), 0);
+    /* Only bits 0x30 change: 0x0F becomes 0x3F; the reserved bit stays 0 whatever is asked. */
+    assert_int_equal(macs_depth_stencil_clear(ds, 0.5f, 0xF0, 0x30), MACS_OK);
+    assert_int_equal(count_passing(ctx, ds, t, 0x3F, 0.25f), 16);
+    assert_int_equal(macs_depth_stencil_clear(ds, 1.0f, 0xFF, 0xFF), MACS_OK);
+    assert_int_equal(count_passing(ctx, ds, t, 0x7F, 0.75f), 16);
+    macs_context_destroy(ctx);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -371,6 +419,7 @@ int main(void)
         cmocka_unit_test(blending_and_colour_masks),
         cmocka_unit_test(texture_unit_caps),
         cmocka_unit_test(programs_are_shared),
+        cmocka_unit_test(depth_stencil_clear_honours_values_and_mask),
     };
     return cmocka_run_group_tests(tests, util_group_setup, util_group_teardown);
 }

@@ -31,7 +31,14 @@ macs_status macs_osmesa_create(macs_headless *h, char *message, size_t size)
                                   OSMESA_CONTEXT_MINOR_VERSION, 1, 0};
     s->context = OSMesaCreateContextAttribs(attribs, NULL);
     if (!s->context) {
-        snprintf(message, size, "OSMesaCreateContextAttribs failed for a 2.1 compatibility context");
+        /* An OSMesa that cannot honour the exact version request may still give a compatibility
+         * context of a higher version, which MACS accepts just as well. */
+        static const int any_version[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
+                                          OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+        s->context = OSMesaCreateContextAttribs(any_version, NULL);
+    }
+    if (!s->context) {
+        snprintf(message, size, "OSMesaCreateContextAttribs failed for a compatibility context");
         macs_free(&h->allocator, s);
         return MACS_ERR_CONTEXT;
     }
