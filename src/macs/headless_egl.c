@@ -89,10 +89,13 @@ void macs_egl_destroy(macs_headless *h)
     egl_state *s = h->impl;
     if (!s)
         return;
-    if (eglGetCurrentContext() == s->context)
+    /* Only our own context is unbound: another headless context current on this thread stays so. */
+    bool was_current = eglGetCurrentContext() == s->context;
+    if (was_current)
         eglMakeCurrent(s->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(s->display, s->context);
-    eglReleaseThread();
+    if (was_current)
+        eglReleaseThread();
     macs_free(&h->allocator, s);
     h->impl = NULL;
 }
