@@ -193,6 +193,9 @@ macs_status macs_context_create(const macs_context_desc *desc, macs_context **ou
              "units %d", ctx->gl_strings[1] ? ctx->gl_strings[1] : "?", version, ctx->effective.max_draw_buffers,
              ctx->effective.max_color_attachments, ctx->effective.max_texture_units);
     macs_log(ctx, MACS_LOG_INFO, info);
+    if (!ctx->features.color_buffer_float)
+        macs_log(ctx, MACS_LOG_WARNING, "GL_ARB_color_buffer_float is missing: the implementation may clamp "
+                 "float outputs and clear colours to 0..1");
     *out = ctx;
     return MACS_OK;
 }
