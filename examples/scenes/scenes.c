@@ -262,7 +262,7 @@ static bg_status mirror_scene(bg_scene *scene)
     TRY(point_light(scene, 4, 6, 5, 1, 1, 1, 0.8));
     TRY(point_light(scene, -5, 4, 2, 1, 1, 1, 0.4));
     TRY(ambient(scene, 0.5));
-    return camera(scene, bg_vec3_make(0, 1.6, 5.8), bg_vec3_make(0, -0.3, 0), 45);
+    return camera(scene, bg_vec3_make(0, 1.8, 6.6), bg_vec3_make(0, -0.3, 0), 45);
 }
 
 static bg_status glass_scene(bg_scene *scene)
@@ -371,7 +371,7 @@ static bg_status all_primitives(bg_scene *scene)
     TRY(point_light(scene, 3, 6, 6, 1, 1, 1, 0.8));
     TRY(point_light(scene, -6, 4, 3, 1, 1, 1, 0.35));
     TRY(ambient(scene, 0.4));
-    return camera(scene, bg_vec3_make(0, 1.8, 9.5), bg_vec3_make(0, 0.4, 0), 45);
+    return camera(scene, bg_vec3_make(0, 2.4, 11.5), bg_vec3_make(0, -0.2, 0), 45);
 }
 
 /* A coated earth, an anisotropic box and cylinder (the box's roughness from a stripe texture),
@@ -439,7 +439,7 @@ static bg_status textured_aniso(bg_scene *scene)
     sun.intensity = 0.5;
     TRY(bg_scene_add_light(scene, &sun, &id));
     TRY(ambient(scene, 0.3));
-    return camera(scene, bg_vec3_make(0, 2, 7), bg_vec3_make(0, -0.3, 0), 45);
+    return camera(scene, bg_vec3_make(0, 2.2, 8.2), bg_vec3_make(0, -0.3, 0), 45);
 }
 
 bg_status scenes_build_ex(scene_id id, const scene_params *params, bg_scene *scene)
