@@ -52,7 +52,8 @@ typedef enum bg_log_level { BG_LOG_ERROR = 0, BG_LOG_WARNING, BG_LOG_INFO, BG_LO
 /* Receives diagnostics; the library never prints on its own. */
 typedef void (*bg_log_fn)(bg_log_level level, const char *message, void *user);
 
-/* Allocation hooks; all NULL means the C library's malloc, realloc and free. */
+/* Allocation hooks; all NULL means the C library's malloc, realloc and free. Otherwise alloc and
+ * free must both be set; realloc is optional (without it the library allocates, copies, frees). */
 typedef struct bg_allocator {
     void *(*alloc)(size_t size, void *user);
     void *(*realloc)(void *ptr, size_t size, void *user);
@@ -147,7 +148,8 @@ typedef enum bg_texture_encoding {
     BG_TEXTURE_LINEAR    /* data (roughness, masks): texels are used as stored, RGBA8 divided by 255 */
 } bg_texture_encoding;
 
-/* Defaults: repeat, sRGB colour data. */
+/* Defaults: repeat, sRGB colour data. RGBA32F images are taken as linear whatever the encoding;
+ * their texels must be finite and >= 0. */
 typedef struct bg_texture_desc {
     bg_texture_wrap wrap;
     bg_texture_encoding encoding;
@@ -236,7 +238,9 @@ typedef enum bg_uv_mapping {
 } bg_uv_mapping;
 
 /* Defaults (bg_object_desc_init): identity transform, the default UV mapping with scale (1, 1),
- * casts shadows. material must name an added material. */
+ * casts shadows. material must name an added material. transform must be finite and affine
+ * (bottom row 0 0 0 1) with a non-singular linear part L: |det L| / (|L|_F / sqrt 3)^3 >= 1e-12,
+ * a test that ignores overall scale and rotation but rejects slabs thinner than 1e-12 of their size. */
 typedef struct bg_object_desc {
     bg_shape shape;
     bg_mat4 transform;
@@ -271,7 +275,7 @@ typedef enum bg_light_type { BG_LIGHT_POINT = 0, BG_LIGHT_DIRECTIONAL, BG_LIGHT_
 typedef struct bg_light {
     bg_light_type type;
     bg_vec3 position;   /* point lights */
-    bg_vec3 direction;  /* directional lights, and the axis of a spot cone */
+    bg_vec3 direction;  /* directional lights, and the axis of a spot cone; non-zero where used */
     double color[3];
     double intensity;
     double attenuation[3];       /* constant, linear, quadratic; >= 0, not all 0 */
@@ -292,7 +296,8 @@ bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
 /* ---- commit -------------------------------------------------------------------------------- */
 
 /* Validates the whole scene and makes it what the renderers see: computes bounds, inverse
- * transforms (in double) and what the renderers need. Cheap when only values changed. */
+ * transforms (in double) and what the renderers need. Cheap when only values changed (no
+ * allocation). A stored error does not block it; if it fails, the previous commit stays. */
 bg_status bg_scene_commit(bg_scene *scene);
 /* Bumped by every successful commit; renderers use it to tell what changed. */
 uint64_t bg_scene_commit_count(const bg_scene *scene);

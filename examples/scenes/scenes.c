@@ -275,7 +275,7 @@ static bg_status glass_scene(bg_scene *scene)
     TRY(material(scene, f, &floor));
     TRY(material(scene, glass(), &glass_m));
     TRY(material(scene, mirror(0.85), &chrome));
-    /* A quarter texture per unit: one checker cell (1/8 texture) is half a unit. */
+    /* Planar u = (x + 1) / 2 * uv_scale: an eighth of the texture, one checker cell, per unit. */
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, floor);
     d.transform = bg_mat4_translate(0, -1, 0);
     d.uv_scale[0] = d.uv_scale[1] = 0.25;
