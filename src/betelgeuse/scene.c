@@ -71,6 +71,8 @@ void bg_scene_clear_error(bg_scene *scene)
 
 bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, ...)
 {
+    if (!scene)
+        return status;
     char buffer[BG_MESSAGE_SIZE];
     va_list args;
     va_start(args, format);
