@@ -96,6 +96,18 @@ static void sphere(const double o[3], const double d[3], bg_cpu_span *span)
             span->normal[k][i] = o[i] + span->t[k] * d[i];
 }
 
+/* A closed shape's span is the clipped interval, when both of its ends were found. */
+static void store_interval(const interval *iv, bg_cpu_span *span)
+{
+    if (!iv->has_lo || !iv->has_hi)
+        return;
+    span->count = 2;
+    span->t[0] = iv->lo;
+    span->t[1] = iv->hi;
+    memcpy(span->normal[0], iv->n_lo, sizeof iv->n_lo);
+    memcpy(span->normal[1], iv->n_hi, sizeof iv->n_hi);
+}
+
 static void box(const double o[3], const double d[3], bg_cpu_span *span)
 {
     interval iv = {false, false, 0.0, 0.0, {0, 0, 0}, {0, 0, 0}};
@@ -103,13 +115,7 @@ static void box(const double o[3], const double d[3], bg_cpu_span *span)
     for (int axis = 0; axis < 3; axis++)
         if (!slab(&iv, o, d, axis, scale))
             return;
-    if (!iv.has_lo || !iv.has_hi)
-        return;
-    span->count = 2;
-    span->t[0] = iv.lo;
-    span->t[1] = iv.hi;
-    memcpy(span->normal[0], iv.n_lo, sizeof iv.n_lo);
-    memcpy(span->normal[1], iv.n_hi, sizeof iv.n_hi);
+    store_interval(&iv, span);
 }
 
 static void cylinder(const double o[3], const double d[3], bg_cpu_span *span)
@@ -135,13 +141,7 @@ static void cylinder(const double o[3], const double d[3], bg_cpu_span *span)
     }
     if (!slab(&iv, o, d, 1, scale))
         return;
-    if (!iv.has_lo || !iv.has_hi)
-        return;
-    span->count = 2;
-    span->t[0] = iv.lo;
-    span->t[1] = iv.hi;
-    memcpy(span->normal[0], iv.n_lo, sizeof iv.n_lo);
-    memcpy(span->normal[1], iv.n_hi, sizeof iv.n_hi);
+    store_interval(&iv, span);
 }
 
 static void thin(const double o[3], const double d[3], bool bounded, bg_cpu_span *span)

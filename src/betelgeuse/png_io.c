@@ -24,6 +24,27 @@ static bg_status arg_fail(const char *text, char *message, size_t size)
     return BG_ERR_INVALID_ARGUMENT;
 }
 
+/* The checks load and save share: a path, a valid image, and a stride libpng can take. */
+static bg_status check_file_and_image(const char *fn, const char *path, const bg_image *image,
+                                      size_t *stride, char *message, size_t size)
+{
+    bg_message_copy(message, size, "");
+    char buf[BG_MESSAGE_SIZE], detail[256];
+    if (!path) {
+        snprintf(buf, sizeof buf, "%s: path is NULL", fn);
+        return arg_fail(buf, message, size);
+    }
+    if (bg_image_check(image, stride, detail, sizeof detail) != BG_OK) {
+        snprintf(buf, sizeof buf, "%s: %s", fn, detail);
+        return arg_fail(buf, message, size);
+    }
+    if (*stride > 0x7fffffff) {
+        snprintf(buf, sizeof buf, "%s: image stride is too large for libpng", fn);
+        return arg_fail(buf, message, size);
+    }
+    return BG_OK;
+}
+
 /* Opens path and reads its header into png; on failure png is already freed by libpng. */
 static bg_status begin_read(const char *path, png_image *png, char *message, size_t size)
 {
@@ -75,18 +96,11 @@ static bg_status finish_read(const char *path, png_image *png, void *pixels, siz
 
 bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t message_size)
 {
-    bg_message_copy(message, message_size, "");
-    if (!path)
-        return arg_fail("bg_png_load: path is NULL", message, message_size);
-    char buf[BG_MESSAGE_SIZE], detail[256];
     size_t stride;
-    bg_status st = bg_image_check(image, &stride, detail, sizeof detail);
-    if (st != BG_OK) {
-        snprintf(buf, sizeof buf, "bg_png_load: %s", detail);
-        return arg_fail(buf, message, message_size);
-    }
-    if (stride > 0x7fffffff)
-        return arg_fail("bg_png_load: image stride is too large for libpng", message, message_size);
+    bg_status st = check_file_and_image("bg_png_load", path, image, &stride, message, message_size);
+    if (st != BG_OK)
+        return st;
+    char buf[BG_MESSAGE_SIZE];
     png_image png;
     if ((st = begin_read(path, &png, message, message_size)) != BG_OK)
         return st;
@@ -132,18 +146,10 @@ static unsigned char to_byte(float v)
 
 bg_status bg_png_save(const char *path, const bg_image *image, char *message, size_t message_size)
 {
-    bg_message_copy(message, message_size, "");
-    if (!path)
-        return arg_fail("bg_png_save: path is NULL", message, message_size);
-    char buf[BG_MESSAGE_SIZE], detail[256];
     size_t stride;
-    bg_status st = bg_image_check(image, &stride, detail, sizeof detail);
-    if (st != BG_OK) {
-        snprintf(buf, sizeof buf, "bg_png_save: %s", detail);
-        return arg_fail(buf, message, message_size);
-    }
-    if (stride > 0x7fffffff)
-        return arg_fail("bg_png_save: image stride is too large for libpng", message, message_size);
+    bg_status st = check_file_and_image("bg_png_save", path, image, &stride, message, message_size);
+    if (st != BG_OK)
+        return st;
     png_image png;
     memset(&png, 0, sizeof png);
     png.version = PNG_IMAGE_VERSION;

@@ -23,14 +23,21 @@ void macs_log(const macs_context *ctx, int level, const char *message)
         ctx->logger(level, message, ctx->logger_user);
 }
 
+/* "<status message>: <details>", truncated to MACS_MESSAGE_SIZE. */
+static void format_message(char buffer[MACS_MESSAGE_SIZE], macs_status status, const char *format,
+                           va_list args)
+{
+    int n = snprintf(buffer, MACS_MESSAGE_SIZE, "%s: ", macs_status_string(status));
+    if (n > 0 && n < MACS_MESSAGE_SIZE)
+        vsnprintf(buffer + n, MACS_MESSAGE_SIZE - (size_t)n, format, args);
+}
+
 macs_status macs_fail(macs_context *ctx, macs_status status, const char *format, ...)
 {
     char buffer[MACS_MESSAGE_SIZE];
-    int n = snprintf(buffer, sizeof buffer, "%s: ", macs_status_string(status));
     va_list args;
     va_start(args, format);
-    if (n > 0 && (size_t)n < sizeof buffer)
-        vsnprintf(buffer + n, sizeof buffer - (size_t)n, format, args);
+    format_message(buffer, status, format, args);
     va_end(args);
     /* Only the first error is kept: later ones are usually consequences of it. */
     if (ctx->error == MACS_OK) {
@@ -45,11 +52,9 @@ void macs_report(macs_log_fn logger, void *user, char *message, size_t size, mac
                  const char *format, ...)
 {
     char buffer[MACS_MESSAGE_SIZE];
-    int n = snprintf(buffer, sizeof buffer, "%s: ", macs_status_string(status));
     va_list args;
     va_start(args, format);
-    if (n > 0 && (size_t)n < sizeof buffer)
-        vsnprintf(buffer + n, sizeof buffer - (size_t)n, format, args);
+    format_message(buffer, status, format, args);
     va_end(args);
     if (message && size > 0)
         snprintf(message, size, "%s", buffer);

@@ -116,43 +116,40 @@ void macs_texture_destroy(macs_texture *t)
     macs_free(&ctx->allocator, t);
 }
 
-macs_status macs_texture_upload(macs_texture *t, const void *data, size_t stride)
+/* Upload and read-back differ only in direction: the pixel-store row length, then one GL call.
+ * glGetTexImage reads the texture itself: no framebuffer, no read-colour clamping. */
+static macs_status transfer(macs_texture *t, bool upload, void *data, size_t stride)
 {
+    const char *fn = upload ? "macs_texture_upload" : "macs_texture_read";
     if (!t)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!data)
-        return macs_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_upload: data is NULL");
+        return macs_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "%s: data is NULL", fn);
     macs_context *ctx = t->ctx;
     macs_gl_drain(ctx);
-    macs_status st = set_row_length(t, GL_UNPACK_ROW_LENGTH, stride, "macs_texture_upload");
+    macs_status st = set_row_length(t, upload ? GL_UNPACK_ROW_LENGTH : GL_PACK_ROW_LENGTH, stride, fn);
     if (st != MACS_OK)
         return st;
     ctx->gl.ActiveTexture(GL_TEXTURE0);
     ctx->gl.BindTexture(GL_TEXTURE_2D, t->id);
-    ctx->gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->width, t->height, GL_RGBA, texel_type(t->format), data);
+    if (upload)
+        ctx->gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->width, t->height, GL_RGBA, texel_type(t->format), data);
+    else
+        ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, texel_type(t->format), data);
     ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
     reset_pixel_store(ctx);
-    return macs_gl_check(ctx, "macs_texture_upload: glTexSubImage2D");
+    return macs_gl_check(ctx, upload ? "macs_texture_upload: glTexSubImage2D" : "macs_texture_read: glGetTexImage");
+}
+
+macs_status macs_texture_upload(macs_texture *t, const void *data, size_t stride)
+{
+    /* transfer() only reads through data when upload is true. */
+    return transfer(t, true, (void *)(uintptr_t)data, stride);
 }
 
 macs_status macs_texture_read(macs_texture *t, void *data, size_t stride)
 {
-    if (!t)
-        return MACS_ERR_INVALID_ARGUMENT;
-    if (!data)
-        return macs_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_read: data is NULL");
-    macs_context *ctx = t->ctx;
-    macs_gl_drain(ctx);
-    macs_status st = set_row_length(t, GL_PACK_ROW_LENGTH, stride, "macs_texture_read");
-    if (st != MACS_OK)
-        return st;
-    /* glGetTexImage reads the texture itself: no framebuffer, no read-colour clamping. */
-    ctx->gl.ActiveTexture(GL_TEXTURE0);
-    ctx->gl.BindTexture(GL_TEXTURE_2D, t->id);
-    ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, texel_type(t->format), data);
-    ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
-    reset_pixel_store(ctx);
-    return macs_gl_check(ctx, "macs_texture_read: glGetTexImage");
+    return transfer(t, false, data, stride);
 }
 
 macs_status macs_texture_clear(macs_texture *t, const float rgba[4])
