@@ -24,7 +24,7 @@ BUILD   := build/release
 SANFLAGS :=
 endif
 
-ALL_CFLAGS := $(WARN) $(DEFS) $(OPT) $(SANFLAGS) -fPIC -Iinclude -Isrc -I$(BUILD)/gen $(CFLAGS)
+ALL_CFLAGS := $(WARN) $(DEFS) $(OPT) $(SANFLAGS) -fPIC -Iinclude -Isrc -Iexamples -I$(BUILD)/gen $(CFLAGS)
 ALL_LDFLAGS := $(SANFLAGS) $(LDFLAGS)
 
 MACS_LIBS := $(shell pkg-config --libs osmesa egl 2>/dev/null || echo -lOSMesa -lEGL) -lm
@@ -63,7 +63,8 @@ BG_SO   := $(BUILD)/libbetelgeuse.so.$(VERSION)
 
 STATIC_LINK := $(BG_A) $(MACS_A) $(BG_LIBS) $(MACS_LIBS)
 
-.PHONY: all check examples bench stress install uninstall clean glsl-check valgrind
+FORCE:
+.PHONY: FORCE all check examples bench stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
@@ -103,7 +104,8 @@ $(BG_SO): $(BG_OBJ) $(MACS_SO)
 	ln -sf libbetelgeuse.so.$(VERSION) $(BUILD)/libbetelgeuse.so.$(SOVERSION)
 	ln -sf libbetelgeuse.so.$(SOVERSION) $(BUILD)/libbetelgeuse.so
 
-$(BUILD)/%.pc: Makefile
+# Always rewritten, so that the PREFIX of this make call (e.g. at install) is the one recorded.
+$(BUILD)/%.pc: FORCE
 	@mkdir -p $(dir $@)
 	@{ echo 'prefix=$(PREFIX)'; echo 'libdir=$(LIBDIR)'; echo 'includedir=$(INCDIR)'; echo; \
 	   if [ "$*" = macs ]; then \

@@ -9,7 +9,7 @@
 #include <time.h>
 
 #include "betelgeuse.h"
-#include "../examples/scenes/scenes.h"
+#include "scenes/scenes.h"
 
 static double now_ms(void)
 {

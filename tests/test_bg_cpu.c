@@ -12,7 +12,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse/cpu_internal.h"
-#include "../examples/scenes/scenes.h"
+#include "scenes/scenes.h"
 
 static const double PI = 3.14159265358979323846;
 

@@ -12,7 +12,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse/scene_internal.h"
-#include "../examples/scenes/scenes.h"
+#include "scenes/scenes.h"
 
 static const bg_scene_state *build(scene_id id, const scene_params *p, bg_scene **out)
 {
