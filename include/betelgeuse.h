@@ -246,7 +246,8 @@ typedef struct bg_object_desc {
     bg_mat4 transform;
     uint32_t material;
     bg_uv_mapping uv_mapping;
-    double uv_scale[2];  /* texture repeats per prototype unit (planar) or per turn (others); > 0 */
+    double uv_scale[2];  /* texture repeats per prototype square [-1, 1]^2 (planar, box) or per turn
+                            (spherical, cylindrical longitude); > 0 */
     bool casts_shadows;
 } bg_object_desc;
 
