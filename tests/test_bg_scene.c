@@ -169,6 +169,19 @@ static void t_free(void *p, void *user)
     free(p);
 }
 
+/* A scene whose every allocation goes through the counting hooks above. */
+static bg_scene *counted_scene(alloc_stats *a)
+{
+    bg_scene_desc d = {0};
+    d.allocator.alloc = t_alloc;
+    d.allocator.realloc = t_realloc;
+    d.allocator.free = t_free;
+    d.allocator.user = a;
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(&d, &s), BG_OK);
+    return s;
+}
+
 static void test_allocator_hooks(void **state)
 {
     (void)state;
@@ -209,13 +222,7 @@ static void test_out_of_memory_leaves_scene_intact(void **state)
 {
     (void)state;
     alloc_stats a = {0, 0, -1};
-    bg_scene_desc d = {0};
-    d.allocator.alloc = t_alloc;
-    d.allocator.realloc = t_realloc;
-    d.allocator.free = t_free;
-    d.allocator.user = &a;
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(&d, &s), BG_OK);
+    bg_scene *s = counted_scene(&a);
     bg_material m = bg_material_init();
     uint32_t id;
     assert_int_equal(bg_scene_add_material(s, &m, &id), BG_OK);
@@ -721,13 +728,7 @@ static void test_cheap_recommit(void **state)
 {
     (void)state;
     alloc_stats a = {0, 0, -1};
-    bg_scene_desc desc = {0};
-    desc.allocator.alloc = t_alloc;
-    desc.allocator.realloc = t_realloc;
-    desc.allocator.free = t_free;
-    desc.allocator.user = &a;
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(&desc, &s), BG_OK);
+    bg_scene *s = counted_scene(&a);
     bg_material m = bg_material_init();
     uint32_t mat, obj, light;
     assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
