@@ -29,6 +29,17 @@ int main(int argc, char **argv)
         macs_headless_destroy(gl);
         return 1;
     }
+    /* The limits that decide how passes are split (caps in the descriptor can only lower them). */
+    macs_limits real, effective;
+    macs_context_limits(ctx, &real, &effective);
+    macs_gl_info info;
+    macs_context_gl_info(ctx, &info);
+    printf("macs_hello: %s, GL %s: %d draw buffers, %d colour attachments, %d texture units, "
+           "texture size %d (effective %d / %d / %d / %d)\n",
+           info.renderer ? info.renderer : "?", info.version ? info.version : "?", real.max_draw_buffers,
+           real.max_color_attachments, real.max_texture_units, real.max_texture_size,
+           effective.max_draw_buffers, effective.max_color_attachments, effective.max_texture_units,
+           effective.max_texture_size);
 
     /* 2. An 8-bit output texture and a pass: GLSL 1.10 code run once per output pixel. */
     macs_texture_desc td = {0};
