@@ -17,6 +17,8 @@
 #include <stdint.h>
 #include <stdbool.h>
 
+#include "macs.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -32,7 +34,8 @@ extern "C" {
     X(BG_ERR_NOT_COMMITTED, 4, "the scene has no committed state")                     \
     X(BG_ERR_GL, 5, "the GPU renderer failed (see the message)")                       \
     X(BG_ERR_LIMIT, 6, "a hardware or library limit was exceeded")                     \
-    X(BG_ERR_THREAD, 7, "a worker thread could not be started")
+    X(BG_ERR_THREAD, 7, "a worker thread could not be started")                        \
+    X(BG_ERR_GPU_OUT_OF_MEMORY, 8, "the GPU ran out of memory")
 
 /* Result of every fallible call; BG_OK is 0. */
 typedef enum bg_status {
@@ -310,14 +313,39 @@ typedef enum bg_output_encoding {
     BG_ENCODING_LINEAR    /* RGBA8 output is clamped linear radiance x 255 */
 } bg_output_encoding;
 
+/* Work the GPU renderer skips when a scene does not need it (DESIGN.md section 5). Each skip can be
+ * switched off through bg_render_settings.gpu_disable_skips to test that it changes no pixel and to
+ * measure what it saves. */
+enum {
+    BG_SKIP_SPECIALIZE = 1u << 0,  /* off: generic shaders with every material feature and texture
+                                      slot (1x1 white textures where a material has none) */
+    BG_SKIP_BOUNCE_CULL = 1u << 1, /* off: secondary rays are spawned even without mirrors or glass */
+    BG_SKIP_OCCLUSION = 1u << 2,   /* off: ray sets are traced even when the occlusion query counts
+                                      no live pixel in them */
+    BG_SKIP_STENCIL = 1u << 3,     /* off: passes run on dead and missed pixels too (weight 0) */
+    BG_SKIP_SCISSOR = 1u << 4,     /* off: camera-ray intersection covers the whole image, not each
+                                      bounded object's screen rectangle */
+    BG_SKIP_SHADOW_CULL = 1u << 5, /* off: a shadow pass for every object, even one that casts no
+                                      shadow or can only shadow itself (the pass then blocks nothing) */
+    BG_SKIP_FACING = 1u << 6,      /* off: shadow and light work also for surfaces facing away from a
+                                      light (the result is then multiplied by 0) */
+    BG_SKIP_ALL = (1u << 7) - 1u
+};
+
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
- * min_weight 1/512, sRGB encoding, threads 0 (the online cores). */
+ * min_weight 1/512, sRGB encoding, threads 0 (the online cores), dmax 0 (automatic), no phase
+ * timing, every skip on. */
 typedef struct bg_render_settings {
     double background[3];
     int max_depth;      /* bounce levels after the primary hit, 0 .. 64 */
     double min_weight;  /* a ray whose path weight is below this in every channel is not followed */
     bg_output_encoding encoding;
     int threads;        /* CPU renderer only; 0 = online cores, at most 256 */
+    double dmax;        /* GPU renderer only: the largest ray distance kept by the depth test, for
+                           every level; 0 = computed per level from the scene's bounds */
+    bool gpu_timing;    /* GPU renderer only: measure wall time per phase and count shaded fragments
+                           (waits for the GPU between phases, so it slows the frame down) */
+    unsigned gpu_disable_skips; /* GPU renderer only: BG_SKIP_* bits to switch off (testing) */
 } bg_render_settings;
 
 /* The default settings described above. */
@@ -326,6 +354,89 @@ bg_render_settings bg_render_settings_init(void);
 /* Renders the committed scene with the double-precision CPU reference renderer into a
  * caller-owned image (size 1 .. 16384 per side). The output does not depend on the thread count. */
 bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image);
+
+/* ---- GPU renderer -------------------------------------------------------------------------- */
+
+/* The GPU ray tracer: ray maps, per-object intersection passes, shadow, lighting and bounce passes,
+ * all MACS render passes on the caller's MACS context. */
+typedef struct bg_renderer bg_renderer;
+
+/* Defaults: context required; 24-bit depth; no logger; the C library's allocator. */
+typedef struct bg_renderer_desc {
+    macs_context *context; /* the MACS context to render with; its GL context must be current */
+    bool float_depth;      /* a 32-bit float depth buffer when GL has ARB_depth_buffer_float and the
+                              MACS context was created with allow_float_depth; else 24-bit */
+    bg_log_fn log;
+    void *log_user;
+    bg_allocator allocator;
+} bg_renderer_desc;
+
+/* Creates a renderer; textures and passes are made at the first render and kept while the scene's
+ * structure and the image size stay the same. */
+bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer);
+/* Frees the renderer and its GPU objects (the MACS context stays the caller's); NULL is ignored. */
+void bg_renderer_destroy(bg_renderer *renderer);
+/* The first error since the last clear (BG_OK if none). */
+bg_status bg_renderer_error(const bg_renderer *renderer);
+/* The message of the first error ("" if none); GL failures carry MACS's message. */
+const char *bg_renderer_error_message(const bg_renderer *renderer);
+/* Forgets the stored error. */
+void bg_renderer_clear_error(bg_renderer *renderer);
+
+/* Renders the committed scene on the GPU into a caller-owned image, with the same shading model
+ * and output encoding as bg_render_cpu. A failure (image larger than the GL limits, GPU out of
+ * memory) leaves the renderer usable for the next call. */
+bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                        bg_image *image);
+
+/* Kinds of GPU pass, counted in bg_render_stats. */
+typedef enum bg_pass_kind {
+    BG_PASS_RAYS = 0,   /* camera ray maps */
+    BG_PASS_MARK,       /* live-pixel stencil of a secondary ray set */
+    BG_PASS_INTERSECT,  /* one object against one ray set, writing the G-buffer */
+    BG_PASS_BACKGROUND, /* the background colour where a live ray missed */
+    BG_PASS_SHADOW,     /* one object against the shadow segments of up to four lights */
+    BG_PASS_LIGHT,      /* up to four lights (and ambient and emission once) into the accumulation */
+    BG_PASS_SPAWN,      /* reflected or transmitted ray maps of the next level */
+    BG_PASS_RESOLVE,    /* accumulation to the output encoding */
+    BG_PASS_KIND_COUNT_
+} bg_pass_kind;
+
+/* Phases of a frame, timed when bg_render_settings.gpu_timing is set. */
+typedef enum bg_phase {
+    BG_PHASE_SETUP = 0, /* scene upload, shader specialisation, allocation (0 when cached) */
+    BG_PHASE_RAYS,
+    BG_PHASE_INTERSECT,
+    BG_PHASE_SHADOW,
+    BG_PHASE_LIGHT,      /* lighting and background */
+    BG_PHASE_BOUNCE,     /* spawning and marking secondary ray sets, with their occlusion queries */
+    BG_PHASE_RESOLVE,    /* resolve pass and read-back into the caller's image */
+    BG_PHASE_COUNT_
+} bg_phase;
+
+#define BG_STATS_MAX_LEVELS 65
+
+/* What the last bg_render_gpu call did. */
+typedef struct bg_render_stats {
+    int passes[BG_PASS_KIND_COUNT_]; /* passes drawn per kind (a pass split by MACS counts once) */
+    int chunks;                      /* MACS program/framebuffer chunks drawn in all */
+    int levels;                      /* bounce levels traced after the camera level */
+    int ray_sets;                    /* ray sets traced: camera rays plus every live reflected or
+                                        transmitted set (a level may hold several) */
+    int ray_sets_skipped;            /* spawned sets the occlusion query found empty */
+    uint64_t live_pixels[BG_STATS_MAX_LEVELS]; /* live rays per level, summed over its sets */
+    double dmax[BG_STATS_MAX_LEVELS];          /* the dmax used at each traced level */
+    uint64_t intersect_pixels;       /* pixels covered by intersection passes (scissor rectangles) */
+    int gbuffer_targets;             /* G-buffer textures written by each intersection pass */
+    int depth_bits;                  /* 24, or 32 for a float depth buffer */
+    bool timed;                      /* the fields below were measured (gpu_timing) */
+    double phase_ms[BG_PHASE_COUNT_];
+    double total_ms;
+    uint64_t shaded_fragments;       /* fragments kept by shadow and light passes (gpu_timing) */
+} bg_render_stats;
+
+/* Copies the statistics of the last render (all zero before the first). */
+void bg_renderer_stats(const bg_renderer *renderer, bg_render_stats *stats);
 
 #ifdef __cplusplus
 }

@@ -172,6 +172,9 @@ void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info);
 /* Copies which optional extensions were found. */
 void macs_context_features(const macs_context *ctx, macs_features *features);
 
+/* Waits until GL has finished every command issued so far (glFinish): for timing, not correctness. */
+void macs_context_finish(macs_context *ctx);
+
 /* ---------------------------------------------------------------------------------------------- */
 /* Textures                                                                                        */
 

@@ -242,6 +242,12 @@ void macs_context_features(const macs_context *ctx, macs_features *features)
         *features = ctx->features;
 }
 
+void macs_context_finish(macs_context *ctx)
+{
+    if (ctx)
+        ctx->gl.Finish();
+}
+
 GLenum macs_gl_compare(macs_compare c, GLenum fallback)
 {
     switch (c) {

@@ -74,7 +74,8 @@
     X(void, DeleteQueries, (GLsizei n, const GLuint *ids)) \
     X(void, BeginQuery, (GLenum target, GLuint id)) \
     X(void, EndQuery, (GLenum target)) \
-    X(void, GetQueryObjectuiv, (GLuint id, GLenum pname, GLuint *params))
+    X(void, GetQueryObjectuiv, (GLuint id, GLenum pname, GLuint *params)) \
+    X(void, Finish, (void))
 
 #define MACS_GL_FBO(X) \
     X(void, GenFramebuffers, (GLsizei n, GLuint *framebuffers)) \
