@@ -1,0 +1,15 @@
+/* The body shared by the GPU examples (bg_earth, bg_earth_shadow, bg_glass): parse the command line,
+ * create a headless GL context, a MACS context and a renderer, build a shared scene, render it on the
+ * GPU and write a PNG. */
+#ifndef GPU_EXAMPLE_H
+#define GPU_EXAMPLE_H
+
+#include "scenes.h"
+
+/* Runs "<name> [output.png [size]]" for one shared scene with the default render settings: writes
+ * <name>.png in the current folder unless a path is given, size x size pixels (default 512, at most
+ * 16384). Returns the process exit status: 0 on success, 1 when something failed (the reason goes to
+ * stderr), 2 for a bad command line. */
+int gpu_example_main(int argc, char **argv, const char *name, scene_id id);
+
+#endif

@@ -1,0 +1,51 @@
+/* Image comparison metrics (DESIGN.md section 7): two RGBA8 images of one size compared on their RGB
+ * channels, once over every pixel and once without the silhouette pixels of the reference, where a
+ * sub-pixel shift legitimately changes which object a ray hits. Alpha is ignored. */
+#ifndef IMAGE_METRICS_H
+#define IMAGE_METRICS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "betelgeuse.h"
+
+/* A pixel is "over" when some RGB channel differs by more than this (in 0..255 units: 8/255). */
+#define IMAGE_METRICS_OVER 8
+/* The PSNR reported for identical pixel sets (the true value is infinite). */
+#define IMAGE_METRICS_PSNR_IDENTICAL 999.0
+
+/* Differences over one set of pixels; errors in 0..255 units. */
+typedef struct image_diff {
+    long pixels;          /* pixels in the set */
+    double max_abs[3];    /* largest absolute error per channel (R, G, B) */
+    double mean_abs[3];   /* mean absolute error per channel */
+    double psnr_db;       /* over all RGB values of the set; IMAGE_METRICS_PSNR_IDENTICAL if equal */
+    long over_count;      /* pixels with a channel differing by more than IMAGE_METRICS_OVER */
+    double over_share;    /* over_count / pixels (0 for an empty set) */
+    int worst_x, worst_y; /* a pixel with the largest channel error (row 0 is the first in memory) */
+} image_diff;
+
+/* The comparison of a test image against a reference image. */
+typedef struct image_metrics {
+    int width, height;
+    int silhouette_threshold; /* the threshold the silhouette mask was built with */
+    image_diff all;           /* every pixel */
+    image_diff interior;      /* every pixel that is not a silhouette pixel of the reference */
+    long silhouette_pixels;   /* pixels left out of interior */
+} image_metrics;
+
+/* Compares test against reference (both RGBA8, same size, any stride). A pixel is a silhouette pixel
+ * when one of its (up to 8) neighbours in the reference differs from it by more than
+ * silhouette_threshold (0..255) in some RGB channel. Returns false, leaving *out zeroed, when an
+ * argument is NULL or the images are not two RGBA8 images of one size. */
+bool image_metrics_compare(const bg_image *reference, const bg_image *test, int silhouette_threshold,
+                           image_metrics *out);
+
+/* Counts the non-finite values (NaN, +-Inf) in the four channels of an RGBA32F image; an image that is
+ * not RGBA32F, or NULL, counts as (size_t)-1. */
+size_t image_metrics_count_nonfinite(const bg_image *image);
+
+/* Writes a one-line summary of m (no newline) into buffer, truncated to size bytes; returns buffer. */
+char *image_metrics_format(const image_metrics *m, char *buffer, size_t size);
+
+#endif
