@@ -1,0 +1,260 @@
+/* The GPU renderer against the CPU reference on every shared scene: image metrics within the
+ * thresholds of gpu_thresholds.h (printed per scene), no NaN or Inf in the float output, the RGBA8
+ * output the encoding of the float one, and statistics that match the scene.
+ *
+ * Size: 160x120 rather than a square. A 4:3 image catches swapped width and height, an aspect ratio
+ * applied to the wrong axis and row-stride mistakes that a square image hides; the vertical field of
+ * view is fixed, so 4:3 only widens the view and every object stays framed. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "betelgeuse.h"
+#include "betelgeuse/cpu_internal.h"
+#include "betelgeuse/scene_internal.h"
+#include "gpu_thresholds.h"
+#include "scenes/image_metrics.h"
+#include "scenes/scenes.h"
+#include "util_gl.h"
+
+enum { W = 160, H = 120 };
+
+/* One context and renderer for the whole suite: the renderer also meets scene after scene. */
+typedef struct fixture {
+    macs_headless *headless;
+    macs_context *ctx;
+    bg_renderer *renderer;
+} fixture;
+
+static fixture fx;
+
+static int group_setup(void **state)
+{
+    (void)state;
+    fx.headless = util_headless();
+    fx.ctx = util_context(fx.headless, NULL);
+    bg_renderer_desc d = {0};
+    d.context = fx.ctx;
+    assert_int_equal(bg_renderer_create(&d, &fx.renderer), BG_OK);
+    return 0;
+}
+
+static int group_teardown(void **state)
+{
+    (void)state;
+    bg_renderer_destroy(fx.renderer);
+    macs_context_destroy(fx.ctx);
+    macs_headless_destroy(fx.headless);
+    return 0;
+}
+
+static bg_scene *build(scene_id id)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_status st = scenes_build(id, s);
+    if (st != BG_OK)
+        fail_msg("%s: %s", scenes_name(id), bg_scene_error_message(s));
+    return s;
+}
+
+static void render_gpu(bg_scene *s, const bg_render_settings *set, bg_image *img, const char *name)
+{
+    bg_status st = bg_render_gpu(fx.renderer, s, set, img);
+    if (st != BG_OK)
+        fail_msg("%s: bg_render_gpu: %s: %s (MACS: %s)", name, bg_status_string(st),
+                 bg_renderer_error_message(fx.renderer), macs_context_error_message(fx.ctx));
+}
+
+/* Does the scene have mirror or glass materials (bounce levels expected), by construction in
+ * examples/scenes/scenes.c: a specular share needs a roughness below 1/2 in some layer. */
+static bool has_bounces(scene_id id)
+{
+    switch (id) {
+    case SCENE_PAPER_EARTH:
+    case SCENE_PAPER_EARTH_SHADOW:
+    case SCENE_ALL_PRIMITIVES:
+        return false;
+    default:
+        return true; /* mirror, glass, many_spheres (mirror, glass), many_lights and textured_aniso (coats) */
+    }
+}
+
+static void check_stats(scene_id id, const bg_scene *s, const bg_render_stats *st)
+{
+    const char *name = scenes_name(id);
+    const bg_scene_state *ss = bg_scene_committed(s);
+    int total = 0;
+    for (int k = 0; k < BG_PASS_KIND_COUNT_; k++) {
+        assert_true(st->passes[k] >= 0);
+        total += st->passes[k];
+    }
+    if (st->passes[BG_PASS_INTERSECT] < (int)ss->object_count)
+        fail_msg("%s: %d intersection passes for %u objects", name, st->passes[BG_PASS_INTERSECT],
+                 ss->object_count);
+    assert_true(st->passes[BG_PASS_RAYS] >= 1);
+    assert_true(st->passes[BG_PASS_LIGHT] >= 1);
+    assert_true(st->passes[BG_PASS_RESOLVE] >= 1);
+    assert_true(st->chunks >= total); /* every pass draws at least one chunk */
+    if (has_bounces(id)) {
+        if (st->levels < 1)
+            fail_msg("%s: has mirrors or glass but traced %d bounce levels", name, st->levels);
+        assert_true(st->live_pixels[1] > 0);
+        assert_true(st->passes[BG_PASS_SPAWN] >= 1);
+    } else if (st->levels != 0 || st->passes[BG_PASS_SPAWN] != 0) {
+        fail_msg("%s: no mirror or glass, yet %d bounce levels and %d spawn passes", name, st->levels,
+                 st->passes[BG_PASS_SPAWN]);
+    }
+    assert_true(st->levels <= 5); /* default max_depth */
+    assert_true(st->ray_sets >= 1 + st->levels);
+    assert_true(st->live_pixels[0] > 0 && st->live_pixels[0] <= (uint64_t)W * H);
+    for (int l = 0; l <= st->levels; l++)
+        if (!(st->dmax[l] > 0.0 && isfinite(st->dmax[l])))
+            fail_msg("%s: dmax[%d] = %g", name, l, st->dmax[l]);
+    assert_true(st->gbuffer_targets >= 1);
+    assert_int_equal(st->depth_bits, 24); /* float_depth was not asked for */
+    assert_false(st->timed);              /* gpu_timing was not asked for */
+}
+
+static void check_scene(scene_id id)
+{
+    const char *name = scenes_name(id);
+    bg_scene *s = build(id);
+    unsigned char *cpu = malloc((size_t)W * H * 4), *gpu = malloc((size_t)W * H * 4);
+    float *gpuf = malloc((size_t)W * H * 4 * sizeof(float));
+    assert_non_null(cpu);
+    assert_non_null(gpu);
+    assert_non_null(gpuf);
+    bg_render_settings set = bg_render_settings_init();
+    bg_image ci = {W, H, BG_PIXEL_RGBA8, 0, cpu}, gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
+    bg_image fi = {W, H, BG_PIXEL_RGBA32F, 0, gpuf};
+    assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
+    memset(gpu, 0xCD, (size_t)W * H * 4);
+    render_gpu(s, &set, &gi, name);
+    bg_render_stats stats;
+    bg_renderer_stats(fx.renderer, &stats);
+
+    image_metrics m;
+    assert_true(image_metrics_compare(&ci, &gi, GPU_SILHOUETTE_THRESHOLD, &m));
+    char line[512], why[256];
+    print_message("%-19s %s\n", name, image_metrics_format(&m, line, sizeof line));
+    print_message("%-19s passes rays %d intersect %d shadow %d light %d spawn %d, chunks %d, levels %d, "
+                  "ray sets %d (+%d skipped), dmax[0] %g, G-buffer targets %d\n",
+                  name, stats.passes[BG_PASS_RAYS], stats.passes[BG_PASS_INTERSECT], stats.passes[BG_PASS_SHADOW],
+                  stats.passes[BG_PASS_LIGHT], stats.passes[BG_PASS_SPAWN], stats.chunks, stats.levels,
+                  stats.ray_sets, stats.ray_sets_skipped, stats.dmax[0], stats.gbuffer_targets);
+    if (!gpu_threshold_check(gpu_threshold_of(id), &m, why, sizeof why)) {
+        int x = m.interior.worst_x, y = m.interior.worst_y;
+        const unsigned char *c = cpu + ((size_t)y * W + x) * 4, *g = gpu + ((size_t)y * W + x) * 4;
+        fail_msg("%s: %s (worst interior pixel (%d, %d): CPU %d %d %d, GPU %d %d %d)", name, why, x, y, c[0], c[1],
+                 c[2], g[0], g[1], g[2]);
+    }
+    for (int i = 0; i < W * H; i++)
+        if (gpu[4 * i + 3] != cpu[4 * i + 3])
+            fail_msg("%s: pixel (%d, %d) alpha %d, CPU %d", name, i % W, i / W, gpu[4 * i + 3], cpu[4 * i + 3]);
+    check_stats(id, s, &stats);
+
+    /* The float output: finite, non-negative, and what the RGBA8 output encodes. */
+    render_gpu(s, &set, &fi, name);
+    size_t bad = image_metrics_count_nonfinite(&fi);
+    if (bad != 0)
+        fail_msg("%s: %zu non-finite values in the RGBA32F output", name, bad);
+    for (int i = 0; i < W * H; i++)
+        for (int c = 0; c < 3; c++) {
+            float v = gpuf[4 * i + c];
+            int want = bg_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            if (v < 0.0f || abs(want - gpu[4 * i + c]) > 1)
+                fail_msg("%s: pixel (%d, %d) channel %d: float %g encodes to %d, RGBA8 output %d", name, i % W,
+                         i / W, c, (double)v, want, gpu[4 * i + c]);
+        }
+    free(cpu);
+    free(gpu);
+    free(gpuf);
+    bg_scene_destroy(s);
+}
+
+#define SCENE_TEST(fn, id)          \
+    static void fn(void **state)    \
+    {                               \
+        (void)state;                \
+        check_scene(id);            \
+    }
+SCENE_TEST(paper_earth, SCENE_PAPER_EARTH)
+SCENE_TEST(paper_earth_shadow, SCENE_PAPER_EARTH_SHADOW)
+SCENE_TEST(mirror, SCENE_MIRROR)
+SCENE_TEST(glass, SCENE_GLASS)
+SCENE_TEST(many_spheres, SCENE_MANY_SPHERES)
+SCENE_TEST(many_lights, SCENE_MANY_LIGHTS)
+SCENE_TEST(all_primitives, SCENE_ALL_PRIMITIVES)
+SCENE_TEST(textured_aniso, SCENE_TEXTURED_ANISO)
+
+/* The thresholds are tight enough to matter: the CPU reference seen through a camera turned by half
+ * a pixel (the classic pixel-centre mistake) breaks them on every scene. */
+static void thresholds_catch_half_pixel_offset(void **state)
+{
+    (void)state;
+    unsigned char *a = malloc((size_t)W * H * 4), *b = malloc((size_t)W * H * 4);
+    assert_non_null(a);
+    assert_non_null(b);
+    for (int id = 0; id < SCENE_COUNT; id++) {
+        bg_scene *s = build((scene_id)id);
+        bg_render_settings set = bg_render_settings_init();
+        bg_image ai = {W, H, BG_PIXEL_RGBA8, 0, a}, bi = {W, H, BG_PIXEL_RGBA8, 0, b};
+        assert_int_equal(bg_render_cpu(s, &set, &ai), BG_OK);
+        const bg_camera_data *cd = &bg_scene_committed(s)->camera;
+        bg_camera cam = cd->camera;
+        double dx = cam.look_at.x - cam.position.x, dy = cam.look_at.y - cam.position.y,
+               dz = cam.look_at.z - cam.position.z;
+        double shift = sqrt(dx * dx + dy * dy + dz * dz) * cd->tan_half_fov_y * 2.0 / H * 0.5;
+        cam.look_at.x += cd->right[0] * shift;
+        cam.look_at.y += cd->right[1] * shift;
+        cam.look_at.z += cd->right[2] * shift;
+        assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
+        assert_int_equal(bg_scene_commit(s), BG_OK);
+        assert_int_equal(bg_render_cpu(s, &set, &bi), BG_OK);
+        image_metrics m;
+        char why[256], line[512];
+        assert_true(image_metrics_compare(&ai, &bi, GPU_SILHOUETTE_THRESHOLD, &m));
+        if (gpu_threshold_check(gpu_threshold_of((scene_id)id), &m, why, sizeof why))
+            fail_msg("%s: a half-pixel offset passes the thresholds: %s", scenes_name((scene_id)id),
+                     image_metrics_format(&m, line, sizeof line));
+        bg_scene_destroy(s);
+    }
+    free(a);
+    free(b);
+}
+
+/* The table is in scene_id order, one row per scene. */
+static void threshold_table_is_complete(void **state)
+{
+    (void)state;
+    for (int id = 0; id < SCENE_COUNT; id++) {
+        const gpu_threshold *t = gpu_threshold_of((scene_id)id);
+        assert_int_equal(t->scene, id);
+        assert_true(t->interior_max >= 0 && t->interior_max < 255 && t->mean > 0 && t->psnr > 20 && t->over < 0.1);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(threshold_table_is_complete),
+        cmocka_unit_test(thresholds_catch_half_pixel_offset),
+        cmocka_unit_test(paper_earth),
+        cmocka_unit_test(paper_earth_shadow),
+        cmocka_unit_test(mirror),
+        cmocka_unit_test(glass),
+        cmocka_unit_test(many_spheres),
+        cmocka_unit_test(many_lights),
+        cmocka_unit_test(all_primitives),
+        cmocka_unit_test(textured_aniso),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}

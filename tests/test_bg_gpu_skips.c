@@ -1,0 +1,265 @@
+/* Every skip of DESIGN.md section 5 changes no pixel (RGBA32F output, bit for bit, with the skip
+ * switched off through bg_render_settings.gpu_disable_skips) and really saves work, shown by the
+ * statistics on a scene where the skip applies. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "betelgeuse.h"
+#include "scenes/scenes.h"
+#include "util_gl.h"
+
+enum { W = 96, H = 72 };
+
+typedef struct fixture {
+    macs_headless *headless;
+    macs_context *ctx;
+    bg_renderer *renderer;
+} fixture;
+
+static fixture fx;
+
+static int group_setup(void **state)
+{
+    (void)state;
+    fx.headless = util_headless();
+    fx.ctx = util_context(fx.headless, NULL);
+    bg_renderer_desc d = {0};
+    d.context = fx.ctx;
+    assert_int_equal(bg_renderer_create(&d, &fx.renderer), BG_OK);
+    return 0;
+}
+
+static int group_teardown(void **state)
+{
+    (void)state;
+    bg_renderer_destroy(fx.renderer);
+    macs_context_destroy(fx.ctx);
+    macs_headless_destroy(fx.headless);
+    return 0;
+}
+
+/* One render of a scene with some skips switched off. */
+typedef struct run {
+    float *px;
+    bg_render_stats stats;
+} run;
+
+static bg_scene *build(scene_id id)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    assert_int_equal(scenes_build(id, s), BG_OK);
+    return s;
+}
+
+static run render(bg_scene *s, unsigned disable, bool timing, int max_depth)
+{
+    run r;
+    r.px = malloc((size_t)W * H * 4 * sizeof(float));
+    assert_non_null(r.px);
+    bg_render_settings set = bg_render_settings_init();
+    set.gpu_disable_skips = disable;
+    set.gpu_timing = timing;
+    if (max_depth >= 0)
+        set.max_depth = max_depth;
+    bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, r.px};
+    bg_status st = bg_render_gpu(fx.renderer, s, &set, &img);
+    if (st != BG_OK)
+        fail_msg("skips 0x%x off: %s: %s", disable, bg_status_string(st), bg_renderer_error_message(fx.renderer));
+    bg_renderer_stats(fx.renderer, &r.stats);
+    assert_int_equal(r.stats.timed, timing);
+    return r;
+}
+
+/* Fails with the first differing value unless both renders hold the same bits. */
+static void assert_same_image(const run *on, const run *off, const char *what)
+{
+    if (memcmp(on->px, off->px, (size_t)W * H * 4 * sizeof(float)) == 0)
+        return;
+    for (int i = 0; i < W * H * 4; i++)
+        if (memcmp(&on->px[i], &off->px[i], sizeof(float)) != 0)
+            fail_msg("%s: pixel (%d, %d) channel %d is %.9g with the skip off, %.9g with it on", what, i / 4 % W,
+                     i / 4 / W, i % 4, (double)off->px[i], (double)on->px[i]);
+}
+
+/* Renders a scene with every skip on and with the given ones off; both runs are returned. */
+static void compare(scene_id id, unsigned disable, bool timing, int max_depth, run *on, run *off)
+{
+    bg_scene *s = build(id);
+    *on = render(s, 0, timing, max_depth);
+    *off = render(s, disable, timing, max_depth);
+    char what[128];
+    snprintf(what, sizeof what, "%s, skips 0x%x off", scenes_name(id), disable);
+    assert_same_image(on, off, what);
+    bg_scene_destroy(s);
+}
+
+static void release(run *a, run *b)
+{
+    free(a->px);
+    free(b->px);
+}
+
+/* Every skip off at once, on every shared scene. */
+static void all_skips_change_no_pixel(void **state)
+{
+    (void)state;
+    for (int id = 0; id < SCENE_COUNT; id++) {
+        run on, off;
+        compare((scene_id)id, BG_SKIP_ALL, false, -1, &on, &off);
+        int passes_on = 0, passes_off = 0;
+        for (int k = 0; k < BG_PASS_KIND_COUNT_; k++) {
+            passes_on += on.stats.passes[k];
+            passes_off += off.stats.passes[k];
+        }
+        print_message("%-19s passes %d with every skip, %d without; intersect pixels %llu / %llu\n",
+                      scenes_name((scene_id)id), passes_on, passes_off,
+                      (unsigned long long)on.stats.intersect_pixels, (unsigned long long)off.stats.intersect_pixels);
+        assert_true(passes_off >= passes_on);
+        assert_true(off.stats.intersect_pixels > on.stats.intersect_pixels); /* the scissor alone ensures it */
+        release(&on, &off);
+    }
+}
+
+/* Specialisation changes shaders, not passes or coverage: no statistic can show it, so the image
+ * identity is the whole assertion, on the scenes that use the fewest and the most material
+ * features (untextured mirror, textured glass floor, textures + coats + anisotropy). */
+static void specialize(void **state)
+{
+    (void)state;
+    const scene_id ids[3] = {SCENE_MIRROR, SCENE_GLASS, SCENE_TEXTURED_ANISO};
+    for (int k = 0; k < 3; k++) {
+        run on, off;
+        compare(ids[k], BG_SKIP_SPECIALIZE, false, -1, &on, &off);
+        release(&on, &off);
+    }
+}
+
+/* paper_earth has neither mirrors nor glass: no spawn pass unless the cull is off. */
+static void bounce_cull(void **state)
+{
+    (void)state;
+    run on, off;
+    compare(SCENE_PAPER_EARTH, BG_SKIP_BOUNCE_CULL, false, -1, &on, &off);
+    assert_int_equal(on.stats.passes[BG_PASS_SPAWN], 0);
+    assert_int_equal(on.stats.levels, 0);
+    assert_true(off.stats.passes[BG_PASS_SPAWN] > 0);
+    release(&on, &off);
+}
+
+/* mirror has one mirror sphere among diffuse objects: what it reflects is diffuse, so the ray set
+ * spawned at level 2 holds no live ray. With 16 levels allowed, the occlusion query stops there;
+ * without it every allowed level is traced. */
+static void occlusion(void **state)
+{
+    (void)state;
+    run on, off;
+    compare(SCENE_MIRROR, BG_SKIP_OCCLUSION, false, 16, &on, &off);
+    print_message("mirror, 16 levels: %d ray sets (%d skipped), %d levels; occlusion off: %d ray sets, %d levels\n",
+                  on.stats.ray_sets, on.stats.ray_sets_skipped, on.stats.levels, off.stats.ray_sets,
+                  off.stats.levels);
+    assert_true(on.stats.ray_sets_skipped > 0);
+    assert_true(on.stats.levels < 16);
+    assert_true(off.stats.ray_sets > on.stats.ray_sets);
+    assert_true(off.stats.levels > on.stats.levels);
+    release(&on, &off);
+}
+
+/* paper_earth leaves most of the frame to the background: without the stencil, shadow and light
+ * passes also run there (gpu_timing counts the fragments they keep). mirror adds dead pixels in
+ * its reflected ray set. */
+static void stencil(void **state)
+{
+    (void)state;
+    const scene_id ids[2] = {SCENE_PAPER_EARTH, SCENE_MIRROR};
+    for (int k = 0; k < 2; k++) {
+        run on, off;
+        compare(ids[k], BG_SKIP_STENCIL, true, -1, &on, &off);
+        print_message("%s: shaded fragments %llu with the stencil, %llu without\n", scenes_name(ids[k]),
+                      (unsigned long long)on.stats.shaded_fragments, (unsigned long long)off.stats.shaded_fragments);
+        assert_true(on.stats.shaded_fragments > 0);
+        assert_true(off.stats.shaded_fragments > on.stats.shaded_fragments);
+        release(&on, &off);
+    }
+}
+
+/* The earth covers much less than the frame: camera-ray intersection covers its rectangle only. */
+static void scissor(void **state)
+{
+    (void)state;
+    run on, off;
+    compare(SCENE_PAPER_EARTH, BG_SKIP_SCISSOR, false, -1, &on, &off);
+    assert_true(on.stats.intersect_pixels > 0);
+    assert_true(on.stats.intersect_pixels < (uint64_t)W * H);
+    assert_true(off.stats.intersect_pixels >= (uint64_t)W * H);
+    release(&on, &off);
+}
+
+/* A single convex object can only shadow itself: paper_earth needs no shadow pass at all, while
+ * paper_earth_shadow (the sphere shadows the plane) does. */
+static void shadow_cull(void **state)
+{
+    (void)state;
+    run on, off;
+    compare(SCENE_PAPER_EARTH, BG_SKIP_SHADOW_CULL, false, -1, &on, &off);
+    assert_int_equal(on.stats.passes[BG_PASS_SHADOW], 0);
+    assert_true(off.stats.passes[BG_PASS_SHADOW] > 0);
+    release(&on, &off);
+    compare(SCENE_PAPER_EARTH_SHADOW, BG_SKIP_SHADOW_CULL, false, -1, &on, &off);
+    assert_true(on.stats.passes[BG_PASS_SHADOW] > 0);
+    assert_true(off.stats.passes[BG_PASS_SHADOW] >= on.stats.passes[BG_PASS_SHADOW]);
+    release(&on, &off);
+}
+
+/* Half of the earth faces away from each light: those fragments are not shaded unless facing is off. */
+static void facing(void **state)
+{
+    (void)state;
+    const scene_id ids[2] = {SCENE_PAPER_EARTH, SCENE_PAPER_EARTH_SHADOW};
+    for (int k = 0; k < 2; k++) {
+        run on, off;
+        compare(ids[k], BG_SKIP_FACING, true, -1, &on, &off);
+        print_message("%s: shaded fragments %llu facing the lights, %llu in all\n", scenes_name(ids[k]),
+                      (unsigned long long)on.stats.shaded_fragments, (unsigned long long)off.stats.shaded_fragments);
+        assert_true(on.stats.shaded_fragments > 0);
+        assert_true(off.stats.shaded_fragments > on.stats.shaded_fragments);
+        release(&on, &off);
+    }
+}
+
+/* gpu_timing only measures: it changes no pixel and no pass (its times are never asserted). */
+static void timing_changes_nothing(void **state)
+{
+    (void)state;
+    bg_scene *s = build(SCENE_GLASS);
+    run plain = render(s, 0, false, -1), timed = render(s, 0, true, -1);
+    assert_same_image(&plain, &timed, "glass, gpu_timing on");
+    assert_memory_equal(plain.stats.passes, timed.stats.passes, sizeof plain.stats.passes);
+    assert_int_equal(plain.stats.chunks, timed.stats.chunks);
+    assert_true(timed.stats.shaded_fragments > 0);
+    release(&plain, &timed);
+    bg_scene_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(all_skips_change_no_pixel),
+        cmocka_unit_test(specialize),
+        cmocka_unit_test(bounce_cull),
+        cmocka_unit_test(occlusion),
+        cmocka_unit_test(stencil),
+        cmocka_unit_test(scissor),
+        cmocka_unit_test(shadow_cull),
+        cmocka_unit_test(facing),
+        cmocka_unit_test(timing_changes_nothing),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}
