@@ -39,9 +39,10 @@ float bg_schlick_d(float r, float p, float t, float v, float vl, float w)
     // Zenith factor: its denominator vanishes only at r = 0, t = 1, where b = 0 drops D anyway.
     float z_den = 1.0 + r * t * t - t * t;
     float z = z_den > 0.0 ? r / (z_den * z_den) : 0.0;
-    // Azimuth factor: 0/0 at p = 0, w = 0.
+    // Azimuth factor: 0/0 at p = 0, w = 0. It is exactly 1 for an isotropic layer (p = 1) whatever
+    // w is; saying so keeps float rounding out of it, so a scene without anisotropy needs no tangent.
     float a_den = p * p - p * p * w * w + w * w;
-    float a = a_den > 0.0 ? sqrt(p / a_den) : 0.0;
+    float a = p >= 1.0 ? 1.0 : (a_den > 0.0 ? sqrt(p / a_den) : 0.0);
     return z * a / den + (1.0 - g2) / 3.14159265358979;
 }
 

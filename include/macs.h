@@ -243,10 +243,13 @@ typedef enum macs_depth_format {
     MACS_DEPTH32F_STENCIL8     /* ARB_depth_buffer_float, when present and allowed by the context */
 } macs_depth_format;
 
-/* Defaults: width and height required (they must equal the size of the outputs of passes using it). */
+/* Defaults: width and height required (they must equal the size of the outputs of passes using it);
+ * format 0 = DEPTH32F_STENCIL8 when the context allows float depth and GL has it, else
+ * DEPTH24_STENCIL8. MACS_DEPTH24_STENCIL8 asks for 24-bit depth even where float depth is allowed. */
 typedef struct macs_depth_stencil_desc {
     int width;
     int height;
+    macs_depth_format format;
 } macs_depth_stencil_desc;
 
 /* A packed depth + 8-bit stencil buffer, cleared to depth 1 and stencil 0 at creation. */

@@ -6,20 +6,10 @@
 #include <unistd.h>
 
 #include "cpu_internal.h"
+#include "render_settings.h"
 
 #define MAX_SIDE 16384
-#define MAX_THREADS 256
-
-bg_render_settings bg_render_settings_init(void)
-{
-    bg_render_settings s;
-    memset(&s, 0, sizeof s);
-    s.max_depth = 5;
-    s.min_weight = 1.0 / 512.0;
-    s.encoding = BG_ENCODING_SRGB;
-    s.threads = 0;
-    return s;
-}
+#define MAX_THREADS BG_MAX_THREADS
 
 double bg_cpu_srgb_encode(double linear)
 {
@@ -84,31 +74,6 @@ static void *worker(void *arg)
     return NULL;
 }
 
-static bool finite3(const double v[3])
-{
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
-static bg_status check_settings(bg_scene *scene, const bg_render_settings *s)
-{
-    if (!finite3(s->background) || s->background[0] < 0.0 || s->background[1] < 0.0 || s->background[2] < 0.0)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
-                             "bg_render_cpu: settings.background must be finite and >= 0");
-    if (s->max_depth < 0 || s->max_depth > 64)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings.max_depth %d is not in 0..64",
-                             s->max_depth);
-    if (!isfinite(s->min_weight) || s->min_weight < 0.0)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
-                             "bg_render_cpu: settings.min_weight must be finite and >= 0");
-    if (s->encoding != BG_ENCODING_SRGB && s->encoding != BG_ENCODING_LINEAR)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings.encoding %d is unknown",
-                             (int)s->encoding);
-    if (s->threads < 0 || s->threads > MAX_THREADS)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings.threads %d is not in 0..%d",
-                             s->threads, MAX_THREADS);
-    return BG_OK;
-}
-
 static bg_status check_image(bg_scene *scene, const bg_image *image, size_t *stride)
 {
     if (!image->pixels)
@@ -144,9 +109,10 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
         return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings is NULL");
     if (!image)
         return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image is NULL");
-    bg_status st = check_settings(scene, settings);
+    char message[256];
+    bg_status st = bg_render_settings_check(settings, "bg_render_cpu", message, sizeof message);
     if (st != BG_OK)
-        return st;
+        return bg_scene_fail(scene, st, "%s", message);
     size_t stride = 0;
     st = check_image(scene, image, &stride);
     if (st != BG_OK)

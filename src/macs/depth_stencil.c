@@ -46,7 +46,8 @@ static macs_status clear(macs_depth_stencil *ds, float depth, unsigned stencil, 
     return macs_gl_check(ctx, "clearing a depth/stencil object");
 }
 
-static macs_status create(macs_context *ctx, int width, int height, bool internal, macs_depth_stencil **out)
+static macs_status create(macs_context *ctx, int width, int height, bool internal, bool want_float,
+                          macs_depth_stencil **out)
 {
     *out = NULL;
     if (width <= 0 || height <= 0)
@@ -64,7 +65,7 @@ static macs_status create(macs_context *ctx, int width, int height, bool interna
     ds->height = height;
     ds->internal = internal;
     /* Internal buffers only ever carry the split marks, so float depth would buy nothing there. */
-    bool use_float = !internal && ctx->allow_float_depth && ctx->features.depth_buffer_float;
+    bool use_float = !internal && want_float && ctx->allow_float_depth && ctx->features.depth_buffer_float;
     ds->format = use_float ? MACS_DEPTH32F_STENCIL8 : MACS_DEPTH24_STENCIL8;
     const macs_gl *gl = &ctx->gl;
     macs_gl_drain(ctx);
@@ -95,7 +96,10 @@ macs_status macs_depth_stencil_create(macs_context *ctx, const macs_depth_stenci
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
         return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: desc and out are required");
-    return create(ctx, desc->width, desc->height, false, out);
+    if (desc->format != 0 && desc->format != MACS_DEPTH24_STENCIL8 && desc->format != MACS_DEPTH32F_STENCIL8)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: format %d is unknown",
+                         (int)desc->format);
+    return create(ctx, desc->width, desc->height, false, desc->format != MACS_DEPTH24_STENCIL8, out);
 }
 
 macs_status macs_depth_stencil_internal(macs_context *ctx, int width, int height, macs_depth_stencil **out)
@@ -105,7 +109,7 @@ macs_status macs_depth_stencil_internal(macs_context *ctx, int width, int height
             *out = ds;
             return MACS_OK;
         }
-    return create(ctx, width, height, true, out);
+    return create(ctx, width, height, true, false, out);
 }
 
 void macs_depth_stencil_destroy(macs_depth_stencil *ds)

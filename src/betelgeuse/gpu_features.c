@@ -1,0 +1,39 @@
+/* Which shader features and G-buffer slots a committed scene needs (DESIGN.md section 5): a scene
+ * pays only for what its materials can produce. Texture lanes count as "may": a textured roughness
+ * may fall below 1/2 somewhere, so it may reflect. */
+#include <string.h>
+
+#include "gpu_internal.h"
+
+static bool layer_may_reflect(const bg_schlick_layer *l)
+{
+    return l->roughness.value < 0.5 || l->roughness.texture != 0;
+}
+
+static bool layer_may_be_aniso(const bg_schlick_layer *l)
+{
+    return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
+}
+
+void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f)
+{
+    memset(f, 0, sizeof *f);
+    f->generic = generic;
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_material *m = &state->materials[state->objects[i].material];
+        bool transparent = m->transparency.value > 0.0;
+        f->transparent |= transparent;
+        f->coat |= m->has_coat;
+        f->aniso |= layer_may_be_aniso(&m->base) || (m->has_coat && layer_may_be_aniso(&m->coat));
+        f->bounce |= transparent || layer_may_reflect(&m->base) || (m->has_coat && layer_may_reflect(&m->coat));
+    }
+    if (generic) {
+        f->transparent = f->aniso = f->coat = f->bounce = true;
+    }
+    f->slot[GPU_SLOT_HIT] = f->slot[GPU_SLOT_NORMAL] = f->slot[GPU_SLOT_BASE] = f->slot[GPU_SLOT_ONCE] = true;
+    f->slot[GPU_SLOT_XPARENT] = f->transparent;
+    f->slot[GPU_SLOT_TANGENT] = f->aniso;
+    f->slot[GPU_SLOT_COAT] = f->coat;
+    for (int s = 0; s < GPU_SLOT_COUNT; s++)
+        f->slot_count += f->slot[s] ? 1 : 0;
+}

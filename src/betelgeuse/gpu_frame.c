@@ -1,0 +1,458 @@
+/* One GPU frame (DESIGN.md section 3, docs/gpu_pipeline.md): camera rays, then ray sets traced
+ * depth-first from the CPU. Each set is intersected object by object into the G-buffer, shaded
+ * (background, shadows, lights, ambient and emission into the accumulation texture) and spawns at
+ * most two child sets (reflected, transmitted). A child's live rays are marked in the stencil and
+ * counted by an occlusion query; a set with none is never traced. Depth-first order keeps at most
+ * max_depth + 2 sets alive at once. */
+#include <string.h>
+#include <time.h>
+
+#include "alloc.h"
+#include "gpu_internal.h"
+#include "image.h"
+#include "render_settings.h"
+
+typedef struct frame {
+    bg_renderer *r;
+    const bg_scene_state *state;
+    const bg_render_settings *settings;
+    double dmax[BG_MAX_DEPTH + 1];
+    bool timing;
+    double clock;
+} frame;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* Phase timing needs the GPU drained at both ends, so it only happens when asked for. */
+static void phase_start(frame *f)
+{
+    if (!f->timing)
+        return;
+    macs_context_finish(f->r->ctx);
+    f->clock = now_ms();
+}
+
+static void phase_end(frame *f, bg_phase phase)
+{
+    if (!f->timing)
+        return;
+    macs_context_finish(f->r->ctx);
+    f->r->stats.phase_ms[phase] += now_ms() - f->clock;
+}
+
+static bg_status run(frame *f, macs_pass *pass, bg_pass_kind kind, const macs_run_desc *desc)
+{
+    bg_renderer *r = f->r;
+    macs_status ms = macs_pass_run(pass, desc);
+    if (ms)
+        return gpu_fail_macs(r, ms, "running a pass");
+    r->stats.passes[kind]++;
+    r->stats.chunks += macs_pass_chunk_count(pass);
+    return BG_OK;
+}
+
+/* Runs a shadow or light pass, counting its kept fragments when timing (a query waits for them). */
+static bg_status run_counted(frame *f, macs_pass *pass, bg_pass_kind kind)
+{
+    macs_run_desc d;
+    memset(&d, 0, sizeof d);
+    d.occlusion_query = f->timing;
+    bg_status st = run(f, pass, kind, &d);
+    if (st == BG_OK && f->timing) {
+        uint64_t n = 0;
+        macs_status ms = macs_pass_occlusion_result(pass, &n);
+        if (ms)
+            return gpu_fail_macs(f->r, ms, "fragment count");
+        f->r->stats.shaded_fragments += n;
+    }
+    return st;
+}
+
+static bg_status bind(bg_renderer *r, macs_pass *pass, int index, macs_texture *t)
+{
+    macs_status ms = macs_pass_set_input(pass, index, t);
+    return ms ? gpu_fail_macs(r, ms, "binding a ray map") : BG_OK;
+}
+
+static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
+{
+    bg_renderer *r = f->r;
+    bool scissor = level == 0 && !(r->key.disable_skips & BG_SKIP_SCISSOR);
+    for (int o = 0; o < r->passes.object_count; o++) {
+        macs_pass *p = r->passes.hit[o];
+        bg_status st = bind(r, p, GPU_HIT_IN_ORIGIN, set->origin);
+        if (st == BG_OK)
+            st = bind(r, p, GPU_HIT_IN_DIR, set->dir);
+        if (st == BG_OK)
+            st = bind(r, p, GPU_HIT_IN_WEIGHT, set->weight);
+        if (st == BG_OK)
+            st = gpu_hit_pass_set_dmax(r, p, f->dmax[level]);
+        if (st != BG_OK)
+            return st;
+        macs_run_desc d;
+        memset(&d, 0, sizeof d);
+        int rect[4];
+        if (scissor && gpu_object_scissor(f->state, (uint32_t)o, r->width, r->height, rect)) {
+            if (rect[2] == 0 || rect[3] == 0)
+                continue; /* entirely off screen */
+            d.scissor = true;
+            d.scissor_x = rect[0];
+            d.scissor_y = rect[1];
+            d.scissor_width = rect[2];
+            d.scissor_height = rect[3];
+            r->stats.intersect_pixels += (uint64_t)rect[2] * (uint64_t)rect[3];
+        } else {
+            r->stats.intersect_pixels += (uint64_t)r->width * (uint64_t)r->height;
+        }
+        st = run(f, p, BG_PASS_INTERSECT, &d);
+        if (st != BG_OK)
+            return st;
+    }
+    return BG_OK;
+}
+
+static bg_status shade(frame *f, const gpu_ray_set *set)
+{
+    bg_renderer *r = f->r;
+    gpu_passes *p = &r->passes;
+    bg_status st = BG_OK;
+    phase_start(f);
+    if (p->background) {
+        st = bind(r, p->background, GPU_BACKGROUND_IN_WEIGHT, set->weight);
+        if (st == BG_OK)
+            st = run(f, p->background, BG_PASS_BACKGROUND, NULL);
+    }
+    if (st == BG_OK && p->once)
+        st = run(f, p->once, BG_PASS_LIGHT, NULL);
+    phase_end(f, BG_PHASE_LIGHT);
+    static const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    for (int g = 0; g < p->group_count && st == BG_OK; g++) {
+        phase_start(f);
+        bool cleared = false;
+        for (int o = 0; o < p->object_count && st == BG_OK; o++) {
+            macs_pass *sp = p->shadow[(size_t)o * (size_t)p->group_count + (size_t)g];
+            if (!sp)
+                continue;
+            if (!cleared) {
+                macs_status ms = macs_texture_clear(r->vis, one);
+                if (ms)
+                    return gpu_fail_macs(r, ms, "clearing visibility");
+                cleared = true;
+            }
+            st = run_counted(f, sp, BG_PASS_SHADOW);
+        }
+        phase_end(f, BG_PHASE_SHADOW);
+        if (st != BG_OK)
+            break;
+        phase_start(f);
+        macs_pass *lp = p->light[g];
+        st = bind(r, lp, GPU_LIGHT_IN_DIR, set->dir);
+        if (st == BG_OK && !r->features.slot[GPU_SLOT_XPARENT])
+            st = bind(r, lp, GPU_LIGHT_IN_WEIGHT, set->weight);
+        if (st == BG_OK)
+            st = run_counted(f, lp, BG_PASS_LIGHT);
+        phase_end(f, BG_PHASE_LIGHT);
+    }
+    return st;
+}
+
+/* Writes one child set of `set` with a spawn pass; the child's rays are counted when it is traced. */
+static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ray_set *child)
+{
+    bg_renderer *r = f->r;
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    /* Pixels the spawn does not write (missed or dead in the parent) must read as dead, and with the
+     * stencil skip off they are traced too, so they need a ray that meets nothing: d = 0. */
+    macs_status ms = macs_texture_clear(child->weight, zero);
+    if (!ms && (r->key.disable_skips & BG_SKIP_STENCIL)) {
+        ms = macs_texture_clear(child->origin, zero);
+        if (!ms)
+            ms = macs_texture_clear(child->dir, zero);
+    }
+    if (!ms)
+        ms = macs_pass_set_output(pass, 0, child->origin);
+    if (!ms)
+        ms = macs_pass_set_output(pass, 1, child->dir);
+    if (!ms)
+        ms = macs_pass_set_output(pass, 2, child->weight);
+    if (ms)
+        return gpu_fail_macs(r, ms, "preparing a child ray set");
+    bg_status st = bind(r, pass, GPU_SPAWN_IN_DIR, set->dir);
+    if (st == BG_OK)
+        st = bind(r, pass, GPU_SPAWN_IN_WEIGHT, set->weight);
+    if (st == BG_OK)
+        st = run(f, pass, BG_PASS_SPAWN, NULL);
+    return st;
+}
+
+/* Marks and counts a child set's live rays; *live gets the count. */
+static bg_status mark(frame *f, const gpu_ray_set *set, uint64_t *live)
+{
+    bg_renderer *r = f->r;
+    macs_status ms = macs_depth_stencil_clear(r->depth, 1.0f, (r->key.disable_skips & BG_SKIP_STENCIL) ? GPU_STENCIL_LIVE : 0u,
+                                              GPU_STENCIL_LIVE | GPU_STENCIL_HIT);
+    if (ms)
+        return gpu_fail_macs(r, ms, "clearing depth and stencil");
+    bg_status st = bind(r, r->passes.mark, GPU_MARK_IN_WEIGHT, set->weight);
+    macs_run_desc d;
+    memset(&d, 0, sizeof d);
+    d.occlusion_query = true;
+    if (st == BG_OK)
+        st = run(f, r->passes.mark, BG_PASS_MARK, &d);
+    if (st != BG_OK)
+        return st;
+    ms = macs_pass_occlusion_result(r->passes.mark, live);
+    return ms ? gpu_fail_macs(r, ms, "counting live rays") : BG_OK;
+}
+
+typedef struct pending {
+    int slot, level;
+} pending;
+
+static bg_status trace(frame *f)
+{
+    bg_renderer *r = f->r;
+    const bg_render_settings *s = f->settings;
+    /* Depth-first: at most one pending set per level plus the one being traced. */
+    pending stack[2 * (BG_MAX_DEPTH + 2)];
+    bool used[2 * (BG_MAX_DEPTH + 2)];
+    memset(used, 0, sizeof used);
+    int top = 0;
+    stack[top++] = (pending){0, 0};
+    used[0] = true;
+    bool first = true;
+    bool skip_empty = !(r->key.disable_skips & BG_SKIP_OCCLUSION);
+
+    while (top > 0) {
+        pending cur = stack[--top];
+        gpu_ray_set *set = NULL;
+        bg_status st = gpu_ray_set_get(r, cur.slot, &set);
+        if (st != BG_OK)
+            return st;
+        uint64_t live = (uint64_t)r->width * (uint64_t)r->height;
+        if (first) {
+            /* Camera rays are all alive. */
+            macs_status ms = macs_depth_stencil_clear(r->depth, 1.0f, GPU_STENCIL_LIVE, GPU_STENCIL_LIVE | GPU_STENCIL_HIT);
+            if (ms)
+                return gpu_fail_macs(r, ms, "clearing depth and stencil");
+            first = false;
+        } else {
+            phase_start(f);
+            st = mark(f, set, &live);
+            phase_end(f, BG_PHASE_BOUNCE);
+            if (st != BG_OK)
+                return st;
+            if (live == 0 && skip_empty) {
+                r->stats.ray_sets_skipped++;
+                used[cur.slot] = false;
+                continue;
+            }
+        }
+        r->stats.ray_sets++;
+        r->stats.live_pixels[cur.level] += live;
+        r->stats.dmax[cur.level] = f->dmax[cur.level];
+        if (cur.level > r->stats.levels)
+            r->stats.levels = cur.level;
+
+        phase_start(f);
+        st = intersect(f, set, cur.level);
+        phase_end(f, BG_PHASE_INTERSECT);
+        if (st == BG_OK)
+            st = shade(f, set);
+        if (st != BG_OK)
+            return st;
+
+        macs_pass *kinds[2] = {r->passes.refract, r->passes.reflect};
+        if (cur.level < s->max_depth) {
+            phase_start(f);
+            for (int k = 0; k < 2 && st == BG_OK; k++) {
+                if (!kinds[k])
+                    continue;
+                int slot = 0;
+                while (used[slot])
+                    slot++;
+                gpu_ray_set *child = NULL;
+                st = gpu_ray_set_get(r, slot, &child);
+                if (st == BG_OK) {
+                    set = &r->sets[cur.slot]; /* the pool may have moved */
+                    st = spawn(f, kinds[k], set, child);
+                }
+                if (st == BG_OK) {
+                    used[slot] = true;
+                    stack[top++] = (pending){slot, cur.level + 1};
+                }
+            }
+            phase_end(f, BG_PHASE_BOUNCE);
+            if (st != BG_OK)
+                return st;
+        }
+        used[cur.slot] = false;
+    }
+    return BG_OK;
+}
+
+static bg_status read_back(frame *f, bg_image *image, size_t stride)
+{
+    bg_renderer *r = f->r;
+    size_t w = (size_t)r->width, h = (size_t)r->height;
+    bool as_float = image->format == BG_PIXEL_RGBA32F;
+    size_t row = w * (as_float ? 16 : 4);
+    if (r->readback_size < row * h) {
+        bg_free(&r->allocator, r->readback);
+        r->readback = bg_alloc(&r->allocator, row * h);
+        r->readback_size = r->readback ? row * h : 0;
+        if (!r->readback)
+            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the read-back buffer");
+    }
+    macs_status ms;
+    if (as_float) {
+        ms = macs_texture_read(r->accum, r->readback, 0);
+    } else {
+        bg_status st = run(f, r->passes.resolve, BG_PASS_RESOLVE, NULL);
+        if (st != BG_OK)
+            return st;
+        ms = macs_texture_read(r->encoded, r->readback, 0);
+    }
+    if (ms)
+        return gpu_fail_macs(r, ms, "reading the image back");
+    /* GL rows run bottom-up, the caller's top-down. */
+    unsigned char *src = (unsigned char *)r->readback;
+    for (size_t y = 0; y < h; y++) {
+        unsigned char *dst = (unsigned char *)image->pixels + y * stride;
+        memcpy(dst, src + (h - 1 - y) * row, row);
+        if (as_float) {
+            float one = 1.0f;
+            for (size_t x = 0; x < w; x++)
+                memcpy(dst + x * 16 + 12, &one, sizeof one);
+        }
+    }
+    return BG_OK;
+}
+
+static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
+{
+    return a->valid && a->scene == b->scene && a->commit_count == b->commit_count && a->width == b->width &&
+           a->height == b->height && a->disable_skips == b->disable_skips && a->encoding == b->encoding &&
+           a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
+}
+
+static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
+{
+    bg_renderer *r = f->r;
+    const bg_render_settings *s = f->settings;
+    gpu_cache_key key;
+    memset(&key, 0, sizeof key);
+    key.scene = scene;
+    key.commit_count = f->state->commit_count;
+    key.width = width;
+    key.height = height;
+    key.disable_skips = s->gpu_disable_skips;
+    key.encoding = s->encoding;
+    key.bounces = s->max_depth > 0;
+    key.background_on = s->background[0] > 0.0 || s->background[1] > 0.0 || s->background[2] > 0.0;
+    key.min_weight = s->min_weight;
+    key.valid = true;
+    if (same_key(&r->key, &key)) {
+        /* The background colour is the only setting that is a plain uniform. */
+        if (r->passes.background) {
+            float bgc[3] = {(float)s->background[0], (float)s->background[1], (float)s->background[2]};
+            macs_status ms = macs_pass_set_uniform(r->passes.background, "bg_background", bgc);
+            if (ms)
+                return gpu_fail_macs(r, ms, "background uniforms");
+        }
+        return BG_OK;
+    }
+    bool new_scene = !r->key.valid || r->key.scene != scene || r->key.commit_count != key.commit_count;
+    gpu_passes_release(r);
+    memset(&r->key, 0, sizeof r->key);
+    gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->features);
+    bg_status st = BG_OK;
+    if (new_scene || !r->white)
+        st = gpu_scene_textures_prepare(r, f->state);
+    r->key = key;
+    r->key.valid = false;
+    if (st == BG_OK)
+        st = gpu_targets_prepare(r, width, height);
+    if (st == BG_OK)
+        st = gpu_passes_build(r, f->state, s);
+    if (st != BG_OK)
+        return st;
+    r->key.valid = true;
+    return BG_OK;
+}
+
+bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image)
+{
+    bg_renderer *r = renderer;
+    if (!r)
+        return BG_ERR_INVALID_ARGUMENT;
+    if (!scene || !settings || !image)
+        return gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "bg_render_gpu: %s is NULL",
+                        !scene ? "scene" : !settings ? "settings" : "image");
+    char message[256];
+    bg_status st = bg_render_settings_check(settings, "bg_render_gpu", message, sizeof message);
+    if (st != BG_OK)
+        return gpu_fail(r, st, "%s", message);
+    size_t stride = 0;
+    st = bg_image_check(image, &stride, message, sizeof message);
+    if (st != BG_OK)
+        return gpu_fail(r, st, "bg_render_gpu: %s", message);
+    int max = r->limits.max_texture_size;
+    if (image->width > max || image->height > max)
+        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: image size %dx%d exceeds the GL texture size limit %d",
+                        image->width, image->height, max);
+    const bg_scene_state *state = bg_scene_committed(scene);
+    if (!state)
+        return gpu_fail(r, BG_ERR_NOT_COMMITTED, "bg_render_gpu: the scene was never committed");
+
+    memset(&r->stats, 0, sizeof r->stats);
+    frame f;
+    memset(&f, 0, sizeof f);
+    f.r = r;
+    f.state = state;
+    f.settings = settings;
+    f.timing = settings->gpu_timing;
+    double start = f.timing ? now_ms() : 0.0;
+    if (f.timing)
+        macs_context_finish(r->ctx);
+    gpu_dmax_levels(state, settings, image->width, image->height, f.dmax);
+
+    phase_start(&f);
+    st = prepare(&f, scene, image->width, image->height);
+    phase_end(&f, BG_PHASE_SETUP);
+    if (st == BG_OK) {
+        static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        macs_status ms = macs_texture_clear(r->accum, zero);
+        if (ms)
+            st = gpu_fail_macs(r, ms, "clearing the accumulation");
+    }
+    if (st == BG_OK) {
+        phase_start(&f);
+        st = run(&f, r->passes.camera, BG_PASS_RAYS, NULL);
+        phase_end(&f, BG_PHASE_RAYS);
+    }
+    if (st == BG_OK)
+        st = trace(&f);
+    if (st == BG_OK) {
+        phase_start(&f);
+        st = read_back(&f, image, stride);
+        phase_end(&f, BG_PHASE_RESOLVE);
+    }
+    if (st != BG_OK) {
+        /* Start the next render from nothing: a failure may have left any object half made. */
+        gpu_release_all(r);
+        return st;
+    }
+    r->stats.gbuffer_targets = r->features.slot_count;
+    r->stats.depth_bits = macs_depth_stencil_format(r->depth) == MACS_DEPTH32F_STENCIL8 ? 32 : 24;
+    if (f.timing) {
+        r->stats.timed = true;
+        r->stats.total_ms = now_ms() - start;
+    }
+    return BG_OK;
+}

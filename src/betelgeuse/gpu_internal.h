@@ -1,0 +1,185 @@
+/* The GPU renderer's internals (docs/gpu_pipeline.md describes the frame). Every pass is a MACS
+ * render pass; only MACS touches GL. */
+#ifndef BG_GPU_INTERNAL_H
+#define BG_GPU_INTERNAL_H
+
+#include "scene_internal.h"
+
+#define GPU_MESSAGE_SIZE 1024
+#define GPU_LIGHTS_PER_GROUP 4
+/* "No object" in the skip and inside lanes of a ray map (object indices are >= 0). */
+#define GPU_NONE -1.0f
+
+/* G-buffer slots. HIT, NORMAL, BASE and ONCE are always written; the others only when some material
+ * of the scene needs them (or when specialisation is switched off). */
+typedef enum gpu_slot {
+    GPU_SLOT_HIT = 0, /* position, hit code (docs/gpu_pipeline.md: object index, side, thin) */
+    GPU_SLOT_NORMAL,  /* unit normal facing the ray, base roughness */
+    GPU_SLOT_BASE,    /* base reflectance, base isotropy */
+    GPU_SLOT_ONCE,    /* path weight x (emission + opaque x ambient), index of refraction */
+    GPU_SLOT_XPARENT, /* path weight x opaque, transparency */
+    GPU_SLOT_TANGENT, /* unit tangent, coat isotropy */
+    GPU_SLOT_COAT,    /* coat reflectance, coat roughness (< 0: no coat) */
+    GPU_SLOT_COUNT
+} gpu_slot;
+
+/* What the committed scene (and the settings) make the shaders contain. */
+typedef struct gpu_features {
+    bool transparent; /* some material may be transparent: XPARENT slot, refraction spawn */
+    bool aniso;       /* some layer may have isotropy < 1: TANGENT slot */
+    bool coat;        /* some material has a coat: COAT slot */
+    bool bounce;      /* some material may reflect or refract: spawn passes */
+    bool generic;     /* specialisation off: every slot, every texture lane */
+    bool slot[GPU_SLOT_COUNT];
+    int slot_count;
+} gpu_features;
+
+/* One set of ray maps: origin (xyz, skip index), direction (xyz, inside index), path weight
+ * (rgb, alive 1 / dead 0). */
+typedef struct gpu_ray_set {
+    macs_texture *origin, *dir, *weight;
+} gpu_ray_set;
+
+/* Passes built for one scene structure, image size and skip setting. */
+typedef struct gpu_passes {
+    macs_pass *camera;
+    macs_pass *mark;
+    macs_pass *background;
+    macs_pass *once;          /* ambient and emission alone, when no light pass can add them */
+    macs_pass **hit;          /* per object */
+    macs_pass **shadow;       /* per object and light group: [object * groups + group], may be NULL */
+    macs_pass **light;        /* per light group */
+    macs_pass *reflect, *refract;
+    macs_pass *resolve;
+    int object_count, group_count;
+} gpu_passes;
+
+/* The key that decides whether cached passes still fit. */
+typedef struct gpu_cache_key {
+    const bg_scene *scene;
+    uint64_t commit_count;
+    int width, height;
+    unsigned disable_skips;
+    bg_output_encoding encoding;
+    bool bounces;       /* max_depth > 0 */
+    bool background_on; /* a non-black background needs its pass */
+    double min_weight;
+    bool valid;
+} gpu_cache_key;
+
+struct bg_renderer {
+    bg_allocator allocator;
+    bg_log_fn log;
+    void *log_user;
+    bg_status error;
+    char message[GPU_MESSAGE_SIZE];
+
+    macs_context *ctx;
+    macs_limits limits; /* effective */
+    bool float_depth;
+    bg_render_stats stats;
+
+    /* Size-dependent targets. */
+    int width, height;
+    macs_texture *gbuffer[GPU_SLOT_COUNT];
+    macs_texture *accum, *vis, *encoded;
+    macs_depth_stencil *depth;
+    gpu_ray_set *sets;
+    int set_count;
+    float *readback;
+    size_t readback_size;
+
+    /* Scene-dependent objects. */
+    gpu_cache_key key;
+    gpu_features features;
+    macs_texture **textures; /* the scene's textures on the GPU */
+    uint32_t texture_count;
+    macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
+    gpu_passes passes;
+};
+
+/* ---- gpu_renderer.c ---- */
+/* Records the first error with a message and logs it; returns status. */
+bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...);
+/* Turns a MACS failure into a renderer error carrying MACS's message. */
+bg_status gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
+/* Frees every GPU object (passes, targets, textures) so the next render starts afresh. */
+void gpu_release_all(bg_renderer *r);
+
+/* ---- gpu_shader_source.c ---- */
+/* A growing string built through the renderer's allocator; a failed append leaves it failed. */
+typedef struct gpu_text {
+    const bg_allocator *allocator;
+    char *s;
+    size_t len, cap;
+    bool failed;
+} gpu_text;
+void gpu_text_init(gpu_text *t, const bg_allocator *a);
+void gpu_text_append(gpu_text *t, const char *s);
+void gpu_text_printf(gpu_text *t, const char *format, ...);
+/* Appends a glsl110/ library file with everything its "// requires:" line names first (each file
+ * once per text, tracked in seen), without the #version lines. False if a file is missing. */
+bool gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *seen_count, int seen_cap);
+void gpu_text_free(gpu_text *t);
+
+/* ---- gpu_features.c ---- */
+/* Decides slots and shader features from the committed scene; generic switches specialisation off. */
+void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
+
+/* ---- gpu_bounds.c ---- */
+/* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
+void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
+                     double *dmax);
+/* The pixel rectangle (GL window coordinates, bottom-up) that holds every camera ray able to hit a
+ * bounded object; false when the object may cover the whole image (or is behind the camera). */
+bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
+
+/* ---- gpu_targets.c ---- */
+/* (Re)creates the size-dependent targets for width x height and the features' G-buffer slots. */
+bg_status gpu_targets_prepare(bg_renderer *r, int width, int height);
+/* Ray set number index from the pool, creating it when needed. */
+bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out);
+/* Uploads the scene's textures (and the white texel) for the hit passes. */
+bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
+void gpu_targets_release(bg_renderer *r);
+void gpu_scene_textures_release(bg_renderer *r);
+
+/* ---- gpu_pass_build.c ---- */
+/* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
+bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
+void gpu_passes_release(bg_renderer *r);
+/* Creates one pass whose functions are the listed glsl110/ files (plus extra text); reports errors. */
+bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *defines,
+                          macs_pass_desc *desc, macs_pass **out);
+
+/* ---- gpu_hit_pass.c ---- */
+/* The intersection pass of one object, writing the G-buffer slots of the features. */
+bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, macs_pass **out);
+/* Sets the per-frame uniforms of an object's intersection pass (dmax of the level). */
+bg_status gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax);
+
+/* ---- gpu_light_pass.c ---- */
+bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, int group,
+                                bool blocks, macs_pass **out);
+bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool add_once,
+                               bool vis, macs_pass **out);
+/* Fills the uniform arrays of lights first .. first + count - 1 into a pass. */
+bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count);
+
+/* Fixed input positions of the ray maps, rebound for every ray set. */
+#define GPU_HIT_IN_ORIGIN 0
+#define GPU_HIT_IN_DIR 1
+#define GPU_HIT_IN_WEIGHT 2
+#define GPU_LIGHT_IN_DIR 3
+#define GPU_LIGHT_IN_WEIGHT 4 /* only without the XPARENT slot */
+#define GPU_SPAWN_IN_DIR 0
+#define GPU_SPAWN_IN_WEIGHT 1
+#define GPU_MARK_IN_WEIGHT 0
+#define GPU_BACKGROUND_IN_WEIGHT 0
+
+/* ---- gpu_frame.c ---- */
+/* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
+#define GPU_STENCIL_LIVE 0x1u
+#define GPU_STENCIL_HIT 0x2u
+
+#endif

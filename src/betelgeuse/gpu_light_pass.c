@@ -1,0 +1,252 @@
+/* Shadow and lighting passes (DESIGN.md sections 3.2.2 and 3.2.3). Lights go in groups of four: one
+ * shadow pass per shadow-casting object and group multiplies a 0 into the RGBA visibility channel of
+ * each light the object blocks; one lighting pass per group adds the Schlick terms of its lights,
+ * unrolled to the group's exact size, into the accumulation texture. */
+#include <math.h>
+#include <string.h>
+
+#include "gpu_internal.h"
+
+#define PI 3.14159265358979323846
+
+static const char *const shape_file[BG_SHAPE_COUNT_] = {
+    "bg_shape_sphere.glsl", "bg_shape_plane.glsl", "bg_shape_box.glsl", "bg_shape_cylinder.glsl",
+    "bg_shape_rectangle.glsl"};
+
+static int group_size(const bg_scene_state *state, int group)
+{
+    int n = (int)state->light_count - group * GPU_LIGHTS_PER_GROUP;
+    return n > GPU_LIGHTS_PER_GROUP ? GPU_LIGHTS_PER_GROUP : (n < 0 ? 0 : n);
+}
+
+static void light_uniforms(macs_uniform_desc *u, int *n, int count)
+{
+    u[(*n)++] = (macs_uniform_desc){"bg_lpos", MACS_UNIFORM_VEC4, count};
+    u[(*n)++] = (macs_uniform_desc){"bg_lrad", MACS_UNIFORM_VEC3, count};
+    u[(*n)++] = (macs_uniform_desc){"bg_latt", MACS_UNIFORM_VEC3, count};
+    u[(*n)++] = (macs_uniform_desc){"bg_lspot", MACS_UNIFORM_VEC4, count};
+    u[(*n)++] = (macs_uniform_desc){"bg_lexp", MACS_UNIFORM_FLOAT, count};
+}
+
+bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count)
+{
+    float pos[4 * GPU_LIGHTS_PER_GROUP], rad[3 * GPU_LIGHTS_PER_GROUP], att[3 * GPU_LIGHTS_PER_GROUP];
+    float spot[4 * GPU_LIGHTS_PER_GROUP], ex[GPU_LIGHTS_PER_GROUP];
+    for (int i = 0; i < count; i++) {
+        const bg_light *l = &state->lights[first + i];
+        bool dir = l->type == BG_LIGHT_DIRECTIONAL;
+        const bg_vec3 *v = dir ? &l->direction : &l->position;
+        pos[4 * i + 0] = (float)v->x;
+        pos[4 * i + 1] = (float)v->y;
+        pos[4 * i + 2] = (float)v->z;
+        pos[4 * i + 3] = dir ? 1.0f : 0.0f;
+        for (int k = 0; k < 3; k++) {
+            rad[3 * i + k] = (float)(l->color[k] * l->intensity);
+            att[3 * i + k] = (float)l->attenuation[k];
+        }
+        double axis[3] = {l->direction.x, l->direction.y, l->direction.z};
+        double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+        bool cone = !dir && l->spot_cutoff_degrees < 180.0 && len > 0.0;
+        for (int k = 0; k < 3; k++)
+            spot[4 * i + k] = cone ? (float)(axis[k] / len) : 0.0f;
+        spot[4 * i + 3] = cone ? (float)cos(l->spot_cutoff_degrees * (PI / 180.0)) : -2.0f;
+        ex[i] = (float)l->spot_exponent;
+    }
+    macs_status ms = macs_pass_set_uniform(pass, "bg_lpos", pos);
+    if (!ms)
+        ms = macs_pass_set_uniform(pass, "bg_lrad", rad);
+    if (!ms)
+        ms = macs_pass_set_uniform(pass, "bg_latt", att);
+    if (!ms)
+        ms = macs_pass_set_uniform(pass, "bg_lspot", spot);
+    if (!ms)
+        ms = macs_pass_set_uniform(pass, "bg_lexp", ex);
+    return ms ? gpu_fail_macs(r, ms, "light uniforms") : BG_OK;
+}
+
+/* Live hit pixels only: both stencil bits set (or only the hit bit when the stencil skip is off). */
+static void hit_stencil(const bg_renderer *r, macs_stencil_state *s)
+{
+    bool live_too = !(r->key.disable_skips & BG_SKIP_STENCIL);
+    s->test = true;
+    s->func = MACS_COMPARE_EQUAL;
+    s->ref = GPU_STENCIL_HIT | (live_too ? GPU_STENCIL_LIVE : 0u);
+    s->read_mask = s->ref;
+    s->write_mask = 0;
+}
+
+bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, int group,
+                                bool blocks, macs_pass **out)
+{
+    int count = group_size(state, group);
+    bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
+    macs_input_desc inputs[2] = {{"bg_g_hit"}, {"bg_g_normal"}};
+    macs_texture *input_tex[2] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL]};
+    macs_uniform_desc uniforms[8];
+    int nu = 0;
+    uniforms[nu++] = (macs_uniform_desc){"bg_index", MACS_UNIFORM_FLOAT, 0};
+    uniforms[nu++] = (macs_uniform_desc){"bg_to_object", MACS_UNIFORM_MAT4, 0};
+    light_uniforms(uniforms, &nu, count);
+
+    gpu_text main;
+    gpu_text_init(&main, &r->allocator);
+    gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
+    /* A convex object never shadows its own lit surface; one that casts nothing blocks nothing. */
+    if (!blocks)
+        gpu_text_append(&main, "if (bg_h.w == bg_h.w) discard;\n");
+    gpu_text_append(&main, "if (bg_hit_index(bg_h.w) == bg_index) discard;\n"
+                           "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
+                           "vec4 bg_vis = vec4(1.0);\n");
+    for (int i = 0; i < count; i++)
+        gpu_text_printf(&main,
+                        "bg_vis.%c = bg_shadow_visibility(bg_h.xyz, bg_n, bg_to_object, bg_lpos[%d], bg_lrad[%d], "
+                        "bg_latt[%d], bg_lspot[%d], bg_lexp[%d], %s);\n",
+                        "xyzw"[i], i, i, i, i, i, skip_facing ? "true" : "false");
+    gpu_text_append(&main, "if (min(min(bg_vis.x, bg_vis.y), min(bg_vis.z, bg_vis.w)) > 0.5) discard;\n");
+
+    macs_output_desc output = {"visibility", "bg_vis"};
+    macs_texture *output_tex[1] = {r->vis};
+    macs_pass_desc desc;
+    memset(&desc, 0, sizeof desc);
+    desc.main = main.s;
+    desc.inputs = inputs;
+    desc.input_count = 2;
+    desc.input_textures = input_tex;
+    desc.uniforms = uniforms;
+    desc.uniform_count = nu;
+    desc.outputs = &output;
+    desc.output_count = 1;
+    desc.output_textures = output_tex;
+    desc.depth_stencil = r->depth;
+    hit_stencil(r, &desc.stencil);
+    desc.blend = MACS_BLEND_MULTIPLY;
+
+    const char *files[] = {"bg_hit_code.glsl", "bg_stage_shadow.glsl", shape_file[state->objects[object].shape], NULL};
+    bg_status st = main.failed ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a shadow shader")
+                               : gpu_pass_create(r, "shadow pass", files, NULL, &desc, out);
+    gpu_text_free(&main);
+    if (st != BG_OK)
+        return st;
+    float m16[16], fi = (float)object;
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 4; k++)
+            m16[c * 4 + k] = (float)state->objects[object].to_object[k][c];
+    macs_status ms = macs_pass_set_uniform(*out, "bg_index", &fi);
+    if (!ms)
+        ms = macs_pass_set_uniform(*out, "bg_to_object", m16);
+    if (ms)
+        return gpu_fail_macs(r, ms, "shadow pass uniforms");
+    return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
+}
+
+bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool add_once, bool vis,
+                               macs_pass **out)
+{
+    const gpu_features *f = &r->features;
+    int count = group_size(state, group);
+    bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
+    if (count == 0) {
+        /* Ambient and emission alone: they are already weighted in the G-buffer. */
+        macs_input_desc in[1] = {{"bg_g_once"}};
+        macs_texture *in_tex[1] = {r->gbuffer[GPU_SLOT_ONCE]};
+        macs_output_desc output = {"radiance", "vec4(texture2D(bg_g_once, macs_uv).rgb, 0.0)"};
+        macs_texture *output_tex[1] = {r->accum};
+        macs_pass_desc desc;
+        memset(&desc, 0, sizeof desc);
+        desc.inputs = in;
+        desc.input_count = 1;
+        desc.input_textures = in_tex;
+        desc.outputs = &output;
+        desc.output_count = 1;
+        desc.output_textures = output_tex;
+        desc.depth_stencil = r->depth;
+        hit_stencil(r, &desc.stencil);
+        desc.blend = MACS_BLEND_ADD;
+        (void)add_once;
+        (void)vis;
+        return gpu_pass_create(r, "ambient and emission pass", NULL, NULL, &desc, out);
+    }
+    macs_input_desc inputs[10];
+    macs_texture *input_tex[10];
+    int ni = 0;
+#define INPUT(input_name, texture) (inputs[ni].name = (input_name), input_tex[ni++] = (texture))
+    INPUT("bg_g_hit", r->gbuffer[GPU_SLOT_HIT]);
+    INPUT("bg_g_normal", r->gbuffer[GPU_SLOT_NORMAL]);
+    INPUT("bg_g_base", r->gbuffer[GPU_SLOT_BASE]);
+    INPUT("bg_ray_dir", NULL);
+    /* The light weight is the path weight x opaque; without transparency that is the path weight. */
+    if (f->slot[GPU_SLOT_XPARENT])
+        INPUT("bg_g_xparent", r->gbuffer[GPU_SLOT_XPARENT]);
+    else
+        INPUT("bg_ray_weight", NULL);
+    if (f->slot[GPU_SLOT_TANGENT])
+        INPUT("bg_g_tangent", r->gbuffer[GPU_SLOT_TANGENT]);
+    if (f->slot[GPU_SLOT_COAT])
+        INPUT("bg_g_coat", r->gbuffer[GPU_SLOT_COAT]);
+    if (vis)
+        INPUT("bg_vis", r->vis);
+    if (add_once)
+        INPUT("bg_g_once", r->gbuffer[GPU_SLOT_ONCE]);
+#undef INPUT
+    macs_uniform_desc uniforms[8];
+    int nu = 0;
+    if (count > 0)
+        light_uniforms(uniforms, &nu, count);
+
+    gpu_text main;
+    gpu_text_init(&main, &r->allocator);
+    gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n"
+                           "vec4 bg_nr = texture2D(bg_g_normal, macs_uv);\n"
+                           "vec4 bg_b = texture2D(bg_g_base, macs_uv);\n"
+                           "vec3 bg_view = -texture2D(bg_ray_dir, macs_uv).xyz;\n");
+    gpu_text_printf(&main, "vec3 bg_lw = texture2D(%s, macs_uv).rgb;\n",
+                    f->slot[GPU_SLOT_XPARENT] ? "bg_g_xparent" : "bg_ray_weight");
+    /* Without the tangent slot every isotropy is 1, where the azimuth term is exactly 1 whatever
+     * the tangent, so the normal stands in for it. */
+    gpu_text_append(&main, f->slot[GPU_SLOT_TANGENT] ? "vec4 bg_tg = texture2D(bg_g_tangent, macs_uv);\n"
+                                                     : "vec4 bg_tg = vec4(bg_nr.xyz, 1.0);\n");
+    gpu_text_append(&main, f->slot[GPU_SLOT_COAT] ? "vec4 bg_c = texture2D(bg_g_coat, macs_uv);\n"
+                                                  : "vec4 bg_c = vec4(0.0, 0.0, 0.0, -1.0);\n");
+    gpu_text_append(&main, vis ? "vec4 bg_v = texture2D(bg_vis, macs_uv);\n" : "vec4 bg_v = vec4(1.0);\n");
+    gpu_text_append(&main, add_once ? "vec3 bg_sum = texture2D(bg_g_once, macs_uv).rgb;\nfloat bg_any = 1.0;\n"
+                                    : "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\n");
+    if (count > 0) {
+        gpu_text_append(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0 && bg_max3(bg_lw) > 0.0) {\n"
+                               "    vec4 bg_term;\n");
+        for (int i = 0; i < count; i++)
+            gpu_text_printf(&main,
+                            "    bg_term = bg_light_term(bg_h.xyz, bg_nr.xyz, bg_view, bg_tg.xyz, bg_b.rgb, bg_nr.w, bg_b.a, "
+                            "bg_c.w >= 0.0, bg_c.rgb, bg_c.w, bg_tg.w, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], "
+                            "bg_lexp[%d], bg_v.%c, %s);\n"
+                            "    bg_sum += bg_lw * bg_term.rgb;\n    bg_any += bg_term.a;\n",
+                            i, i, i, i, i, "xyzw"[i], skip_facing ? "true" : "false");
+        gpu_text_append(&main, "}\n");
+    }
+    /* Adding nothing changes nothing: a pixel no light reaches skips the blend. */
+    gpu_text_append(&main, "if (bg_any == 0.0) discard;\n");
+
+    macs_output_desc output = {"radiance", "vec4(bg_sum, 0.0)"};
+    macs_texture *output_tex[1] = {r->accum};
+    macs_pass_desc desc;
+    memset(&desc, 0, sizeof desc);
+    desc.main = main.s;
+    desc.inputs = inputs;
+    desc.input_count = ni;
+    desc.input_textures = input_tex;
+    desc.uniforms = uniforms;
+    desc.uniform_count = nu;
+    desc.outputs = &output;
+    desc.output_count = 1;
+    desc.output_textures = output_tex;
+    desc.depth_stencil = r->depth;
+    hit_stencil(r, &desc.stencil);
+    desc.blend = MACS_BLEND_ADD;
+
+    const char *files[] = {"bg_hit_code.glsl", "bg_stage_light.glsl", NULL};
+    bg_status st = main.failed ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a light shader")
+                               : gpu_pass_create(r, "light pass", files, NULL, &desc, out);
+    gpu_text_free(&main);
+    if (st != BG_OK || count == 0)
+        return st;
+    return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
+}

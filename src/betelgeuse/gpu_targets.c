@@ -1,0 +1,140 @@
+/* GPU memory of the renderer: size-dependent targets (G-buffer, accumulation, visibility, encoded
+ * output, depth/stencil, ray-set pool) and the scene's textures. Everything is made on demand and
+ * kept while the size (or the scene) stays the same. */
+#include <string.h>
+
+#include "alloc.h"
+#include "gpu_internal.h"
+
+static bg_status texture(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
+{
+    if (*out)
+        return BG_OK;
+    macs_texture_desc d;
+    memset(&d, 0, sizeof d);
+    d.width = w;
+    d.height = h;
+    d.format = format;
+    macs_status ms = macs_texture_create(r->ctx, &d, out);
+    return ms ? gpu_fail_macs(r, ms, what) : BG_OK;
+}
+
+void gpu_targets_release(bg_renderer *r)
+{
+    for (int s = 0; s < GPU_SLOT_COUNT; s++) {
+        macs_texture_destroy(r->gbuffer[s]);
+        r->gbuffer[s] = NULL;
+    }
+    macs_texture_destroy(r->accum);
+    macs_texture_destroy(r->vis);
+    macs_texture_destroy(r->encoded);
+    macs_depth_stencil_destroy(r->depth);
+    r->accum = r->vis = r->encoded = NULL;
+    r->depth = NULL;
+    for (int i = 0; i < r->set_count; i++) {
+        macs_texture_destroy(r->sets[i].origin);
+        macs_texture_destroy(r->sets[i].dir);
+        macs_texture_destroy(r->sets[i].weight);
+    }
+    bg_free(&r->allocator, r->sets);
+    r->sets = NULL;
+    r->set_count = 0;
+    bg_free(&r->allocator, r->readback);
+    r->readback = NULL;
+    r->readback_size = 0;
+    r->width = r->height = 0;
+}
+
+bg_status gpu_targets_prepare(bg_renderer *r, int w, int h)
+{
+    if (r->width != w || r->height != h)
+        gpu_targets_release(r);
+    r->width = w;
+    r->height = h;
+    bg_status st = BG_OK;
+    for (int s = 0; s < GPU_SLOT_COUNT && st == BG_OK; s++)
+        if (r->features.slot[s])
+            st = texture(r, w, h, MACS_FORMAT_RGBA32F, &r->gbuffer[s], "G-buffer texture");
+    if (st == BG_OK)
+        st = texture(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
+    /* Visibility is 0 or 1 per channel: 8 bits hold it exactly. */
+    if (st == BG_OK)
+        st = texture(r, w, h, MACS_FORMAT_RGBA8, &r->vis, "visibility texture");
+    if (st == BG_OK)
+        st = texture(r, w, h, MACS_FORMAT_RGBA8, &r->encoded, "output texture");
+    if (st == BG_OK && !r->depth) {
+        macs_depth_stencil_desc d = {w, h, r->float_depth ? MACS_DEPTH32F_STENCIL8 : MACS_DEPTH24_STENCIL8};
+        macs_status ms = macs_depth_stencil_create(r->ctx, &d, &r->depth);
+        if (ms)
+            st = gpu_fail_macs(r, ms, "depth/stencil buffer");
+    }
+    return st;
+}
+
+bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
+{
+    if (index >= r->set_count) {
+        size_t old = (size_t)r->set_count * sizeof *r->sets, need = (size_t)(index + 1) * sizeof *r->sets;
+        gpu_ray_set *grown = bg_realloc(&r->allocator, r->sets, old, need);
+        if (!grown)
+            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for ray set %d", index);
+        memset((char *)grown + old, 0, need - old);
+        r->sets = grown;
+        r->set_count = index + 1;
+    }
+    gpu_ray_set *s = &r->sets[index];
+    bg_status st = texture(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
+    if (st == BG_OK)
+        st = texture(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
+    if (st == BG_OK)
+        st = texture(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
+    *out = s;
+    return st;
+}
+
+void gpu_scene_textures_release(bg_renderer *r)
+{
+    for (uint32_t i = 0; i < r->texture_count; i++)
+        macs_texture_destroy(r->textures[i]);
+    bg_free(&r->allocator, r->textures);
+    r->textures = NULL;
+    r->texture_count = 0;
+    macs_texture_destroy(r->white);
+    r->white = NULL;
+}
+
+bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state)
+{
+    gpu_scene_textures_release(r);
+    static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    macs_texture_desc d;
+    memset(&d, 0, sizeof d);
+    d.width = d.height = 1;
+    d.format = MACS_FORMAT_RGBA32F;
+    d.filter = MACS_FILTER_NEAREST; /* exactly 1.0, so constant x white is the constant */
+    d.data = white;
+    macs_status ms = macs_texture_create(r->ctx, &d, &r->white);
+    if (ms)
+        return gpu_fail_macs(r, ms, "white texture");
+    if (state->texture_count == 0)
+        return BG_OK;
+    r->textures = bg_alloc(&r->allocator, state->texture_count * sizeof *r->textures);
+    if (!r->textures)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
+    memset(r->textures, 0, state->texture_count * sizeof *r->textures);
+    r->texture_count = state->texture_count;
+    for (uint32_t i = 0; i < state->texture_count; i++) {
+        const bg_texture_data *t = &state->textures[i];
+        memset(&d, 0, sizeof d);
+        d.width = t->width;
+        d.height = t->height;
+        d.format = MACS_FORMAT_RGBA32F;
+        d.filter = MACS_FILTER_LINEAR;
+        d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
+        d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
+        ms = macs_texture_create(r->ctx, &d, &r->textures[i]);
+        if (ms)
+            return gpu_fail_macs(r, ms, "scene texture");
+    }
+    return BG_OK;
+}
