@@ -5,10 +5,18 @@
 
 int bg_shape_span(vec3 o, vec3 d, out vec2 t, out vec3 n0, out vec3 n1);
 
+// Depth of a hit at distance t > 0: t / (2 dmax) up to dmax, where the scene's bounded objects are
+// and depth steps are finest, then 1 - dmax / (2 t) beyond, so that planes reach the horizon. The
+// two halves meet at 1/2 and the whole is increasing, so the depth test LESS keeps the nearest hit.
+// A distance so large that the depth rounds to 1.0 fails against the cleared 1.0: a miss.
+float bg_depth(float t, float dmax)
+{
+    return t < dmax ? 0.5 * (t / dmax) : 1.0 - 0.5 * (dmax / t);
+}
+
 // The root this object gives the ray, or false. ray_o.w is the object the ray skips, ray_d.w the
-// object it travels inside (far root only). A hit at or beyond dmax is a miss: depth t / dmax must
-// stay below the cleared 1.0 to win, and clamping would let far hits tie.
-bool bg_hit_root(vec4 ray_o, vec4 ray_d, float index, mat4 to_object, float dmax, out float t, out vec3 p_obj,
+// object it travels inside (far root only).
+bool bg_hit_root(vec4 ray_o, vec4 ray_d, float index, mat4 to_object, out float t, out vec3 p_obj,
                  out vec3 n_obj, out bool first_root)
 {
     t = 0.0;
@@ -26,13 +34,12 @@ bool bg_hit_root(vec4 ray_o, vec4 ray_d, float index, mat4 to_object, float dmax
         return false;
     bool far_only = ray_d.w == index;
     if (count == 1 || (!far_only && span.x > 0.0)) {
-        // A closed shape whose entry is at or beyond dmax has its exit beyond it too.
-        if (!(span.x > 0.0 && span.x < dmax))
+        if (!(span.x > 0.0))
             return false;
         t = span.x;
         n_obj = n0;
     } else {
-        if (!(span.y > 0.0 && span.y < dmax))
+        if (!(span.y > 0.0))
             return false;
         t = span.y;
         n_obj = n1;

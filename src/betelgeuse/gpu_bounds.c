@@ -1,12 +1,12 @@
-/* dmax per bounce level and the screen rectangles of bounded objects (DESIGN.md section 4).
+/* dmax per bounce level and the screen rectangles of bounded objects (DESIGN.md section 4,
+ * docs/gpu_pipeline.md).
  *
- * Depth is t / dmax, so dmax must hold every hit the depth test has to keep, and be no larger than
- * that, since the depth step is dmax / 2^24. Level k's rays start in a region R_k (the camera for
- * k = 0); a bounded object is reached within the farthest distance between R_k and the bounds B of
- * all bounded objects. Planes are unbounded: they are cut where the remaining sliver is thinner
- * than a quarter pixel seen from the camera (a factor 2 max(W, H) / tan(half fov) on the distance
- * to the plane). With planes, hit points (and so the next level's origins) can lie anywhere on them
- * within dmax of R_k, so R_{k+1} is B grown by that reach. */
+ * Depth is t / (2 dmax) below dmax and 1 - dmax / (2 t) beyond it (bg_depth in bg_stage_hit.glsl):
+ * one monotonic scale, linear and finest where the scene's bounded objects are, compressed beyond,
+ * so planes reach the horizon instead of being cut. dmax is therefore the farthest distance from
+ * where a level's rays start to the box B holding every bounded object and every plane's anchor
+ * point: from the camera for camera rays, and across B for secondary rays (which start on objects;
+ * those starting far out on a plane are still right, only with coarser depth steps). */
 #include <math.h>
 #include <string.h>
 
@@ -27,29 +27,20 @@ static double box_reach(const box3 *from, const box3 *to)
     return sqrt(s);
 }
 
-/* Largest distance from a corner of box to the plane of object. */
-static double plane_reach(const bg_object_data *plane, const box3 *box)
+static void box_add(box3 *b, bool *empty, const double p[3])
 {
-    const double(*m)[4] = plane->to_world;
-    const double(*nm)[3] = plane->normal_to_world;
-    double n[3] = {nm[0][1], nm[1][1], nm[2][1]};
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(len > 0.0))
-        return 0.0;
-    double q[3] = {m[0][3], m[1][3], m[2][3]};
-    double best = 0.0;
-    for (int c = 0; c < 8; c++) {
-        double p[3] = {(c & 1) ? box->hi[0] : box->lo[0], (c & 2) ? box->hi[1] : box->lo[1],
-                       (c & 4) ? box->hi[2] : box->lo[2]};
-        double d = fabs((p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2]) / len;
-        best = d > best ? d : best;
+    for (int i = 0; i < 3; i++) {
+        b->lo[i] = *empty || p[i] < b->lo[i] ? p[i] : b->lo[i];
+        b->hi[i] = *empty || p[i] > b->hi[i] ? p[i] : b->hi[i];
     }
-    return best;
+    *empty = false;
 }
 
 void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
                      double *dmax)
 {
+    (void)width;
+    (void)height;
     int levels = settings->max_depth + 1;
     if (settings->dmax > 0.0) {
         for (int k = 0; k < levels; k++)
@@ -57,39 +48,24 @@ void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *sett
         return;
     }
     const double *e = &state->camera.camera.position.x;
-    box3 region = {{e[0], e[1], e[2]}, {e[0], e[1], e[2]}};
-    box3 bounds;
-    memcpy(bounds.lo, state->bounds_min, sizeof bounds.lo);
-    memcpy(bounds.hi, state->bounds_max, sizeof bounds.hi);
-    bool planes = false;
-    for (uint32_t i = 0; i < state->object_count; i++)
-        planes |= !state->objects[i].bounded;
-    double aspect = (double)width / (double)height;
-    double tan_min = state->camera.tan_half_fov_y * (aspect < 1.0 ? aspect : 1.0);
-    double side = width > height ? width : height;
-    double cut = 2.0 * side / tan_min;
-
+    box3 camera = {{e[0], e[1], e[2]}, {e[0], e[1], e[2]}};
+    box3 scene = camera;
+    bool empty = true;
+    if (state->has_bounded_objects) {
+        box_add(&scene, &empty, state->bounds_min);
+        box_add(&scene, &empty, state->bounds_max);
+    }
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        if (state->objects[i].bounded)
+            continue;
+        const double(*m)[4] = state->objects[i].to_world;
+        double anchor[3] = {m[0][3], m[1][3], m[2][3]};
+        box_add(&scene, &empty, anchor);
+    }
     for (int k = 0; k < levels; k++) {
-        double d = state->has_bounded_objects ? box_reach(&region, &bounds) : 0.0;
-        for (uint32_t i = 0; i < state->object_count; i++) {
-            if (state->objects[i].bounded)
-                continue;
-            double p = cut * plane_reach(&state->objects[i], k == 0 ? &region : (state->has_bounded_objects ? &bounds : &region));
-            d = p > d ? p : d;
-        }
-        /* Nothing to reach (an empty scene): any positive value works. */
+        double d = empty ? 0.0 : box_reach(k == 0 ? &camera : &scene, &scene);
+        /* Nothing to reach (an empty scene, or one plane through the camera): any positive value. */
         dmax[k] = d > 0.0 ? d : 1.0;
-        if (k + 1 < levels) {
-            box3 next = state->has_bounded_objects ? bounds : region;
-            if (planes) {
-                for (int i = 0; i < 3; i++) {
-                    double lo = region.lo[i] - dmax[k], hi = region.hi[i] + dmax[k];
-                    next.lo[i] = next.lo[i] < lo ? next.lo[i] : lo;
-                    next.hi[i] = next.hi[i] > hi ? next.hi[i] : hi;
-                }
-            }
-            region = next;
-        }
     }
 }
 

@@ -174,6 +174,11 @@ static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ra
         if (!ms)
             ms = macs_texture_clear(child->dir, zero);
     }
+    /* Unbind the previous set first: MACS refuses a texture that is input and output at once. */
+    if (!ms)
+        ms = macs_pass_set_input(pass, GPU_SPAWN_IN_DIR, NULL);
+    if (!ms)
+        ms = macs_pass_set_input(pass, GPU_SPAWN_IN_WEIGHT, NULL);
     if (!ms)
         ms = macs_pass_set_output(pass, 0, child->origin);
     if (!ms)

@@ -123,9 +123,9 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
                     "vec4 bg_ro = texture2D(bg_ray_origin, macs_uv);\n"
                     "vec4 bg_rd = texture2D(bg_ray_dir, macs_uv);\n"
                     "float bg_t;\nvec3 bg_po, bg_no;\nbool bg_first;\n"
-                    "if (!bg_hit_root(bg_ro, bg_rd, bg_index, bg_to_object, bg_dmax, bg_t, bg_po, bg_no, bg_first))\n"
+                    "if (!bg_hit_root(bg_ro, bg_rd, bg_index, bg_to_object, bg_t, bg_po, bg_no, bg_first))\n"
                     "    discard;\n"
-                    "gl_FragDepth = bg_t / bg_dmax;\n"
+                    "gl_FragDepth = bg_depth(bg_t, bg_dmax);\n"
                     "vec3 bg_p = bg_ro.xyz + bg_t * bg_rd.xyz;\n"
                     "bool bg_entering;\n");
     gpu_text_printf(&main, "vec3 bg_n = bg_hit_normal(bg_normal_to_world, bg_no, bg_rd.xyz, %s, bg_first, bg_entering);\n",
