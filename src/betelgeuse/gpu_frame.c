@@ -19,6 +19,10 @@ typedef struct frame {
     double dmax[BG_MAX_DEPTH + 1];
     bool timing;
     double clock;
+    /* Secondary rays only live on pixels whose camera ray met an object that can bounce: the union
+     * of those objects' screen rectangles bounds every secondary set (a pixel's rays stay its own). */
+    bool bounce_scissor;
+    int bounce_rect[4];
 } frame;
 
 static double now_ms(void)
@@ -56,11 +60,54 @@ static bg_status run(frame *f, macs_pass *pass, bg_pass_kind kind, const macs_ru
     return BG_OK;
 }
 
-/* Runs a shadow or light pass, counting its kept fragments when timing (a query waits for them). */
-static bg_status run_counted(frame *f, macs_pass *pass, bg_pass_kind kind)
+/* The run description of a pass over ray set `level`: scissored to the bounce rectangle below 0. */
+static macs_run_desc set_run(const frame *f, int level)
 {
     macs_run_desc d;
     memset(&d, 0, sizeof d);
+    if (level > 0 && f->bounce_scissor) {
+        d.scissor = true;
+        d.scissor_x = f->bounce_rect[0];
+        d.scissor_y = f->bounce_rect[1];
+        d.scissor_width = f->bounce_rect[2];
+        d.scissor_height = f->bounce_rect[3];
+    }
+    return d;
+}
+
+static void bounce_scissor(frame *f)
+{
+    const bg_scene_state *state = f->state;
+    bg_renderer *r = f->r;
+    f->bounce_scissor = !(r->key.disable_skips & BG_SKIP_SCISSOR);
+    bool any = false;
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    for (uint32_t o = 0; o < state->object_count && f->bounce_scissor; o++) {
+        if (!gpu_material_may_bounce(&state->materials[state->objects[o].material]))
+            continue;
+        int rect[4];
+        if (!gpu_object_scissor(state, o, r->width, r->height, rect)) {
+            f->bounce_scissor = false;
+            break;
+        }
+        if (rect[2] == 0 || rect[3] == 0)
+            continue;
+        x0 = any && x0 < rect[0] ? x0 : rect[0];
+        y0 = any && y0 < rect[1] ? y0 : rect[1];
+        x1 = any && x1 > rect[0] + rect[2] ? x1 : rect[0] + rect[2];
+        y1 = any && y1 > rect[1] + rect[3] ? y1 : rect[1] + rect[3];
+        any = true;
+    }
+    f->bounce_rect[0] = x0;
+    f->bounce_rect[1] = y0;
+    f->bounce_rect[2] = x1 - x0;
+    f->bounce_rect[3] = y1 - y0;
+}
+
+/* Runs a shadow or light pass, counting its kept fragments when timing (a query waits for them). */
+static bg_status run_counted(frame *f, macs_pass *pass, bg_pass_kind kind, int level)
+{
+    macs_run_desc d = set_run(f, level);
     d.occlusion_query = f->timing;
     bg_status st = run(f, pass, kind, &d);
     if (st == BG_OK && f->timing) {
@@ -94,8 +141,7 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
             st = gpu_hit_pass_set_dmax(r, p, f->dmax[level]);
         if (st != BG_OK)
             return st;
-        macs_run_desc d;
-        memset(&d, 0, sizeof d);
+        macs_run_desc d = set_run(f, level);
         int rect[4];
         if (scissor && gpu_object_scissor(f->state, (uint32_t)o, r->width, r->height, rect)) {
             if (rect[2] == 0 || rect[3] == 0)
@@ -106,6 +152,8 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
             d.scissor_width = rect[2];
             d.scissor_height = rect[3];
             r->stats.intersect_pixels += (uint64_t)rect[2] * (uint64_t)rect[3];
+        } else if (d.scissor) {
+            r->stats.intersect_pixels += (uint64_t)d.scissor_width * (uint64_t)d.scissor_height;
         } else {
             r->stats.intersect_pixels += (uint64_t)r->width * (uint64_t)r->height;
         }
@@ -116,8 +164,9 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
     return BG_OK;
 }
 
-static bg_status shade(frame *f, const gpu_ray_set *set)
+static bg_status shade(frame *f, const gpu_ray_set *set, int level)
 {
+    macs_run_desc d = set_run(f, level);
     bg_renderer *r = f->r;
     gpu_passes *p = &r->passes;
     bg_status st = BG_OK;
@@ -125,10 +174,10 @@ static bg_status shade(frame *f, const gpu_ray_set *set)
     if (p->background) {
         st = bind(r, p->background, GPU_BACKGROUND_IN_WEIGHT, set->weight);
         if (st == BG_OK)
-            st = run(f, p->background, BG_PASS_BACKGROUND, NULL);
+            st = run(f, p->background, BG_PASS_BACKGROUND, &d);
     }
     if (st == BG_OK && p->once)
-        st = run(f, p->once, BG_PASS_LIGHT, NULL);
+        st = run(f, p->once, BG_PASS_LIGHT, &d);
     phase_end(f, BG_PHASE_LIGHT);
     static const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     for (int g = 0; g < p->group_count && st == BG_OK; g++) {
@@ -144,7 +193,7 @@ static bg_status shade(frame *f, const gpu_ray_set *set)
                     return gpu_fail_macs(r, ms, "clearing visibility");
                 cleared = true;
             }
-            st = run_counted(f, sp, BG_PASS_SHADOW);
+            st = run_counted(f, sp, BG_PASS_SHADOW, level);
         }
         phase_end(f, BG_PHASE_SHADOW);
         if (st != BG_OK)
@@ -155,14 +204,14 @@ static bg_status shade(frame *f, const gpu_ray_set *set)
         if (st == BG_OK && !r->features.slot[GPU_SLOT_XPARENT])
             st = bind(r, lp, GPU_LIGHT_IN_WEIGHT, set->weight);
         if (st == BG_OK)
-            st = run_counted(f, lp, BG_PASS_LIGHT);
+            st = run_counted(f, lp, BG_PASS_LIGHT, level);
         phase_end(f, BG_PHASE_LIGHT);
     }
     return st;
 }
 
 /* Writes one child set of `set` with a spawn pass; the child's rays are counted when it is traced. */
-static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ray_set *child)
+static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ray_set *child, int level)
 {
     bg_renderer *r = f->r;
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -190,13 +239,15 @@ static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ra
     bg_status st = bind(r, pass, GPU_SPAWN_IN_DIR, set->dir);
     if (st == BG_OK)
         st = bind(r, pass, GPU_SPAWN_IN_WEIGHT, set->weight);
+    /* The children live where the next level does. */
+    macs_run_desc d = set_run(f, level + 1);
     if (st == BG_OK)
-        st = run(f, pass, BG_PASS_SPAWN, NULL);
+        st = run(f, pass, BG_PASS_SPAWN, &d);
     return st;
 }
 
 /* Marks and counts a child set's live rays; *live gets the count. */
-static bg_status mark(frame *f, const gpu_ray_set *set, uint64_t *live)
+static bg_status mark(frame *f, const gpu_ray_set *set, int level, uint64_t *live)
 {
     bg_renderer *r = f->r;
     macs_status ms = macs_depth_stencil_clear(r->depth, 1.0f, (r->key.disable_skips & BG_SKIP_STENCIL) ? GPU_STENCIL_LIVE : 0u,
@@ -204,8 +255,7 @@ static bg_status mark(frame *f, const gpu_ray_set *set, uint64_t *live)
     if (ms)
         return gpu_fail_macs(r, ms, "clearing depth and stencil");
     bg_status st = bind(r, r->passes.mark, GPU_MARK_IN_WEIGHT, set->weight);
-    macs_run_desc d;
-    memset(&d, 0, sizeof d);
+    macs_run_desc d = set_run(f, level);
     d.occlusion_query = true;
     if (st == BG_OK)
         st = run(f, r->passes.mark, BG_PASS_MARK, &d);
@@ -248,7 +298,7 @@ static bg_status trace(frame *f)
             first = false;
         } else {
             phase_start(f);
-            st = mark(f, set, &live);
+            st = mark(f, set, cur.level, &live);
             phase_end(f, BG_PHASE_BOUNCE);
             if (st != BG_OK)
                 return st;
@@ -268,7 +318,7 @@ static bg_status trace(frame *f)
         st = intersect(f, set, cur.level);
         phase_end(f, BG_PHASE_INTERSECT);
         if (st == BG_OK)
-            st = shade(f, set);
+            st = shade(f, set, cur.level);
         if (st != BG_OK)
             return st;
 
@@ -285,7 +335,7 @@ static bg_status trace(frame *f)
                 st = gpu_ray_set_get(r, slot, &child);
                 if (st == BG_OK) {
                     set = &r->sets[cur.slot]; /* the pool may have moved */
-                    st = spawn(f, kinds[k], set, child);
+                    st = spawn(f, kinds[k], set, child, cur.level);
                 }
                 if (st == BG_OK) {
                     used[slot] = true;
@@ -437,6 +487,7 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
             st = gpu_fail_macs(r, ms, "clearing the accumulation");
     }
     if (st == BG_OK) {
+        bounce_scissor(&f);
         phase_start(&f);
         st = run(&f, r->passes.camera, BG_PASS_RAYS, NULL);
         phase_end(&f, BG_PHASE_RAYS);

@@ -119,6 +119,11 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
     /* main: the root, depth, attributes, material. */
     gpu_text main;
     gpu_text_init(&main, &r->allocator);
+    /* Writing gl_FragDepth makes GL test the stencil after the shader, so a dead ray is also
+     * rejected here, before any intersection work (the same pixels as the stencil rejects). */
+    gpu_text_append(&main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n");
+    if (!(r->key.disable_skips & BG_SKIP_STENCIL))
+        gpu_text_append(&main, "if (bg_w.a <= 0.0)\n    discard;\n");
     gpu_text_append(&main,
                     "vec4 bg_ro = texture2D(bg_ray_origin, macs_uv);\n"
                     "vec4 bg_rd = texture2D(bg_ray_dir, macs_uv);\n"
@@ -161,8 +166,7 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
     /* A negative coat roughness uniform marks a material without a coat. */
     if (f->coat)
         gpu_text_append(&main, "if (bg_m_coat_r < 0.0) bg_coat_r = -1.0;\n");
-    gpu_text_append(&main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n"
-                           "float bg_opaque = 1.0 - bg_transparency;\n");
+    gpu_text_append(&main, "float bg_opaque = 1.0 - bg_transparency;\n");
 
     macs_output_desc outputs[GPU_SLOT_COUNT];
     macs_texture *output_tex[GPU_SLOT_COUNT];

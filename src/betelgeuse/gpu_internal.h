@@ -123,6 +123,8 @@ bool gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *see
 void gpu_text_free(gpu_text *t);
 
 /* ---- gpu_features.c ---- */
+/* Whether a material can spawn a secondary ray somewhere (mirror share or transparency). */
+bool gpu_material_may_bounce(const bg_material *m);
 /* Decides slots and shader features from the committed scene; generic switches specialisation off. */
 void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
 
