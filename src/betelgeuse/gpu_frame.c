@@ -391,7 +391,8 @@ static bg_status read_back(frame *f, bg_image *image, size_t stride)
 
 static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
 {
-    return a->valid && a->scene == b->scene && a->commit_count == b->commit_count && a->width == b->width &&
+    return a->valid && a->scene == b->scene && a->commit_count == b->commit_count &&
+           a->fingerprint == b->fingerprint && a->width == b->width &&
            a->height == b->height && a->disable_skips == b->disable_skips && a->encoding == b->encoding &&
            a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
 }
@@ -404,6 +405,7 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
     memset(&key, 0, sizeof key);
     key.scene = scene;
     key.commit_count = f->state->commit_count;
+    key.fingerprint = gpu_scene_fingerprint(f->state);
     key.width = width;
     key.height = height;
     key.disable_skips = s->gpu_disable_skips;
@@ -422,7 +424,8 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
         }
         return BG_OK;
     }
-    bool new_scene = !r->key.valid || r->key.scene != scene || r->key.commit_count != key.commit_count;
+    bool new_scene = !r->key.valid || r->key.scene != scene || r->key.commit_count != key.commit_count ||
+                     r->key.fingerprint != key.fingerprint;
     gpu_passes_release(r);
     memset(&r->key, 0, sizeof r->key);
     gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->features);

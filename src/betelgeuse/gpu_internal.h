@@ -58,6 +58,7 @@ typedef struct gpu_passes {
 typedef struct gpu_cache_key {
     const bg_scene *scene;
     uint64_t commit_count;
+    uint64_t fingerprint; /* gpu_scene_fingerprint of the committed state */
     int width, height;
     unsigned disable_skips;
     bg_output_encoding encoding;
@@ -127,6 +128,10 @@ void gpu_text_free(gpu_text *t);
 bool gpu_material_may_bounce(const bg_material *m);
 /* Decides slots and shader features from the committed scene; generic switches specialisation off. */
 void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
+
+/* ---- gpu_fingerprint.c ---- */
+/* A hash of every committed value the renderer's passes and textures depend on. */
+uint64_t gpu_scene_fingerprint(const bg_scene_state *state);
 
 /* ---- gpu_bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
