@@ -211,8 +211,10 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
     gpu_text_append(&main, add_once ? "vec3 bg_sum = texture2D(bg_g_once, macs_uv).rgb;\nfloat bg_any = 1.0;\n"
                                     : "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\n");
     if (count > 0) {
-        gpu_text_append(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0 && bg_max3(bg_lw) > 0.0) {\n"
-                               "    vec4 bg_term;\n");
+        /* A dead ray (weight 0) gets no light work, like the stencil does for it; with the stencil
+         * skip off it is shaded and multiplied by 0, as every pixel is. */
+        gpu_text_printf(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0%s) {\n    vec4 bg_term;\n",
+                        (r->key.disable_skips & BG_SKIP_STENCIL) ? "" : " && bg_max3(bg_lw) > 0.0");
         for (int i = 0; i < count; i++)
             gpu_text_printf(&main,
                             "    bg_term = bg_light_term(bg_h.xyz, bg_nr.xyz, bg_view, bg_tg.xyz, bg_b.rgb, bg_nr.w, bg_b.a, "
