@@ -172,20 +172,21 @@ static void occlusion(void **state)
     release(&on, &off);
 }
 
-/* paper_earth leaves most of the frame to the background: without the stencil, shadow and light
- * passes also run there (gpu_timing counts the fragments they keep). mirror adds dead pixels in
- * its reflected ray set. */
+/* No statistic can show what the stencil saves: shaded_fragments counts the fragments that shadow
+ * and light passes keep, and the work the stencil spares ends in discards (missed pixels have no hit,
+ * dead rays are given a direction that meets nothing), so it is the same either way; intersect_pixels
+ * counts scissor rectangles, which the stencil does not change. The image identity is the assertion,
+ * on scenes with missed pixels (paper_earth: mostly background), dead rays in reflected sets (mirror)
+ * and both over several levels (glass); and the kept fragments must indeed be the same. */
 static void stencil(void **state)
 {
     (void)state;
-    const scene_id ids[2] = {SCENE_PAPER_EARTH, SCENE_MIRROR};
-    for (int k = 0; k < 2; k++) {
+    const scene_id ids[3] = {SCENE_PAPER_EARTH, SCENE_MIRROR, SCENE_GLASS};
+    for (int k = 0; k < 3; k++) {
         run on, off;
         compare(ids[k], BG_SKIP_STENCIL, true, -1, &on, &off);
-        print_message("%s: shaded fragments %llu with the stencil, %llu without\n", scenes_name(ids[k]),
-                      (unsigned long long)on.stats.shaded_fragments, (unsigned long long)off.stats.shaded_fragments);
         assert_true(on.stats.shaded_fragments > 0);
-        assert_true(off.stats.shaded_fragments > on.stats.shaded_fragments);
+        assert_true(off.stats.shaded_fragments == on.stats.shaded_fragments);
         release(&on, &off);
     }
 }
@@ -218,20 +219,24 @@ static void shadow_cull(void **state)
     release(&on, &off);
 }
 
-/* Half of the earth faces away from each light: those fragments are not shaded unless facing is off. */
+/* A shadow pass tests a light's segment only where the surface faces the light. shaded_fragments
+ * counts the fragments a shadow pass keeps (those it finds blocked), so the saving shows where a
+ * surface faces away from a light and another object also stands in that light's way: in
+ * many_lights the sphere, box and cylinder shade each other's far sides (measured at 96x72: 8605
+ * kept fragments with the skip, 8633 without). paper_earth has no shadow pass at all, and there the
+ * image identity is what is checked. */
 static void facing(void **state)
 {
     (void)state;
-    const scene_id ids[2] = {SCENE_PAPER_EARTH, SCENE_PAPER_EARTH_SHADOW};
-    for (int k = 0; k < 2; k++) {
-        run on, off;
-        compare(ids[k], BG_SKIP_FACING, true, -1, &on, &off);
-        print_message("%s: shaded fragments %llu facing the lights, %llu in all\n", scenes_name(ids[k]),
-                      (unsigned long long)on.stats.shaded_fragments, (unsigned long long)off.stats.shaded_fragments);
-        assert_true(on.stats.shaded_fragments > 0);
-        assert_true(off.stats.shaded_fragments > on.stats.shaded_fragments);
-        release(&on, &off);
-    }
+    run on, off;
+    compare(SCENE_MANY_LIGHTS, BG_SKIP_FACING, true, -1, &on, &off);
+    print_message("many_lights: %llu fragments kept with the facing skip, %llu without\n",
+                  (unsigned long long)on.stats.shaded_fragments, (unsigned long long)off.stats.shaded_fragments);
+    assert_true(on.stats.shaded_fragments > 0);
+    assert_true(off.stats.shaded_fragments > on.stats.shaded_fragments);
+    release(&on, &off);
+    compare(SCENE_PAPER_EARTH, BG_SKIP_FACING, true, -1, &on, &off);
+    release(&on, &off);
 }
 
 /* gpu_timing only measures: it changes no pixel and no pass (its times are never asserted). */

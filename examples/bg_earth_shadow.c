@@ -1,0 +1,15 @@
+/* Renders the paper's second scene, the earth-textured sphere in front of a white plane that catches
+ * its shadow, two point lights (SCENE_PAPER_EARTH_SHADOW), on the GPU through a headless OpenGL 2.1
+ * context, and writes it as a PNG.
+ *
+ * Usage: bg_earth_shadow [output.png [size]]
+ *   output.png  default bg_earth_shadow.png in the current folder
+ *   size        image width and height in pixels, 1..16384, default 512
+ * Example: make examples && build/release/examples/bg_earth_shadow /tmp/bg_earth_shadow.png 1024
+ */
+#include "scenes/gpu_example.h"
+
+int main(int argc, char **argv)
+{
+    return gpu_example_main(argc, argv, "bg_earth_shadow", SCENE_PAPER_EARTH_SHADOW);
+}
