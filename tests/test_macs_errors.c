@@ -162,7 +162,7 @@ static void bad_arguments_are_refused(void **state)
     d.blend = (macs_blend)7;
     assert_int_equal(macs_pass_create(ctx, &d, &p), MACS_ERR_INVALID_ARGUMENT);
     d.blend = MACS_BLEND_NONE;
-    macs_depth_stencil_desc dsd = {8, 8};
+    macs_depth_stencil_desc dsd = {8, 8, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &dsd, &ds), MACS_OK);
     d.depth_stencil = ds; /* wrong size */

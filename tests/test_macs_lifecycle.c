@@ -67,7 +67,7 @@ static void cycle(void **state, counting *c, int i)
     td.data = NULL;
     assert_int_equal(macs_texture_create(ctx, &td, &out[0]), MACS_OK);
     assert_int_equal(macs_texture_create(ctx, &td, &out[1]), MACS_OK);
-    macs_depth_stencil_desc dd = {4, 4};
+    macs_depth_stencil_desc dd = {4, 4, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &dd, &ds), MACS_OK);
     macs_input_desc inp = {"src"};

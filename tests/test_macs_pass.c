@@ -395,7 +395,7 @@ static void depth_stencil_clear_honours_values_and_mask(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
     macs_texture *t = util_texture(ctx, 4, 4, 0);
-    macs_depth_stencil_desc dd = {4, 4};
+    macs_depth_stencil_desc dd = {4, 4, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &dd, &ds), MACS_OK);
     assert_int_equal(macs_depth_stencil_clear(ds, 0.5f, 0x0F, 0xFF), MACS_OK);

@@ -156,7 +156,7 @@ static void run_depth_scene(macs_context *ctx, float *result, bool caller_stenci
         depth_outputs[i].value = depth_text[i];
     }
     clear_all(out, DOUT, -1.0f);
-    macs_depth_stencil_desc dsd = {W, H};
+    macs_depth_stencil_desc dsd = {W, H, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &dsd, &ds), MACS_OK);
     macs_uniform_desc u[2] = {{"obj", MACS_UNIFORM_VEC4, 0}, {"plane", MACS_UNIFORM_VEC3, 0}};
@@ -269,7 +269,7 @@ static void marks_are_cleared_between_runs(void **state)
         od[i].name = "o";
         od[i].value = text[i];
     }
-    macs_depth_stencil_desc dsd = {W, H};
+    macs_depth_stencil_desc dsd = {W, H, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &dsd, &ds), MACS_OK);
     macs_uniform_desc u = {"disc", MACS_UNIFORM_VEC3, 0};
@@ -322,7 +322,7 @@ static void caller_stencil_bits_across_split(void **state)
     macs_limits caps = {0};
     caps.max_draw_buffers = 4;
     macs_context *ctx = util_context(*state, &caps);
-    macs_depth_stencil_desc dsd = {W, H};
+    macs_depth_stencil_desc dsd = {W, H, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &dsd, &ds), MACS_OK);
     assert_int_equal(macs_depth_stencil_clear(ds, 1.0f, 0, 0xFF), MACS_OK);

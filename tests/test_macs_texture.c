@@ -187,7 +187,7 @@ static void sizes_are_checked(void **state)
 static void depth_stencil_reports_its_format(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
-    macs_depth_stencil_desc d = {8, 8};
+    macs_depth_stencil_desc d = {8, 8, 0};
     macs_depth_stencil *ds = NULL;
     assert_int_equal(macs_depth_stencil_create(ctx, &d, &ds), MACS_OK);
     assert_int_equal(macs_depth_stencil_format(ds), MACS_DEPTH24_STENCIL8);

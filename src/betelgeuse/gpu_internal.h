@@ -7,6 +7,8 @@
 
 #define GPU_MESSAGE_SIZE 1024
 #define GPU_LIGHTS_PER_GROUP 4
+/* Passes are merged only up to this many inputs, whatever the texture unit limit (gpu_pass_build.c). */
+#define GPU_MERGE_MAX_INPUTS 8
 /* "No object" in the skip and inside lanes of a ray map (object indices are >= 0). */
 #define GPU_NONE -1.0f
 
