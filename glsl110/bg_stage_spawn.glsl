@@ -45,6 +45,8 @@ void bg_spawn(bool transmitted, vec4 hit, vec4 nrm, vec4 base, vec4 coat, float 
     float len = length(next);
     bool live = m > 0.0 && m >= min_weight && len > 0.0;
     origin = vec4(hit.xyz, skip_it ? index : -1.0);
-    dir = vec4(live ? next / len : vec3(0.0), skip_it ? -1.0 : index);
+    // A dead ray keeps its direction: it is traced only when the stencil skip is off, and then with
+    // weight 0 it adds nothing, as a live ray of weight 0 would.
+    dir = vec4(len > 0.0 ? next / len : vec3(0.0), skip_it ? -1.0 : index);
     w_out = live ? vec4(w, 1.0) : vec4(0.0);
 }

@@ -172,12 +172,11 @@ static void occlusion(void **state)
     release(&on, &off);
 }
 
-/* No statistic can show what the stencil saves: shaded_fragments counts the fragments that shadow
- * and light passes keep, and the work the stencil spares ends in discards (missed pixels have no hit,
- * dead rays are given a direction that meets nothing), so it is the same either way; intersect_pixels
- * counts scissor rectangles, which the stencil does not change. The image identity is the assertion,
- * on scenes with missed pixels (paper_earth: mostly background), dead rays in reflected sets (mirror)
- * and both over several levels (glass); and the kept fragments must indeed be the same. */
+/* With the stencil skip off, passes also run on dead rays (weight 0, in reflected and transmitted
+ * sets), and the light pass then shades them and adds 0 instead of discarding them: with gpu_timing,
+ * shaded_fragments (fragments kept by shadow and light passes) grows on scenes with dead rays (mirror,
+ * glass). paper_earth has only camera rays, all alive, so nothing changes there; missed pixels never
+ * reach shadow or light passes either way (the stencil's hit bit is not a skip). */
 static void stencil(void **state)
 {
     (void)state;
@@ -185,8 +184,13 @@ static void stencil(void **state)
     for (int k = 0; k < 3; k++) {
         run on, off;
         compare(ids[k], BG_SKIP_STENCIL, true, -1, &on, &off);
+        print_message("%s: shaded fragments %llu with the stencil, %llu without\n", scenes_name(ids[k]),
+                      (unsigned long long)on.stats.shaded_fragments, (unsigned long long)off.stats.shaded_fragments);
         assert_true(on.stats.shaded_fragments > 0);
-        assert_true(off.stats.shaded_fragments == on.stats.shaded_fragments);
+        if (ids[k] == SCENE_PAPER_EARTH)
+            assert_true(off.stats.shaded_fragments == on.stats.shaded_fragments);
+        else
+            assert_true(off.stats.shaded_fragments > on.stats.shaded_fragments);
         release(&on, &off);
     }
 }

@@ -7,8 +7,6 @@
 
 #define GPU_MESSAGE_SIZE 1024
 #define GPU_LIGHTS_PER_GROUP 4
-/* Passes are merged only up to this many inputs, whatever the texture unit limit (gpu_pass_build.c). */
-#define GPU_MERGE_MAX_INPUTS 8
 /* "No object" in the skip and inside lanes of a ray map (object indices are >= 0). */
 #define GPU_NONE -1.0f
 
@@ -47,7 +45,7 @@ typedef struct gpu_passes {
     macs_pass *camera;
     macs_pass *mark;
     macs_pass *background;
-    macs_pass *once;          /* ambient and emission alone, when no light pass can add them */
+    macs_pass *once;          /* ambient and emission, weighted in the G-buffer */
     macs_pass **hit;          /* per object */
     macs_pass **shadow;       /* per object and light group: [object * groups + group], may be NULL */
     macs_pass **light;        /* per light group */
@@ -170,8 +168,9 @@ bg_status gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax);
 /* ---- gpu_light_pass.c ---- */
 bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, int group,
                                 bool blocks, macs_pass **out);
-bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool add_once,
-                               bool vis, macs_pass **out);
+/* The light pass of a group of up to four lights (vis: read the visibility texture); a group past
+ * the last light makes the ambient and emission pass instead. */
+bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out);
 /* Fills the uniform arrays of lights first .. first + count - 1 into a pass. */
 bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count);
 

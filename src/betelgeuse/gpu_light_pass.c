@@ -1,7 +1,8 @@
 /* Shadow and lighting passes (DESIGN.md sections 3.2.2 and 3.2.3). Lights go in groups of four: one
  * shadow pass per shadow-casting object and group multiplies a 0 into the RGBA visibility channel of
  * each light the object blocks; one lighting pass per group adds the Schlick terms of its lights,
- * unrolled to the group's exact size, into the accumulation texture. */
+ * unrolled to the group's exact size, into the accumulation texture. Ambient and emission, already
+ * weighted in the G-buffer's ONCE slot, are added by a pass of their own. */
 #include <math.h>
 #include <string.h>
 
@@ -139,8 +140,7 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uin
     return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
 }
 
-bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool add_once, bool vis,
-                               macs_pass **out)
+bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out)
 {
     const gpu_features *f = &r->features;
     int count = group_size(state, group);
@@ -162,7 +162,6 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
         desc.depth_stencil = r->depth;
         hit_stencil(r, &desc.stencil);
         desc.blend = MACS_BLEND_ADD;
-        (void)add_once;
         (void)vis;
         return gpu_pass_create(r, "ambient and emission pass", NULL, NULL, &desc, out);
     }
@@ -185,8 +184,6 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
         INPUT("bg_g_coat", r->gbuffer[GPU_SLOT_COAT]);
     if (vis)
         INPUT("bg_vis", r->vis);
-    if (add_once)
-        INPUT("bg_g_once", r->gbuffer[GPU_SLOT_ONCE]);
 #undef INPUT
     macs_uniform_desc uniforms[8];
     int nu = 0;
@@ -208,9 +205,8 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
     gpu_text_append(&main, f->slot[GPU_SLOT_COAT] ? "vec4 bg_c = texture2D(bg_g_coat, macs_uv);\n"
                                                   : "vec4 bg_c = vec4(0.0, 0.0, 0.0, -1.0);\n");
     gpu_text_append(&main, vis ? "vec4 bg_v = texture2D(bg_vis, macs_uv);\n" : "vec4 bg_v = vec4(1.0);\n");
-    gpu_text_append(&main, add_once ? "vec3 bg_sum = texture2D(bg_g_once, macs_uv).rgb;\nfloat bg_any = 1.0;\n"
-                                    : "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\n");
-    if (count > 0) {
+    gpu_text_append(&main, "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\n");
+    {
         /* A dead ray (weight 0) gets no light work, like the stencil does for it; with the stencil
          * skip off it is shaded and multiplied by 0, as every pixel is. */
         gpu_text_printf(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0%s) {\n    vec4 bg_term;\n",
@@ -248,7 +244,7 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
     bg_status st = main.failed ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a light shader")
                                : gpu_pass_create(r, "light pass", files, NULL, &desc, out);
     gpu_text_free(&main);
-    if (st != BG_OK || count == 0)
+    if (st != BG_OK)
         return st;
     return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
 }

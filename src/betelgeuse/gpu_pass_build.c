@@ -288,17 +288,13 @@ bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg
             any_shadow = true;
         }
     }
-    /* Ambient and emission ride on the first light pass when its inputs fit in 8 texture units. The
-     * test is against the fixed 8 that every GL 2.1 GPU we target has (not the hardware's count), so
-     * the order of additions into the accumulation, and with it every rounding, is the same whatever
-     * the limit: the image does not depend on the texture unit count. */
-    int light_inputs = 5 + (r->features.slot[GPU_SLOT_TANGENT] ? 1 : 0) + (r->features.slot[GPU_SLOT_COAT] ? 1 : 0) +
-                       (any_shadow ? 1 : 0) + 1;
-    bool once_in_light = groups > 0 && light_inputs <= GPU_MERGE_MAX_INPUTS;
+    /* Ambient and emission get a pass of their own rather than riding on the first light pass: the
+     * addition order into the accumulation (and so every rounding) then never depends on whether
+     * the light pass's inputs fit the texture units, and generic and specialised shaders agree. */
     for (int g = 0; g < groups && st == BG_OK; g++)
-        st = gpu_light_pass_build(r, state, g, g == 0 && once_in_light, any_shadow, &p->light[g]);
-    if (st == BG_OK && !once_in_light)
-        st = gpu_light_pass_build(r, state, groups, true, false, &p->once);
+        st = gpu_light_pass_build(r, state, g, any_shadow, &p->light[g]);
+    if (st == BG_OK)
+        st = gpu_light_pass_build(r, state, groups, false, &p->once);
     return st;
 }
 
