@@ -171,25 +171,22 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
     macs_output_desc outputs[GPU_SLOT_COUNT];
     macs_texture *output_tex[GPU_SLOT_COUNT];
     int no = 0;
-    static const char *const slot_value[GPU_SLOT_COUNT] = {
-        "vec4(bg_p, bg_code)",
-        "vec4(bg_n, bg_base_r)",
-        "vec4(bg_base_c, bg_base_p)",
-        "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), IOR)",
-        "vec4(bg_w.rgb * bg_opaque, bg_transparency)",
-        "vec4(bg_tg, COAT_P)",
-        "vec4(bg_coat_c, bg_coat_r)",
-    };
-    static const char *const slot_name[GPU_SLOT_COUNT] = {"hit", "normal", "base", "once", "xparent", "tangent", "coat"};
+    /* ONCE carries the ior lane only with transparency, TANGENT the coat's isotropy only with coats. */
     char once_value[128], tangent_value[64];
     snprintf(once_value, sizeof once_value, "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), %s)",
              f->transparent ? "bg_m_ior" : "1.0");
     snprintf(tangent_value, sizeof tangent_value, "vec4(bg_tg, %s)", f->coat ? "bg_coat_p" : "1.0");
+    const char *const slot_value[GPU_SLOT_COUNT] = {
+        "vec4(bg_p, bg_code)",      "vec4(bg_n, bg_base_r)", "vec4(bg_base_c, bg_base_p)",
+        once_value,                 "vec4(bg_w.rgb * bg_opaque, bg_transparency)",
+        tangent_value,              "vec4(bg_coat_c, bg_coat_r)",
+    };
+    static const char *const slot_name[GPU_SLOT_COUNT] = {"hit", "normal", "base", "once", "xparent", "tangent", "coat"};
     for (int s = 0; s < GPU_SLOT_COUNT; s++) {
         if (!f->slot[s])
             continue;
         outputs[no].name = slot_name[s];
-        outputs[no].value = s == GPU_SLOT_ONCE ? once_value : (s == GPU_SLOT_TANGENT ? tangent_value : slot_value[s]);
+        outputs[no].value = slot_value[s];
         output_tex[no] = r->gbuffer[s];
         no++;
     }

@@ -94,7 +94,7 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uin
     gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
     /* A convex object never shadows its own lit surface; one that casts nothing blocks nothing. */
     if (!blocks)
-        gpu_text_append(&main, "if (bg_h.w == bg_h.w) discard;\n");
+        gpu_text_append(&main, "if (true)\n    discard;\n");
     gpu_text_append(&main, "if (bg_hit_index(bg_h.w) == bg_index) discard;\n"
                            "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
                            "vec4 bg_vis = vec4(1.0);\n");
