@@ -242,6 +242,52 @@ static void threshold_table_is_complete(void **state)
     }
 }
 
+/* A 32-bit float depth buffer, when the context allows it and GL has ARB_depth_buffer_float: the
+ * stats say 32 bits, and the image stays within the same bounds against the reference. */
+static void float_depth(void **state)
+{
+    (void)state;
+    macs_context_desc cd = {0};
+    cd.get_proc_address = macs_headless_get_proc_address(fx.headless);
+    cd.get_proc_address_user = macs_headless_proc_user(fx.headless);
+    cd.allow_float_depth = true;
+    macs_context *ctx = NULL;
+    assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
+    macs_features feats;
+    macs_context_features(ctx, &feats);
+    bg_renderer_desc rd = {0};
+    rd.context = ctx;
+    rd.float_depth = true;
+    bg_renderer *r = NULL;
+    assert_int_equal(bg_renderer_create(&rd, &r), BG_OK);
+    const scene_id ids[2] = {SCENE_PAPER_EARTH_SHADOW, SCENE_GLASS};
+    unsigned char *cpu = malloc((size_t)W * H * 4), *gpu = malloc((size_t)W * H * 4);
+    assert_non_null(cpu);
+    assert_non_null(gpu);
+    for (int k = 0; k < 2; k++) {
+        bg_scene *s = build(ids[k]);
+        bg_render_settings set = bg_render_settings_init();
+        bg_image ci = {W, H, BG_PIXEL_RGBA8, 0, cpu}, gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
+        assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
+        if (bg_render_gpu(r, s, &set, &gi) != BG_OK)
+            fail_msg("%s: %s", scenes_name(ids[k]), bg_renderer_error_message(r));
+        bg_render_stats stats;
+        bg_renderer_stats(r, &stats);
+        assert_int_equal(stats.depth_bits, feats.depth_buffer_float ? 32 : 24);
+        image_metrics m;
+        char line[512], why[256];
+        assert_true(image_metrics_compare(&ci, &gi, GPU_SILHOUETTE_THRESHOLD, &m));
+        print_message("%-19s float depth: %s\n", scenes_name(ids[k]), image_metrics_format(&m, line, sizeof line));
+        if (!gpu_threshold_check(gpu_threshold_of(ids[k]), &m, why, sizeof why))
+            fail_msg("%s with float depth: %s", scenes_name(ids[k]), why);
+        bg_scene_destroy(s);
+    }
+    free(cpu);
+    free(gpu);
+    bg_renderer_destroy(r);
+    macs_context_destroy(ctx);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -255,6 +301,7 @@ int main(void)
         cmocka_unit_test(many_lights),
         cmocka_unit_test(all_primitives),
         cmocka_unit_test(textured_aniso),
+        cmocka_unit_test(float_depth),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }
