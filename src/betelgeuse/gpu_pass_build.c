@@ -249,11 +249,61 @@ static bg_status build_ray_passes(bg_renderer *r, const bg_scene_state *state, c
     return BG_OK;
 }
 
-/* Whether object o needs a shadow pass: it must cast shadows, and some other object must exist for
- * it to shadow (a lone convex object can only shadow itself, which is never tested). */
-static bool shadow_needed(const bg_scene_state *state, uint32_t o)
+/* Signed side of point p (w = 1) or direction p (w = 0) relative to the plane of object o. */
+static double plane_side(const bg_object_data *o, const double p[3], double w)
 {
-    return state->objects[o].casts_shadows && state->object_count > 1;
+    const double(*nm)[3] = o->normal_to_world;
+    double n[3] = {nm[0][1], nm[1][1], nm[2][1]};
+    double q[3] = {o->to_world[0][3], o->to_world[1][3], o->to_world[2][3]};
+    return (p[0] - w * q[0]) * n[0] + (p[1] - w * q[1]) * n[1] + (p[2] - w * q[2]) * n[2];
+}
+
+/* Whether a plane can block a light of the group from any other object's surface: only if some
+ * other object reaches the far side of the plane from that light (or the light is on the plane,
+ * or another plane, which reaches everywhere, exists). Points on the plane itself are never tested
+ * against it. */
+static bool plane_can_shadow(const bg_scene_state *state, uint32_t o, int group)
+{
+    const bg_object_data *plane = &state->objects[o];
+    uint32_t first = (uint32_t)group * GPU_LIGHTS_PER_GROUP;
+    for (uint32_t k = first; k < state->light_count && k < first + GPU_LIGHTS_PER_GROUP; k++) {
+        const bg_light *l = &state->lights[k];
+        double side;
+        if (l->type == BG_LIGHT_DIRECTIONAL) {
+            double towards[3] = {-l->direction.x, -l->direction.y, -l->direction.z};
+            side = plane_side(plane, towards, 0.0);
+        } else {
+            double at[3] = {l->position.x, l->position.y, l->position.z};
+            side = plane_side(plane, at, 1.0);
+        }
+        if (side == 0.0)
+            return true;
+        for (uint32_t j = 0; j < state->object_count; j++) {
+            const bg_object_data *other = &state->objects[j];
+            if (j == o)
+                continue;
+            if (!other->bounded)
+                return true;
+            for (int c = 0; c < 8; c++) {
+                double p[3] = {(c & 1) ? other->bounds_max[0] : other->bounds_min[0],
+                               (c & 2) ? other->bounds_max[1] : other->bounds_min[1],
+                               (c & 4) ? other->bounds_max[2] : other->bounds_min[2]};
+                if (plane_side(plane, p, 1.0) * side <= 0.0)
+                    return true;
+            }
+        }
+    }
+    return false;
+}
+
+/* Whether object o needs a shadow pass for a light group: it must cast shadows, some other object
+ * must exist for it to shadow (a lone convex object can only shadow itself, which is never tested),
+ * and a plane must have something on its far side from one of the group's lights. */
+static bool shadow_needed(const bg_scene_state *state, uint32_t o, int group)
+{
+    if (!state->objects[o].casts_shadows || state->object_count < 2)
+        return false;
+    return state->objects[o].bounded || plane_can_shadow(state, o, group);
 }
 
 bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
@@ -280,10 +330,10 @@ bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg
     bool cull = !(r->key.disable_skips & BG_SKIP_SHADOW_CULL);
     bool any_shadow = false;
     for (uint32_t o = 0; o < state->object_count && st == BG_OK; o++) {
-        bool needed = shadow_needed(state, o);
-        if (cull && !needed)
-            continue;
         for (int g = 0; g < groups && st == BG_OK; g++) {
+            bool needed = shadow_needed(state, o, g);
+            if (cull && !needed)
+                continue;
             st = gpu_shadow_pass_build(r, state, o, g, needed, &p->shadow[(size_t)o * (size_t)groups + (size_t)g]);
             any_shadow = true;
         }
