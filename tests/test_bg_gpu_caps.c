@@ -15,6 +15,7 @@
 #include "betelgeuse.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
+#include "util_gpu.h"
 
 enum { W = 80, H = 60 };
 
@@ -30,13 +31,8 @@ static float *render(macs_headless *h, const macs_limits *caps, scene_id id, bg_
                                                                     : real.max_draw_buffers))
             fail_msg("draw buffer cap %d not applied: effective %d", caps->max_draw_buffers, eff.max_draw_buffers);
     }
-    bg_renderer_desc d = {0};
-    d.context = ctx;
-    bg_renderer *r = NULL;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_int_equal(scenes_build(id, s), BG_OK);
+    bg_renderer *r = util_renderer(ctx);
+    bg_scene *s = util_scene(id);
     float *px = malloc((size_t)W * H * 4 * sizeof(float));
     assert_non_null(px);
     bg_render_settings set = bg_render_settings_init();

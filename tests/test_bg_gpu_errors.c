@@ -17,32 +17,14 @@
 #include "scenes/image_metrics.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
+#include "util_gpu.h"
 
 /* ---- helpers ---- */
-
-static bg_renderer *new_renderer(macs_context *ctx)
-{
-    bg_renderer_desc d = {0};
-    d.context = ctx;
-    bg_renderer *r = NULL;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
-    assert_non_null(r);
-    assert_int_equal(bg_renderer_error(r), BG_OK);
-    assert_string_equal(bg_renderer_error_message(r), "");
-    return r;
-}
 
 static bg_scene *new_scene(void)
 {
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    return s;
-}
-
-static bg_scene *shared_scene(scene_id id)
-{
-    bg_scene *s = new_scene();
-    assert_int_equal(scenes_build(id, s), BG_OK);
     return s;
 }
 
@@ -93,7 +75,7 @@ static void null_arguments(void **state)
     assert_int_equal(bg_renderer_create(&d, NULL), BG_ERR_INVALID_ARGUMENT);
     bg_renderer_destroy(NULL);
 
-    r = new_renderer(ctx);
+    r = util_renderer(ctx);
     bg_scene *s = small_scene();
     unsigned char px[8 * 8 * 4];
     bg_image img = {8, 8, BG_PIXEL_RGBA8, 0, px};
@@ -119,7 +101,7 @@ static void null_arguments(void **state)
 static void uncommitted_scene(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = new_scene();
     bg_material m = bg_material_init();
     uint32_t mat = 0, id = 0;
@@ -148,7 +130,7 @@ static void image_sizes(void **state)
     macs_limits eff;
     macs_context_limits(ctx, NULL, &eff);
     assert_int_equal(eff.max_texture_size, 64);
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = small_scene();
     bg_render_settings set = bg_render_settings_init();
     unsigned char *px = calloc((size_t)65 * 65, 4);
@@ -191,7 +173,7 @@ static void image_sizes(void **state)
 static void bad_settings(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = small_scene();
     unsigned char px[8 * 8 * 4];
     bg_image img = {8, 8, BG_PIXEL_RGBA8, 0, px};
@@ -245,7 +227,7 @@ static void bad_settings(void **state)
 static void first_error_is_sticky(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = small_scene();
     unsigned char px[8 * 8 * 4];
     bg_image img = {8, 8, BG_PIXEL_RGBA8, 0, px};
@@ -277,7 +259,7 @@ static void empty_scene_is_background(void **state)
 {
     enum { W = 24, H = 16 };
     macs_context *ctx = util_context(*state, NULL);
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = new_scene();
     assert_int_equal(bg_scene_commit(s), BG_OK);
     bg_render_settings set = bg_render_settings_init();
@@ -314,7 +296,7 @@ static void unlit_scene_matches_cpu(void **state)
 {
     enum { W = 96, H = 96 };
     macs_context *ctx = util_context(*state, NULL);
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = new_scene();
     uint32_t tex = 0, globe = 0, glow = 0, grey = 0, id = 0;
     assert_int_equal(scenes_add_earth_texture(s, &tex), BG_OK);
@@ -408,7 +390,7 @@ static void renderers_do_not_leak(void **state)
     cd.allocator.user = &mc;
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
-    bg_scene *s = shared_scene(SCENE_GLASS);
+    bg_scene *s = util_scene(SCENE_GLASS);
     float px[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, px};
     bg_render_settings set = bg_render_settings_init();
@@ -556,12 +538,12 @@ static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
     cd.get_proc_address_user = &ls;
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
-    bg_scene *s = shared_scene(SCENE_GLASS);
+    bg_scene *s = util_scene(SCENE_GLASS);
     bg_render_settings set = bg_render_settings_init();
     float px[W * H * 4], want[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, px};
 
-    bg_renderer *r = new_renderer(ctx);
+    bg_renderer *r = util_renderer(ctx);
     oom_inject = 1;
     oom_injected = 0;
     bg_status st = bg_render_gpu(r, s, &set, &img);
@@ -578,7 +560,7 @@ static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
     /* the same renderer renders once memory is back, exactly as a fresh one does */
     render_ok(r, s, &set, &img);
     assert_int_equal(bg_renderer_error(r), BG_OK);
-    bg_renderer *fresh = new_renderer(ctx);
+    bg_renderer *fresh = util_renderer(ctx);
     bg_image wi = {W, H, BG_PIXEL_RGBA32F, 0, want};
     render_ok(fresh, s, &set, &wi);
     assert_memory_equal(px, want, sizeof px);

@@ -23,46 +23,25 @@
 #include "scenes/image_metrics.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
+#include "util_gpu.h"
 
 enum { W = 160, H = 120 };
 
 /* One context and renderer for the whole suite: the renderer also meets scene after scene. */
-typedef struct fixture {
-    macs_headless *headless;
-    macs_context *ctx;
-    bg_renderer *renderer;
-} fixture;
-
-static fixture fx;
+static util_gpu fx;
 
 static int group_setup(void **state)
 {
     (void)state;
-    fx.headless = util_headless();
-    fx.ctx = util_context(fx.headless, NULL);
-    bg_renderer_desc d = {0};
-    d.context = fx.ctx;
-    assert_int_equal(bg_renderer_create(&d, &fx.renderer), BG_OK);
+    util_gpu_open(&fx, NULL);
     return 0;
 }
 
 static int group_teardown(void **state)
 {
     (void)state;
-    bg_renderer_destroy(fx.renderer);
-    macs_context_destroy(fx.ctx);
-    macs_headless_destroy(fx.headless);
+    util_gpu_close(&fx);
     return 0;
-}
-
-static bg_scene *build(scene_id id)
-{
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    bg_status st = scenes_build(id, s);
-    if (st != BG_OK)
-        fail_msg("%s: %s", scenes_name(id), bg_scene_error_message(s));
-    return s;
 }
 
 static void render_gpu(bg_scene *s, const bg_render_settings *set, bg_image *img, const char *name)
@@ -126,7 +105,7 @@ static void check_stats(scene_id id, const bg_scene *s, const bg_render_stats *s
 static void check_scene(scene_id id)
 {
     const char *name = scenes_name(id);
-    bg_scene *s = build(id);
+    bg_scene *s = util_scene(id);
     unsigned char *cpu = malloc((size_t)W * H * 4), *gpu = malloc((size_t)W * H * 4);
     float *gpuf = malloc((size_t)W * H * 4 * sizeof(float));
     assert_non_null(cpu);
@@ -204,7 +183,7 @@ static void thresholds_catch_half_pixel_offset(void **state)
     assert_non_null(a);
     assert_non_null(b);
     for (int id = 0; id < SCENE_COUNT; id++) {
-        bg_scene *s = build((scene_id)id);
+        bg_scene *s = util_scene((scene_id)id);
         bg_render_settings set = bg_render_settings_init();
         bg_image ai = {W, H, BG_PIXEL_RGBA8, 0, a}, bi = {W, H, BG_PIXEL_RGBA8, 0, b};
         assert_int_equal(bg_render_cpu(s, &set, &ai), BG_OK);
@@ -265,7 +244,7 @@ static void float_depth(void **state)
     assert_non_null(cpu);
     assert_non_null(gpu);
     for (int k = 0; k < 2; k++) {
-        bg_scene *s = build(ids[k]);
+        bg_scene *s = util_scene(ids[k]);
         bg_render_settings set = bg_render_settings_init();
         bg_image ci = {W, H, BG_PIXEL_RGBA8, 0, cpu}, gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
         assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);

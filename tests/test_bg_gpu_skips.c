@@ -14,34 +14,23 @@
 #include "betelgeuse.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
+#include "util_gpu.h"
 
 enum { W = 96, H = 72 };
 
-typedef struct fixture {
-    macs_headless *headless;
-    macs_context *ctx;
-    bg_renderer *renderer;
-} fixture;
-
-static fixture fx;
+static util_gpu fx;
 
 static int group_setup(void **state)
 {
     (void)state;
-    fx.headless = util_headless();
-    fx.ctx = util_context(fx.headless, NULL);
-    bg_renderer_desc d = {0};
-    d.context = fx.ctx;
-    assert_int_equal(bg_renderer_create(&d, &fx.renderer), BG_OK);
+    util_gpu_open(&fx, NULL);
     return 0;
 }
 
 static int group_teardown(void **state)
 {
     (void)state;
-    bg_renderer_destroy(fx.renderer);
-    macs_context_destroy(fx.ctx);
-    macs_headless_destroy(fx.headless);
+    util_gpu_close(&fx);
     return 0;
 }
 
@@ -50,14 +39,6 @@ typedef struct run {
     float *px;
     bg_render_stats stats;
 } run;
-
-static bg_scene *build(scene_id id)
-{
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_int_equal(scenes_build(id, s), BG_OK);
-    return s;
-}
 
 static run render(bg_scene *s, unsigned disable, bool timing, int max_depth)
 {
@@ -92,7 +73,7 @@ static void assert_same_image(const run *on, const run *off, const char *what)
 /* Renders a scene with every skip on and with the given ones off; both runs are returned. */
 static void compare(scene_id id, unsigned disable, bool timing, int max_depth, run *on, run *off)
 {
-    bg_scene *s = build(id);
+    bg_scene *s = util_scene(id);
     *on = render(s, 0, timing, max_depth);
     *off = render(s, disable, timing, max_depth);
     char what[128];
@@ -249,7 +230,7 @@ static void facing(void **state)
 static void timing_changes_nothing(void **state)
 {
     (void)state;
-    bg_scene *s = build(SCENE_GLASS);
+    bg_scene *s = util_scene(SCENE_GLASS);
     run plain = render(s, 0, false, -1), timed = render(s, 0, true, -1);
     assert_same_image(&plain, &timed, "glass, gpu_timing on");
     assert_memory_equal(plain.stats.passes, timed.stats.passes, sizeof plain.stats.passes);

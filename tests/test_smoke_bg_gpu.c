@@ -16,6 +16,7 @@
 #include "scenes/image_metrics.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
+#include "util_gpu.h"
 
 enum { W = 96, H = 96 };
 
@@ -23,13 +24,8 @@ static void check_scene(macs_headless *h, scene_id id)
 {
     const char *name = scenes_name(id);
     macs_context *ctx = util_context(h, NULL);
-    bg_renderer_desc d = {0};
-    d.context = ctx;
-    bg_renderer *r = NULL;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_int_equal(scenes_build(id, s), BG_OK);
+    bg_renderer *r = util_renderer(ctx);
+    bg_scene *s = util_scene(id);
 
     static unsigned char cpu[W * H * 4], gpu[W * H * 4];
     static float gpuf[W * H * 4];

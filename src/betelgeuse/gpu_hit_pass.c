@@ -193,16 +193,7 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
 
     bool stencil_skip = !(r->key.disable_skips & BG_SKIP_STENCIL);
     macs_pass_desc desc;
-    memset(&desc, 0, sizeof desc);
-    desc.main = main.s;
-    desc.inputs = inputs;
-    desc.input_count = input_count;
-    desc.input_textures = input_tex;
-    desc.uniforms = uniforms;
-    desc.uniform_count = nu;
-    desc.outputs = outputs;
-    desc.output_count = no;
-    desc.output_textures = output_tex;
+    gpu_pass_desc_init(&desc, main.s, inputs, input_tex, input_count, uniforms, nu, outputs, output_tex, no);
     desc.depth_stencil = r->depth;
     desc.depth.test = true;
     desc.depth.write = true;

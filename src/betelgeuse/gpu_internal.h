@@ -155,6 +155,12 @@ void gpu_scene_textures_release(bg_renderer *r);
 /* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
 bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
 void gpu_passes_release(bg_renderer *r);
+/* Fills the parts of a pass description every pass sets; depth, stencil, blend and colour mask stay
+ * zero (off, default) for the caller to set. */
+void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
+                        macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,
+                        int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
+                        int output_count);
 /* Creates one pass whose functions are the listed glsl110/ files (plus extra text); reports errors. */
 bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *defines,
                           macs_pass_desc *desc, macs_pass **out);

@@ -7,6 +7,23 @@
 #include "alloc.h"
 #include "gpu_internal.h"
 
+void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
+                        macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,
+                        int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
+                        int output_count)
+{
+    memset(d, 0, sizeof *d);
+    d->main = main;
+    d->inputs = inputs;
+    d->input_count = input_count;
+    d->input_textures = input_tex;
+    d->uniforms = uniforms;
+    d->uniform_count = uniform_count;
+    d->outputs = outputs;
+    d->output_count = output_count;
+    d->output_textures = output_tex;
+}
+
 bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
                           macs_pass_desc *desc, macs_pass **out)
 {
@@ -45,16 +62,8 @@ static bg_status simple_pass(bg_renderer *r, const char *what, const char *const
 {
     macs_output_desc out_desc[3] = {{"out0", value}, {"out1", NULL}, {"out2", NULL}};
     macs_pass_desc desc;
-    memset(&desc, 0, sizeof desc);
-    desc.main = main;
-    desc.inputs = inputs;
-    desc.input_count = input_count;
-    desc.input_textures = input_tex;
-    desc.uniforms = uniforms;
-    desc.uniform_count = uniform_count;
-    desc.outputs = out_desc;
-    desc.output_count = output_count;
-    desc.output_textures = outputs;
+    gpu_pass_desc_init(&desc, main, inputs, input_tex, input_count, uniforms, uniform_count, out_desc, outputs,
+                       output_count);
     desc.blend = blend;
     if (stencil) {
         desc.depth_stencil = r->depth;
@@ -144,14 +153,8 @@ static bg_status build_ray_passes(bg_renderer *r, const bg_scene_state *state, c
         }
         macs_pass_desc desc;
         macs_output_desc od = {"none", "vec4(0.0)"};
-        memset(&desc, 0, sizeof desc);
-        desc.main = "if (texture2D(bg_ray_weight, macs_uv).a <= 0.0) discard;\n";
-        desc.inputs = in;
-        desc.input_count = 1;
-        desc.input_textures = in_tex;
-        desc.outputs = &od;
-        desc.output_count = 1;
-        desc.output_textures = outs;
+        gpu_pass_desc_init(&desc, "if (texture2D(bg_ray_weight, macs_uv).a <= 0.0) discard;\n", in, in_tex, 1, NULL, 0,
+                           &od, outs, 1);
         desc.depth_stencil = r->depth;
         desc.stencil = s;
         desc.color_mask = MACS_COLOR_MASK_NONE;

@@ -1,0 +1,49 @@
+/* Test helpers for the GPU renderer suites (util_gpu.h). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "util_gl.h"
+#include "util_gpu.h"
+
+bg_renderer *util_renderer(macs_context *ctx)
+{
+    bg_renderer_desc d = {0};
+    d.context = ctx;
+    bg_renderer *r = NULL;
+    assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
+    assert_non_null(r);
+    assert_int_equal(bg_renderer_error(r), BG_OK);
+    assert_string_equal(bg_renderer_error_message(r), "");
+    return r;
+}
+
+void util_gpu_open(util_gpu *g, const macs_limits *caps)
+{
+    g->headless = util_headless();
+    g->ctx = util_context(g->headless, caps);
+    g->renderer = util_renderer(g->ctx);
+}
+
+void util_gpu_close(util_gpu *g)
+{
+    bg_renderer_destroy(g->renderer);
+    macs_context_destroy(g->ctx);
+    macs_headless_destroy(g->headless);
+    g->renderer = NULL;
+    g->ctx = NULL;
+    g->headless = NULL;
+}
+
+bg_scene *util_scene(scene_id id)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_status st = scenes_build(id, s);
+    if (st != BG_OK)
+        fail_msg("%s: %s", scenes_name(id), bg_scene_error_message(s));
+    return s;
+}
