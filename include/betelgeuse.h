@@ -341,8 +341,9 @@ typedef struct bg_render_settings {
     double min_weight;  /* a ray whose path weight is below this in every channel is not followed */
     bg_output_encoding encoding;
     int threads;        /* CPU renderer only; 0 = online cores, at most 256 */
-    double dmax;        /* GPU renderer only: the largest ray distance kept by the depth test, for
-                           every level; 0 = computed per level from the scene's bounds */
+    double dmax;        /* GPU renderer only: the distance up to which depth is linear and finest
+                           (t / (2 dmax)); farther hits are kept on a compressed scale
+                           (docs/gpu_pipeline.md); 0 = per level from the scene's bounds */
     bool gpu_timing;    /* GPU renderer only: measure wall time per phase and count shaded fragments
                            (waits for the GPU between phases, so it slows the frame down) */
     unsigned gpu_disable_skips; /* GPU renderer only: BG_SKIP_* bits to switch off (testing) */

@@ -36,11 +36,8 @@ static void box_add(box3 *b, bool *empty, const double p[3])
     *empty = false;
 }
 
-void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
-                     double *dmax)
+void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax)
 {
-    (void)width;
-    (void)height;
     int levels = settings->max_depth + 1;
     if (settings->dmax > 0.0) {
         for (int k = 0; k < levels; k++)

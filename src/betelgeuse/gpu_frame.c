@@ -478,7 +478,7 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     double start = f.timing ? now_ms() : 0.0;
     if (f.timing)
         macs_context_finish(r->ctx);
-    gpu_dmax_levels(state, settings, image->width, image->height, f.dmax);
+    gpu_dmax_levels(state, settings, f.dmax);
 
     phase_start(&f);
     st = prepare(&f, scene, image->width, image->height);

@@ -135,8 +135,7 @@ uint64_t gpu_scene_fingerprint(const bg_scene_state *state);
 
 /* ---- gpu_bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
-void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
-                     double *dmax);
+void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax);
 /* The pixel rectangle (GL window coordinates, bottom-up) that holds every camera ray able to hit a
  * bounded object; false when the object may cover the whole image (or is behind the camera). */
 bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
