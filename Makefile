@@ -146,8 +146,10 @@ SMOKE_TESTS ?= $(filter $(BUILD)/tests/test_smoke%,$(TEST_BIN))
 check: all glsl-check $(TEST_BIN)
 	@TEST_ENV="$(TEST_ENV)" sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
-# valgrind over the MACS suites, leaks as errors; tests/valgrind.supp holds only Mesa/LLVM-internal leaks.
-VALGRIND_TESTS ?= $(filter $(BUILD)/tests/test_macs%,$(TEST_BIN))
+# valgrind over the MACS suites and the GPU renderer's error and smoke suites (renderer create/destroy
+# cycles, failure paths, the paper scenes), leaks as errors; tests/valgrind.supp holds only
+# Mesa/LLVM-internal leaks.
+VALGRIND_TESTS ?= $(filter $(BUILD)/tests/test_macs% $(BUILD)/tests/test_bg_gpu_errors $(BUILD)/tests/test_smoke_bg_gpu,$(TEST_BIN))
 valgrind: $(VALGRIND_TESTS)
 	@for t in $(VALGRIND_TESTS); do \
 	  echo "valgrind $$t"; \
