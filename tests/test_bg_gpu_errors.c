@@ -18,6 +18,7 @@
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_oom.h"
 
 /* ---- helpers ---- */
 
@@ -451,105 +452,20 @@ static void renderer_allocation_failure(void **state)
 
 /* ---- GPU out of memory ---- */
 
-/* A loader wrapper: while oom_inject is set, every glTexImage2D and glRenderbufferStorage reports
- * GL_OUT_OF_MEMORY through the next glGetError, as a full GPU would. */
-typedef struct oom_loader_state {
-    macs_get_proc_address_fn real;
-    void *real_user;
-} oom_loader_state;
-
-typedef void (*tex_image_fn)(unsigned, int, int, int, int, int, unsigned, unsigned, const void *);
-typedef void (*storage_fn)(unsigned, unsigned, int, int);
-typedef unsigned (*get_error_fn)(void);
-static tex_image_fn real_tex_image;
-static storage_fn real_storage, real_storage_ext;
-static get_error_fn real_get_error;
-static int oom_inject, oom_pending, oom_injected;
-
-static void note_allocation(void)
-{
-    if (oom_inject) {
-        oom_pending = 1;
-        oom_injected++;
-    }
-}
-
-static void fake_tex_image(unsigned target, int level, int ifmt, int w, int h, int border, unsigned fmt,
-                           unsigned type, const void *data)
-{
-    real_tex_image(target, level, ifmt, w, h, border, fmt, type, data);
-    note_allocation();
-}
-
-static void fake_storage(unsigned target, unsigned ifmt, int w, int h)
-{
-    real_storage(target, ifmt, w, h);
-    note_allocation();
-}
-
-static void fake_storage_ext(unsigned target, unsigned ifmt, int w, int h)
-{
-    real_storage_ext(target, ifmt, w, h);
-    note_allocation();
-}
-
-static unsigned fake_get_error(void)
-{
-    if (oom_pending) {
-        oom_pending = 0;
-        return 0x0505; /* GL_OUT_OF_MEMORY */
-    }
-    return real_get_error();
-}
-
-static void *oom_loader(const char *name, void *user)
-{
-    oom_loader_state *s = user;
-    void *p = s->real(name, s->real_user);
-    void *fake = NULL;
-    if (!p)
-        return p;
-    if (strcmp(name, "glTexImage2D") == 0) {
-        memcpy(&real_tex_image, &p, sizeof p);
-        tex_image_fn f = fake_tex_image;
-        memcpy(&fake, &f, sizeof fake);
-    } else if (strcmp(name, "glRenderbufferStorage") == 0) {
-        memcpy(&real_storage, &p, sizeof p);
-        storage_fn f = fake_storage;
-        memcpy(&fake, &f, sizeof fake);
-    } else if (strcmp(name, "glRenderbufferStorageEXT") == 0) {
-        memcpy(&real_storage_ext, &p, sizeof p);
-        storage_fn f = fake_storage_ext;
-        memcpy(&fake, &f, sizeof fake);
-    } else if (strcmp(name, "glGetError") == 0) {
-        memcpy(&real_get_error, &p, sizeof p);
-        get_error_fn f = fake_get_error;
-        memcpy(&fake, &f, sizeof fake);
-    }
-    return fake ? fake : p;
-}
-
 static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
 {
     enum { W = 48, H = 32 };
-    oom_loader_state ls = {macs_headless_get_proc_address(*state), macs_headless_proc_user(*state)};
-    macs_context_desc cd = {0};
-    cd.get_proc_address = oom_loader;
-    cd.get_proc_address_user = &ls;
-    macs_context *ctx = NULL;
-    assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
+    macs_context *ctx = util_oom_context(*state);
     bg_scene *s = util_scene(SCENE_GLASS);
     bg_render_settings set = bg_render_settings_init();
     float px[W * H * 4], want[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, px};
 
     bg_renderer *r = util_renderer(ctx);
-    oom_inject = 1;
-    oom_injected = 0;
+    util_oom_start(-1);
     bg_status st = bg_render_gpu(r, s, &set, &img);
-    oom_inject = 0;
-    oom_pending = 0;
-    assert_true(oom_injected > 0); /* the render did allocate GPU memory */
+    util_oom_stop();
+    assert_true(util_oom_injected() > 0); /* the render did allocate GPU memory */
     if (st != BG_ERR_GPU_OUT_OF_MEMORY)
         fail_msg("render under GL_OUT_OF_MEMORY returned %s (%s)", bg_status_string(st), bg_renderer_error_message(r));
     assert_int_equal(bg_renderer_error(r), BG_ERR_GPU_OUT_OF_MEMORY);
@@ -569,10 +485,9 @@ static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
     /* running out again later, with everything already allocated at this size, is fine too: a new
      * size needs new textures */
     bg_image small = {W / 2, H / 2, BG_PIXEL_RGBA32F, 0, px};
-    oom_inject = 1;
+    util_oom_start(-1);
     st = bg_render_gpu(r, s, &set, &small);
-    oom_inject = 0;
-    oom_pending = 0;
+    util_oom_stop();
     assert_int_equal(st, BG_ERR_GPU_OUT_OF_MEMORY);
     bg_renderer_clear_error(r);
     render_ok(r, s, &set, &img);

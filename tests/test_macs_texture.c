@@ -11,6 +11,7 @@
 #include <cmocka.h>
 
 #include "util_gl.h"
+#include "util_oom.h"
 
 static void rgba32f_round_trip_is_bit_exact(void **state)
 {
@@ -212,66 +213,14 @@ static void depth_stencil_reports_its_format(void **state)
     macs_context_destroy(ctx); /* also destroys ds */
 }
 
-/* A loader wrapper that makes glTexImage2D report GL_OUT_OF_MEMORY once, like a full GPU would. */
-typedef struct oom_state {
-    macs_get_proc_address_fn real;
-    void *real_user;
-} oom_state;
-static void (*real_tex_image)(unsigned, int, int, int, int, int, unsigned, unsigned, const void *);
-static unsigned (*real_get_error)(void);
-static int oom_armed, oom_pending;
-
-static void fake_tex_image(unsigned target, int level, int ifmt, int w, int h, int border, unsigned fmt,
-                           unsigned type, const void *data)
-{
-    real_tex_image(target, level, ifmt, w, h, border, fmt, type, data);
-    if (oom_armed) {
-        oom_armed = 0;
-        oom_pending = 1;
-    }
-}
-
-static unsigned fake_get_error(void)
-{
-    if (oom_pending) {
-        oom_pending = 0;
-        return 0x0505; /* GL_OUT_OF_MEMORY */
-    }
-    return real_get_error();
-}
-
-static void *oom_loader(const char *name, void *user)
-{
-    oom_state *s = user;
-    void *p = s->real(name, s->real_user);
-    void *fake = NULL;
-    if (strcmp(name, "glTexImage2D") == 0) {
-        memcpy(&real_tex_image, &p, sizeof p);
-        void (*f)(unsigned, int, int, int, int, int, unsigned, unsigned, const void *) = fake_tex_image;
-        memcpy(&fake, &f, sizeof fake);
-        return fake;
-    }
-    if (strcmp(name, "glGetError") == 0) {
-        memcpy(&real_get_error, &p, sizeof p);
-        unsigned (*f)(void) = fake_get_error;
-        memcpy(&fake, &f, sizeof fake);
-        return fake;
-    }
-    return p;
-}
-
 static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
 {
-    oom_state s = {macs_headless_get_proc_address(*state), macs_headless_proc_user(*state)};
-    macs_context_desc cd = {0};
-    cd.get_proc_address = oom_loader;
-    cd.get_proc_address_user = &s;
-    macs_context *ctx = NULL;
-    assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
+    macs_context *ctx = util_oom_context(*state);
     macs_texture_desc d = {4, 4, 0, 0, 0, NULL, 0};
     macs_texture *t = NULL;
-    oom_armed = 1;
+    util_oom_start(1); /* the next allocation fails, like on a full GPU */
     assert_int_equal(macs_texture_create(ctx, &d, &t), MACS_ERR_GPU_OUT_OF_MEMORY);
+    assert_int_equal(util_oom_injected(), 1);
     assert_null(t);
     assert_int_equal(macs_context_error(ctx), MACS_ERR_GPU_OUT_OF_MEMORY);
     macs_context_clear_error(ctx);
