@@ -53,8 +53,11 @@ SCENES_OBJ := $(SCENES_SRC:%.c=$(BUILD)/%.o)
 EXAMPLE_SRC := $(sort $(wildcard examples/*.c))
 EXAMPLE_BIN := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/examples/%)
 
+# Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export).
 BENCH_SRC := $(sort $(wildcard bench/*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
+BENCH_LIB_SRC := $(sort $(wildcard bench/lib/*.c))
+BENCH_LIB_OBJ := $(BENCH_LIB_SRC:%.c=$(BUILD)/%.o)
 
 MACS_A  := $(BUILD)/libmacs.a
 BG_A    := $(BUILD)/libbetelgeuse.a
@@ -70,7 +73,7 @@ FORCE:
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
 
-$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*.h tests/*.h examples/scenes/*.h)
+$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
@@ -128,9 +131,9 @@ $(BUILD)/examples/%: examples/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
 
-$(BUILD)/bench/%: bench/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
+$(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
+	$(CC) $(ALL_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
 examples: all $(EXAMPLE_BIN)
 
