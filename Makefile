@@ -160,10 +160,18 @@ valgrind: $(VALGRIND_TESTS)
 	    --show-leak-kinds=definite,indirect --suppressions=tests/valgrind.supp -q $$t >/dev/null || exit 1; \
 	done; echo "valgrind: clean"
 
+# Benchmarks and stress (DESIGN.md section 8) run under the test environment's GL 2.1 / GLSL 1.10, so
+# they measure what the tests check. QUICK=1 makes them short. Results: tables on stdout, CSV and (with
+# gnuplot) PNG plots in BENCH_OUT; progress on stderr.
+BENCH_OUT ?= bench/out
+BENCH_ENV := $(TEST_ENV) QUICK=$(QUICK)
+BENCH_PROGRAMS := bench_paper bench_scaling bench_tradeoffs bench_phases
 bench: all $(BENCH_BIN)
-	@for b in $(filter $(BUILD)/bench/bench%,$(BENCH_BIN)); do $$b || exit 1; done
+	@for b in $(BENCH_PROGRAMS); do env $(BENCH_ENV) $(BUILD)/bench/$$b $(BENCH_OUT) || exit 1; echo; done
+	@if command -v gnuplot >/dev/null 2>&1; then gnuplot -e "dir='$(BENCH_OUT)'" bench/plots.gp && \
+	  echo "plots: $(BENCH_OUT)/*.png"; else echo "gnuplot is not installed: no plots"; fi
 stress: all $(BENCH_BIN)
-	@for b in $(filter $(BUILD)/bench/stress%,$(BENCH_BIN)); do $$b || exit 1; done
+	@env $(BENCH_ENV) $(BUILD)/bench/stress $(BENCH_OUT)
 
 install: all
 	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
