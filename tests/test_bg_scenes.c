@@ -77,7 +77,7 @@ static void test_every_scene_builds(void **state)
     bg_scene *s;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
     assert_int_equal(scenes_build(SCENE_COUNT, s), BG_ERR_INVALID_ARGUMENT);
-    scene_params bad = {0, 300};
+    scene_params bad = {.lights = 300};
     assert_int_equal(scenes_build_ex(SCENE_MANY_LIGHTS, &bad, s), BG_ERR_INVALID_ARGUMENT);
     bg_scene_destroy(s);
 }
@@ -168,7 +168,7 @@ static void test_scaling_scenes(void **state)
     (void)state;
     const int spheres[] = {1, 2, 7, 16, 64, 100};
     for (size_t i = 0; i < sizeof spheres / sizeof spheres[0]; i++) {
-        scene_params p = {spheres[i], 0};
+        scene_params p = {.spheres = spheres[i]};
         bg_scene *s;
         const bg_scene_state *st = build(SCENE_MANY_SPHERES, &p, &s);
         assert_int_equal(count_shape(st, BG_SHAPE_SPHERE), spheres[i]);
@@ -188,7 +188,7 @@ static void test_scaling_scenes(void **state)
     }
     const int lights[] = {1, 3, 8, 16};
     for (size_t i = 0; i < sizeof lights / sizeof lights[0]; i++) {
-        scene_params p = {0, lights[i]};
+        scene_params p = {.lights = lights[i]};
         bg_scene *s;
         const bg_scene_state *st = build(SCENE_MANY_LIGHTS, &p, &s);
         assert_int_equal(st->light_count, (uint32_t)lights[i]);

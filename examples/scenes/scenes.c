@@ -14,6 +14,39 @@
 
 static const double PI = 3.14159265358979323846;
 
+/* Where a scene is put in the world: p -> s p + offset (scene_params.scale, .offset). Every position
+ * the builders write goes through it, so one scene exists at any size and place with the same ideal
+ * image; the stress program (bench/stress.c) measures what float32 makes of that. */
+typedef struct placement {
+    double s;
+    bg_vec3 offset;
+} placement;
+
+static bg_vec3 placed_point(const placement *at, bg_vec3 p)
+{
+    return bg_vec3_make(at->s * p.x + at->offset.x, at->s * p.y + at->offset.y, at->s * p.z + at->offset.z);
+}
+
+/* The similarity prefixed to an object transform: the prototype, and so every UV, stays the same.
+ * For scale 1 and offset 0 both factors are exact identities in double, so the default scenes keep
+ * their bits. */
+static bg_mat4 placed(const placement *at, bg_mat4 transform)
+{
+    return bg_mat4_mul(bg_mat4_translate(at->offset.x, at->offset.y, at->offset.z),
+                       bg_mat4_mul(bg_mat4_scale(at->s, at->s, at->s), transform));
+}
+
+/* A light moved with the scene. Attenuation 1 / (kc + kl d + kq d^2) sees distances s times longer,
+ * so kl / s and kq / s^2 keep the arriving radiance, and with it the image, unchanged. Directions
+ * (spot axis, sun) do not change under a similarity. */
+static bg_light placed_light(const placement *at, bg_light l)
+{
+    l.position = placed_point(at, l.position);
+    l.attenuation[1] /= at->s;
+    l.attenuation[2] /= at->s * at->s;
+    return l;
+}
+
 static const char *const names[SCENE_COUNT] = {
     "paper_earth", "paper_earth_shadow", "mirror", "glass",
     "many_spheres", "many_lights", "all_primitives", "textured_aniso",
@@ -156,42 +189,50 @@ static bg_status material(bg_scene *scene, bg_material m, uint32_t *out)
     return bg_scene_add_material(scene, &m, out);
 }
 
-static bg_status object(bg_scene *scene, bg_shape shape, bg_mat4 transform, uint32_t mat)
+static bg_status object(bg_scene *scene, const placement *at, bg_shape shape, bg_mat4 transform, uint32_t mat)
 {
     bg_object_desc d = bg_object_desc_init(shape, mat);
-    d.transform = transform;
+    d.transform = placed(at, transform);
     uint32_t id;
     return bg_scene_add_object(scene, &d, &id);
 }
 
-static bg_status sphere(bg_scene *scene, double x, double y, double z, double r, uint32_t mat)
+/* The transform bg_scene_add_sphere makes, placed. */
+static bg_status sphere(bg_scene *scene, const placement *at, double x, double y, double z, double r, uint32_t mat)
 {
-    uint32_t id;
-    return bg_scene_add_sphere(scene, bg_vec3_make(x, y, z), r, mat, &id);
+    return object(scene, at, BG_SHAPE_SPHERE, bg_mat4_mul(bg_mat4_translate(x, y, z), bg_mat4_scale(r, r, r)), mat);
 }
 
-static bg_status plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t mat)
+/* A plane through point facing +y or +z, with the frame bg_scene_add_plane gives those normals
+ * (plane_frame in src/betelgeuse/object.c: the identity for +y; x, z, -y as the columns for +z),
+ * written out so that the placement can prefix it and leave the planar UVs unchanged. */
+static bg_status plane(bg_scene *scene, const placement *at, bg_vec3 point, bool facing_z, uint32_t mat)
 {
-    uint32_t id;
-    return bg_scene_add_plane(scene, point, normal, mat, &id);
+    bg_mat4 frame = bg_mat4_identity();
+    if (facing_z) {
+        frame.m[1][1] = 0.0; frame.m[1][2] = -1.0;
+        frame.m[2][1] = 1.0; frame.m[2][2] = 0.0;
+    }
+    return object(scene, at, BG_SHAPE_PLANE, bg_mat4_mul(bg_mat4_translate(point.x, point.y, point.z), frame), mat);
 }
 
-static bg_status point_light(bg_scene *scene, double x, double y, double z, double r, double g,
+static bg_status point_light(bg_scene *scene, const placement *at, double x, double y, double z, double r, double g,
                              double b, double intensity)
 {
     bg_light l = bg_light_init();
     l.position = bg_vec3_make(x, y, z);
     l.color[0] = r; l.color[1] = g; l.color[2] = b;
     l.intensity = intensity;
+    l = placed_light(at, l);
     uint32_t id;
     return bg_scene_add_light(scene, &l, &id);
 }
 
-static bg_status camera(bg_scene *scene, bg_vec3 position, bg_vec3 look_at, double fov)
+static bg_status camera(bg_scene *scene, const placement *at, bg_vec3 position, bg_vec3 look_at, double fov)
 {
     bg_camera c = bg_camera_init();
-    c.position = position;
-    c.look_at = look_at;
+    c.position = placed_point(at, position);
+    c.look_at = placed_point(at, look_at);
     c.fov_y_degrees = fov;
     return bg_scene_set_camera(scene, &c);
 }
@@ -206,7 +247,7 @@ static bg_status ambient(bg_scene *scene, double v)
 
 /* The earth, tilted by 23.4 degrees and turned so Atlantic-like ocean and two continents face the
  * camera; it fills about 85% of the frame height. Used by both paper scenes. */
-static bg_status earth(bg_scene *scene, double z)
+static bg_status earth(bg_scene *scene, const placement *at, double z)
 {
     uint32_t tex, mat;
     TRY(scenes_add_earth_texture(scene, &tex));
@@ -218,33 +259,33 @@ static bg_status earth(bg_scene *scene, double z)
     bg_mat4 t = bg_mat4_mul(bg_mat4_translate(0, 0, z),
                             bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 0, 1), 23.4),
                                         bg_mat4_rotate(bg_vec3_make(0, 1, 0), -30)));
-    return object(scene, BG_SHAPE_SPHERE, t, mat);
+    return object(scene, at, BG_SHAPE_SPHERE, t, mat);
 }
 
-static bg_status paper_earth(bg_scene *scene)
+static bg_status paper_earth(bg_scene *scene, const placement *at)
 {
-    TRY(earth(scene, 0));
-    TRY(point_light(scene, 4, 3, 5, 1, 1, 1, 1.0));
-    TRY(point_light(scene, -5, 1, 3, 0.8, 0.85, 1, 0.4));
+    TRY(earth(scene, at, 0));
+    TRY(point_light(scene, at, 4, 3, 5, 1, 1, 1, 1.0));
+    TRY(point_light(scene, at, -5, 1, 3, 0.8, 0.85, 1, 0.4));
     TRY(ambient(scene, 0.5));
-    return camera(scene, bg_vec3_make(0, 0, 3.1), bg_vec3_make(0, 0, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 0, 3.1), bg_vec3_make(0, 0, 0), 45);
 }
 
 /* The lights sit up and to the right in front, so the shadow falls down-left on the wall, clear
  * of the sphere's own silhouette. */
-static bg_status paper_earth_shadow(bg_scene *scene)
+static bg_status paper_earth_shadow(bg_scene *scene, const placement *at)
 {
     uint32_t white;
-    TRY(earth(scene, 0));
+    TRY(earth(scene, at, 0));
     TRY(material(scene, diffuse(0.9, 0.9, 0.9), &white));
-    TRY(plane(scene, bg_vec3_make(0, 0, -1.6), bg_vec3_make(0, 0, 1), white));
-    TRY(point_light(scene, 5, 4, 6, 1, 1, 1, 0.9));
-    TRY(point_light(scene, 3, 5, 3, 1, 0.95, 0.9, 0.4));
+    TRY(plane(scene, at, bg_vec3_make(0, 0, -1.6), true, white));
+    TRY(point_light(scene, at, 5, 4, 6, 1, 1, 1, 0.9));
+    TRY(point_light(scene, at, 3, 5, 3, 1, 0.95, 0.9, 0.4));
     TRY(ambient(scene, 0.4));
-    return camera(scene, bg_vec3_make(0, 0, 4.5), bg_vec3_make(-0.4, -0.3, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 0, 4.5), bg_vec3_make(-0.4, -0.3, 0), 45);
 }
 
-static bg_status mirror_scene(bg_scene *scene)
+static bg_status mirror_scene(bg_scene *scene, const placement *at)
 {
     uint32_t floor, chrome, red, green, blue, yellow;
     TRY(material(scene, diffuse(0.7, 0.7, 0.7), &floor));
@@ -253,19 +294,19 @@ static bg_status mirror_scene(bg_scene *scene)
     TRY(material(scene, diffuse(0.15, 0.7, 0.2), &green));
     TRY(material(scene, diffuse(0.1, 0.25, 0.85), &blue));
     TRY(material(scene, diffuse(0.85, 0.75, 0.1), &yellow));
-    TRY(plane(scene, bg_vec3_make(0, -1, 0), bg_vec3_make(0, 1, 0), floor));
-    TRY(sphere(scene, 0, 0, 0, 1, chrome));
-    TRY(sphere(scene, -2.1, -0.5, 0.6, 0.5, red));
-    TRY(sphere(scene, 2.1, -0.5, 0.6, 0.5, green));
-    TRY(sphere(scene, 0.3, -0.5, -2.2, 0.5, blue));
-    TRY(sphere(scene, -1.0, -0.6, 1.9, 0.4, yellow));
-    TRY(point_light(scene, 4, 6, 5, 1, 1, 1, 0.8));
-    TRY(point_light(scene, -5, 4, 2, 1, 1, 1, 0.4));
+    TRY(plane(scene, at, bg_vec3_make(0, -1, 0), false, floor));
+    TRY(sphere(scene, at, 0, 0, 0, 1, chrome));
+    TRY(sphere(scene, at, -2.1, -0.5, 0.6, 0.5, red));
+    TRY(sphere(scene, at, 2.1, -0.5, 0.6, 0.5, green));
+    TRY(sphere(scene, at, 0.3, -0.5, -2.2, 0.5, blue));
+    TRY(sphere(scene, at, -1.0, -0.6, 1.9, 0.4, yellow));
+    TRY(point_light(scene, at, 4, 6, 5, 1, 1, 1, 0.8));
+    TRY(point_light(scene, at, -5, 4, 2, 1, 1, 1, 0.4));
     TRY(ambient(scene, 0.5));
-    return camera(scene, bg_vec3_make(0, 1.8, 6.6), bg_vec3_make(0, -0.3, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 1.8, 6.6), bg_vec3_make(0, -0.3, 0), 45);
 }
 
-static bg_status glass_scene(bg_scene *scene)
+static bg_status glass_scene(bg_scene *scene, const placement *at)
 {
     static const unsigned char light[3] = {230, 230, 230}, dark[3] = {40, 40, 40};
     uint32_t checker, floor, glass_m, chrome;
@@ -277,20 +318,20 @@ static bg_status glass_scene(bg_scene *scene)
     TRY(material(scene, mirror(0.85), &chrome));
     /* Planar u = (x + 1) / 2 * uv_scale: an eighth of the texture, one checker cell, per unit. */
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, floor);
-    d.transform = bg_mat4_translate(0, -1, 0);
+    d.transform = placed(at, bg_mat4_translate(0, -1, 0));
     d.uv_scale[0] = d.uv_scale[1] = 0.25;
     uint32_t id;
     TRY(bg_scene_add_object(scene, &d, &id));
-    TRY(sphere(scene, -1.1, 0, 0.4, 1, glass_m));
-    TRY(sphere(scene, 1.2, 0, -0.8, 1, chrome));
-    TRY(point_light(scene, 3, 6, 4, 1, 1, 1, 0.9));
-    TRY(point_light(scene, -4, 5, -2, 1, 1, 1, 0.3));
+    TRY(sphere(scene, at, -1.1, 0, 0.4, 1, glass_m));
+    TRY(sphere(scene, at, 1.2, 0, -0.8, 1, chrome));
+    TRY(point_light(scene, at, 3, 6, 4, 1, 1, 1, 0.9));
+    TRY(point_light(scene, at, -4, 5, -2, 1, 1, 1, 0.3));
     TRY(ambient(scene, 0.5));
-    return camera(scene, bg_vec3_make(0, 1.4, 5.5), bg_vec3_make(0, -0.2, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 1.4, 5.5), bg_vec3_make(0, -0.2, 0), 45);
 }
 
 /* A wall of spheres facing the camera, in a near-square grid, with a white wall behind. */
-static bg_status many_spheres(bg_scene *scene, int n)
+static bg_status many_spheres(bg_scene *scene, const placement *at, int n)
 {
     uint32_t mats[6], wall;
     TRY(material(scene, diffuse(0.8, 0.2, 0.15), &mats[0]));
@@ -306,44 +347,44 @@ static bg_status many_spheres(bg_scene *scene, int n)
     for (int i = 0; i < n; i++) {
         double x = (i % side - (side - 1) / 2.0) * spacing;
         double y = ((rows - 1) / 2.0 - i / side) * spacing;
-        TRY(sphere(scene, x, y, 0, 0.9, mats[i % 6]));
+        TRY(sphere(scene, at, x, y, 0, 0.9, mats[i % 6]));
     }
-    TRY(plane(scene, bg_vec3_make(0, 0, -2), bg_vec3_make(0, 0, 1), wall));
+    TRY(plane(scene, at, bg_vec3_make(0, 0, -2), true, wall));
     double half = 0.5 * side * spacing;
-    TRY(point_light(scene, half, half, half + 6, 1, 1, 1, 0.8));
-    TRY(point_light(scene, -half, 0.3 * half, half + 4, 1, 1, 1, 0.3));
+    TRY(point_light(scene, at, half, half, half + 6, 1, 1, 1, 0.8));
+    TRY(point_light(scene, at, -half, 0.3 * half, half + 4, 1, 1, 1, 0.3));
     TRY(ambient(scene, 0.5));
     double distance = 1.15 * half / tan(22.5 * PI / 180) + 1.0;
-    return camera(scene, bg_vec3_make(0, 0, distance), bg_vec3_make(0, 0, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 0, distance), bg_vec3_make(0, 0, 0), 45);
 }
 
 /* Lights of different hues on a circle above the objects; total intensity independent of L. */
-static bg_status many_lights(bg_scene *scene, int lights)
+static bg_status many_lights(bg_scene *scene, const placement *at, int lights)
 {
     uint32_t floor, white, box, cyl;
     TRY(material(scene, diffuse(0.8, 0.8, 0.8), &floor));
     TRY(material(scene, glossy(0.9, 0.9, 0.9, 0.6, 1.0), &white));
     TRY(material(scene, diffuse(0.7, 0.7, 0.7), &box));
     TRY(material(scene, coated(0.6, 0.6, 0.6), &cyl));
-    TRY(plane(scene, bg_vec3_make(0, -1, 0), bg_vec3_make(0, 1, 0), floor));
-    TRY(sphere(scene, 0, 0, 0, 1, white));
-    TRY(object(scene, BG_SHAPE_BOX,
+    TRY(plane(scene, at, bg_vec3_make(0, -1, 0), false, floor));
+    TRY(sphere(scene, at, 0, 0, 0, 1, white));
+    TRY(object(scene, at, BG_SHAPE_BOX,
                bg_mat4_mul(bg_mat4_translate(-2.4, -0.4, -0.5),
                            bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 1, 0), 35), bg_mat4_scale(0.6, 0.6, 0.6))),
                box));
-    TRY(object(scene, BG_SHAPE_CYLINDER,
+    TRY(object(scene, at, BG_SHAPE_CYLINDER,
                bg_mat4_mul(bg_mat4_translate(2.4, -0.3, -0.5), bg_mat4_scale(0.6, 0.7, 0.6)), cyl));
     for (int i = 0; i < lights; i++) {
         double a = 2 * PI * (i + 0.25) / lights;
         /* Hue around the colour wheel, as three shifted cosines in [0, 1]. */
         double r = 0.5 + 0.5 * cos(a), g = 0.5 + 0.5 * cos(a - 2 * PI / 3), b = 0.5 + 0.5 * cos(a + 2 * PI / 3);
-        TRY(point_light(scene, 5 * cos(a), 4, 5 * sin(a) + 1, r, g, b, 2.0 / lights));
+        TRY(point_light(scene, at, 5 * cos(a), 4, 5 * sin(a) + 1, r, g, b, 2.0 / lights));
     }
     TRY(ambient(scene, 0.3));
-    return camera(scene, bg_vec3_make(0, 2.5, 7.5), bg_vec3_make(0, -0.3, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 2.5, 7.5), bg_vec3_make(0, -0.3, 0), 45);
 }
 
-static bg_status all_primitives(bg_scene *scene)
+static bg_status all_primitives(bg_scene *scene, const placement *at)
 {
     uint32_t floor, red, green, blue, yellow;
     TRY(material(scene, diffuse(0.75, 0.75, 0.75), &floor));
@@ -352,31 +393,31 @@ static bg_status all_primitives(bg_scene *scene)
     TRY(material(scene, diffuse(0.2, 0.35, 0.85), &blue));
     TRY(material(scene, diffuse(0.9, 0.75, 0.2), &yellow));
     bg_vec3 y = bg_vec3_make(0, 1, 0);
-    TRY(plane(scene, bg_vec3_make(0, -1, 0), y, floor));
-    TRY(sphere(scene, -3, 0, 0, 1, red));
-    TRY(object(scene, BG_SHAPE_BOX,
+    TRY(plane(scene, at, bg_vec3_make(0, -1, 0), false, floor));
+    TRY(sphere(scene, at, -3, 0, 0, 1, red));
+    TRY(object(scene, at, BG_SHAPE_BOX,
                bg_mat4_mul(bg_mat4_translate(-0.9, -0.2, 0),
                            bg_mat4_mul(bg_mat4_rotate(y, 30), bg_mat4_scale(0.8, 0.8, 0.8))),
                green));
-    TRY(object(scene, BG_SHAPE_CYLINDER,
+    TRY(object(scene, at, BG_SHAPE_CYLINDER,
                bg_mat4_mul(bg_mat4_translate(1.1, 0, 0),
                            bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 0, 1), 20), bg_mat4_scale(0.7, 1, 0.7))),
                blue));
     /* The rectangle stands up, tilted 70 degrees towards the camera and turned a little. */
-    TRY(object(scene, BG_SHAPE_RECTANGLE,
+    TRY(object(scene, at, BG_SHAPE_RECTANGLE,
                bg_mat4_mul(bg_mat4_translate(3.1, 0, 0),
                            bg_mat4_mul(bg_mat4_rotate(y, -20),
                                        bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(1, 0, 0), 70), bg_mat4_scale(0.9, 1, 0.9)))),
                yellow));
-    TRY(point_light(scene, 3, 6, 6, 1, 1, 1, 0.8));
-    TRY(point_light(scene, -6, 4, 3, 1, 1, 1, 0.35));
+    TRY(point_light(scene, at, 3, 6, 6, 1, 1, 1, 0.8));
+    TRY(point_light(scene, at, -6, 4, 3, 1, 1, 1, 0.35));
     TRY(ambient(scene, 0.4));
-    return camera(scene, bg_vec3_make(0, 2.4, 11.5), bg_vec3_make(0, -0.2, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 2.4, 11.5), bg_vec3_make(0, -0.2, 0), 45);
 }
 
 /* A coated earth, an anisotropic box and cylinder (the box's roughness from a stripe texture),
  * on a checkered floor under a spot light and a sun. */
-static bg_status textured_aniso(bg_scene *scene)
+static bg_status textured_aniso(bg_scene *scene, const placement *at)
 {
     static const unsigned char a[3] = {200, 190, 170}, b[3] = {90, 60, 40};
     uint32_t earth_tex, checker, stripes, mat_earth, mat_floor, mat_box, mat_cyl;
@@ -410,18 +451,18 @@ static bg_status textured_aniso(bg_scene *scene)
     TRY(material(scene, m, &mat_cyl));
 
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, mat_floor);
-    d.transform = bg_mat4_translate(0, -1, 0);
+    d.transform = placed(at, bg_mat4_translate(0, -1, 0));
     d.uv_scale[0] = d.uv_scale[1] = 0.25;
     uint32_t id;
     TRY(bg_scene_add_object(scene, &d, &id));
-    TRY(object(scene, BG_SHAPE_SPHERE,
+    TRY(object(scene, at, BG_SHAPE_SPHERE,
                bg_mat4_mul(bg_mat4_translate(0, 0, 0), bg_mat4_rotate(bg_vec3_make(0, 0, 1), 23.4)), mat_earth));
-    TRY(object(scene, BG_SHAPE_BOX,
+    TRY(object(scene, at, BG_SHAPE_BOX,
                bg_mat4_mul(bg_mat4_translate(-2.3, -0.3, 0.2),
                            bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(0, 1, 0), 25), bg_mat4_scale(0.7, 0.7, 0.7))),
                mat_box));
     d = bg_object_desc_init(BG_SHAPE_CYLINDER, mat_cyl);
-    d.transform = bg_mat4_mul(bg_mat4_translate(2.3, -0.2, 0.2), bg_mat4_scale(0.7, 0.8, 0.7));
+    d.transform = placed(at, bg_mat4_mul(bg_mat4_translate(2.3, -0.2, 0.2), bg_mat4_scale(0.7, 0.8, 0.7)));
     d.uv_scale[0] = 2;
     TRY(bg_scene_add_object(scene, &d, &id));
 
@@ -431,22 +472,31 @@ static bg_status textured_aniso(bg_scene *scene)
     spot.spot_cutoff_degrees = 40;
     spot.spot_exponent = 6;
     spot.intensity = 1.0;
+    spot = placed_light(at, spot);
     TRY(bg_scene_add_light(scene, &spot, &id));
     bg_light sun = bg_light_init();
     sun.type = BG_LIGHT_DIRECTIONAL;
     sun.direction = bg_vec3_make(-0.5, -1, -0.4);
     sun.color[0] = 1; sun.color[1] = 0.95; sun.color[2] = 0.85;
     sun.intensity = 0.5;
+    sun = placed_light(at, sun);
     TRY(bg_scene_add_light(scene, &sun, &id));
     TRY(ambient(scene, 0.3));
-    return camera(scene, bg_vec3_make(0, 2.2, 8.2), bg_vec3_make(0, -0.3, 0), 45);
+    return camera(scene, at, bg_vec3_make(0, 2.2, 8.2), bg_vec3_make(0, -0.3, 0), 45);
 }
 
 bg_status scenes_build_ex(scene_id id, const scene_params *params, bg_scene *scene)
 {
-    scene_params p = {0, 0};
+    scene_params p;
+    memset(&p, 0, sizeof p);
     if (params)
         p = *params;
+    if (p.scale == 0.0)
+        p.scale = 1.0;
+    if (!isfinite(p.scale) || p.scale < 0.0 || !isfinite(p.offset.x) || !isfinite(p.offset.y) ||
+        !isfinite(p.offset.z))
+        return BG_ERR_INVALID_ARGUMENT;
+    const placement at_ = {p.scale, p.offset}, *at = &at_;
     if (p.spheres == 0)
         p.spheres = 16;
     if (p.lights == 0)
@@ -455,14 +505,14 @@ bg_status scenes_build_ex(scene_id id, const scene_params *params, bg_scene *sce
         return BG_ERR_INVALID_ARGUMENT;
     bg_status st;
     switch (id) {
-    case SCENE_PAPER_EARTH: st = paper_earth(scene); break;
-    case SCENE_PAPER_EARTH_SHADOW: st = paper_earth_shadow(scene); break;
-    case SCENE_MIRROR: st = mirror_scene(scene); break;
-    case SCENE_GLASS: st = glass_scene(scene); break;
-    case SCENE_MANY_SPHERES: st = many_spheres(scene, p.spheres); break;
-    case SCENE_MANY_LIGHTS: st = many_lights(scene, p.lights); break;
-    case SCENE_ALL_PRIMITIVES: st = all_primitives(scene); break;
-    case SCENE_TEXTURED_ANISO: st = textured_aniso(scene); break;
+    case SCENE_PAPER_EARTH: st = paper_earth(scene, at); break;
+    case SCENE_PAPER_EARTH_SHADOW: st = paper_earth_shadow(scene, at); break;
+    case SCENE_MIRROR: st = mirror_scene(scene, at); break;
+    case SCENE_GLASS: st = glass_scene(scene, at); break;
+    case SCENE_MANY_SPHERES: st = many_spheres(scene, at, p.spheres); break;
+    case SCENE_MANY_LIGHTS: st = many_lights(scene, at, p.lights); break;
+    case SCENE_ALL_PRIMITIVES: st = all_primitives(scene, at); break;
+    case SCENE_TEXTURED_ANISO: st = textured_aniso(scene, at); break;
     default: return BG_ERR_INVALID_ARGUMENT;
     }
     return st != BG_OK ? st : bg_scene_commit(scene);

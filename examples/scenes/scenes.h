@@ -16,10 +16,15 @@ typedef enum scene_id {
     SCENE_COUNT
 } scene_id;
 
-/* Parameters of the scaling scenes; zero means the default. */
+/* Parameters of the scaling scenes; zero means the default. scale and offset place any scene at
+ * p -> scale p + offset: camera, objects (the similarity prefixed to each transform, so UVs stay)
+ * and point lights move, linear and quadratic attenuation are divided by scale and scale^2, so the
+ * ideal image is the same at every size and place (the float32 stress cases, bench/stress.c). */
 typedef struct scene_params {
-    int spheres; /* SCENE_MANY_SPHERES: 1 .. 4096, default 16 */
-    int lights;  /* SCENE_MANY_LIGHTS: 1 .. 256, default 4 */
+    int spheres;    /* SCENE_MANY_SPHERES: 1 .. 4096, default 16 */
+    int lights;     /* SCENE_MANY_LIGHTS: 1 .. 256, default 4 */
+    double scale;   /* > 0, finite; 0 means 1 */
+    bg_vec3 offset; /* finite; default (0, 0, 0) */
 } scene_params;
 
 /* The scene's short name ("paper_earth"), or NULL for an unknown id. */
