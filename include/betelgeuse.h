@@ -362,11 +362,16 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
  * all MACS render passes on the caller's MACS context. */
 typedef struct bg_renderer bg_renderer;
 
-/* Defaults: context required; 24-bit depth; no logger; the C library's allocator. */
+/* Defaults: context required; 24-bit depth; RGBA32F G-buffer; no logger; the C library's allocator. */
 typedef struct bg_renderer_desc {
     macs_context *context; /* the MACS context to render with; its GL context must be current */
     bool float_depth;      /* a 32-bit float depth buffer when GL has ARB_depth_buffer_float and the
                               MACS context was created with allow_float_depth; else 24-bit */
+    bool half_gbuffer;     /* RGBA16F instead of RGBA32F for the G-buffer's material and direction
+                              targets (normal, base, transparency, tangent, coat), trading error for
+                              bandwidth; the hit position and the ambient/emission/ior target stay
+                              RGBA32F. Probed once at creation: where GL cannot render to RGBA16F the
+                              renderer logs a warning and keeps RGBA32F (bg_render_stats says which) */
     bg_log_fn log;
     void *log_user;
     bg_allocator allocator;
@@ -429,6 +434,7 @@ typedef struct bg_render_stats {
     double dmax[BG_STATS_MAX_LEVELS];          /* the dmax used at each traced level */
     uint64_t intersect_pixels;       /* pixels covered by intersection passes (scissor rectangles) */
     int gbuffer_targets;             /* G-buffer textures written by each intersection pass */
+    int gbuffer_half_targets;        /* how many of those were RGBA16F (bg_renderer_desc.half_gbuffer) */
     int depth_bits;                  /* 24, or 32 for a float depth buffer */
     bool timed;                      /* the fields below were measured (gpu_timing) */
     double phase_ms[BG_PHASE_COUNT_];

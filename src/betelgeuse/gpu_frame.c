@@ -508,6 +508,9 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
         return st;
     }
     r->stats.gbuffer_targets = r->features.slot_count;
+    for (int s = 0; s < GPU_SLOT_COUNT; s++)
+        if (r->features.slot[s] && macs_texture_format(r->gbuffer[s]) == MACS_FORMAT_RGBA16F)
+            r->stats.gbuffer_half_targets++;
     r->stats.depth_bits = macs_depth_stencil_format(r->depth) == MACS_DEPTH32F_STENCIL8 ? 32 : 24;
     if (f.timing) {
         r->stats.timed = true;

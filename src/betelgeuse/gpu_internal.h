@@ -78,6 +78,7 @@ struct bg_renderer {
     macs_context *ctx;
     macs_limits limits; /* effective */
     bool float_depth;
+    bool half_gbuffer; /* asked for and found renderable at creation (gpu_half_probe) */
     bg_render_stats stats;
 
     /* Size-dependent targets. */
@@ -143,6 +144,11 @@ bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width,
 /* ---- gpu_targets.c ---- */
 /* (Re)creates the size-dependent targets for width x height and the features' G-buffer slots. */
 bg_status gpu_targets_prepare(bg_renderer *r, int width, int height);
+/* Whether RGBA16F works as a render target next to RGBA32F (one small pass, read back); false with
+ * the reason in why. Leaves no MACS error behind that was not there before. */
+bool gpu_half_probe(bg_renderer *r, char *why, size_t why_size);
+/* The texture format of a G-buffer slot under the renderer's half_gbuffer choice. */
+macs_format gpu_slot_format(const bg_renderer *r, gpu_slot slot);
 /* Ray set number index from the pool, creating it when needed. */
 bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out);
 /* Uploads the scene's textures (and the white texel) for the hit passes. */

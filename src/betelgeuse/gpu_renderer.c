@@ -60,6 +60,18 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
     macs_features feats;
     macs_context_features(r->ctx, &feats);
     r->float_depth = desc->float_depth && feats.depth_buffer_float;
+    if (desc->half_gbuffer) {
+        /* Once per renderer: the formats are then fixed, so targets made once stay right. A GL
+         * without renderable RGBA16F still renders, at full precision: a warning, not an error. */
+        char why[512];
+        r->half_gbuffer = gpu_half_probe(r, why, sizeof why);
+        if (!r->half_gbuffer && r->log) {
+            char message[GPU_MESSAGE_SIZE];
+            snprintf(message, sizeof message, "bg_renderer_create: RGBA16F G-buffer unsupported (%s); using RGBA32F",
+                     why);
+            r->log(BG_LOG_WARNING, message, r->log_user);
+        }
+    }
     *out_renderer = r;
     return BG_OK;
 }

@@ -1,6 +1,7 @@
 /* GPU memory of the renderer: size-dependent targets (G-buffer, accumulation, visibility, encoded
  * output, depth/stencil, ray-set pool) and the scene's textures. Everything is made on demand and
  * kept while the size (or the scene) stays the same. */
+#include <stdio.h>
 #include <string.h>
 
 #include "alloc.h"
@@ -17,6 +18,85 @@ static bg_status texture(bg_renderer *r, int w, int h, macs_format format, macs_
     d.format = format;
     macs_status ms = macs_texture_create(r->ctx, &d, out);
     return ms ? gpu_fail_macs(r, ms, what) : BG_OK;
+}
+
+macs_format gpu_slot_format(const bg_renderer *r, gpu_slot slot)
+{
+    if (!r->half_gbuffer)
+        return MACS_FORMAT_RGBA32F;
+    switch (slot) {
+    case GPU_SLOT_HIT:
+        /* Shadow segments and bounce rays start at this position: 11 bits would move their origins
+         * by up to |p| 2^-11, a defect (acne, light leaks) rather than a trade-off. The w lane is
+         * the hit code, object index + 1 (+ 0.5), which half holds exactly only below 1024 objects. */
+        return MACS_FORMAT_RGBA32F;
+    case GPU_SLOT_ONCE:
+        /* rgb is weight x (emission + opaque x ambient), which the API does not bound: above 65504
+         * half gives Inf, which DESIGN.md section 4 rules out. w is the index of refraction, which
+         * Snell's law and total internal reflection use at every level of a refracted path. */
+        return MACS_FORMAT_RGBA32F;
+    default:
+        /* The rest are unit vectors and values clamped to [0, 1] (path weight x opaque is at most
+         * 1), plus two flags half holds exactly: coat roughness -1 (no coat) and isotropy 1. A
+         * relative error of 2^-11 there bends reflections and shading slightly, which is the
+         * measured trade-off (docs/gpu_pipeline.md). */
+        return MACS_FORMAT_RGBA16F;
+    }
+}
+
+bool gpu_half_probe(bg_renderer *r, char *why, size_t why_size)
+{
+    /* Exact in half and float, not in 8 bits: an implementation that quietly stores RGBA16F with
+     * fewer bits fails the comparison. Values stay in [0, 1] so that missing ARB_color_buffer_float
+     * (clamped outputs, which would break RGBA32F as well) does not count against RGBA16F. */
+    static const float want[4] = {0.25f, 0.50048828125f, 0.75f, 0.0009765625f};
+    static const char *const value = "vec4(0.25, 0.50048828125, 0.75, 0.0009765625)";
+    enum { SIZE = 2 };
+    macs_status before = macs_context_error(r->ctx);
+    macs_texture *tex[2] = {NULL, NULL};
+    macs_pass *pass = NULL;
+    float texels[SIZE * SIZE * 4];
+    bool ok = true;
+    macs_status ms = MACS_OK;
+    why[0] = '\0';
+    for (int i = 0; i < 2 && !ms; i++) {
+        macs_texture_desc d;
+        memset(&d, 0, sizeof d);
+        d.width = d.height = SIZE;
+        d.format = i == 0 ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA16F;
+        ms = macs_texture_create(r->ctx, &d, &tex[i]);
+    }
+    if (!ms) {
+        /* Both formats in one pass, as the intersection pass writes them: EXT_framebuffer_object
+         * (MACS's fallback) wants every colour attachment of a framebuffer in one format. */
+        macs_output_desc outputs[2] = {{"full", value}, {"half", value}};
+        macs_pass_desc desc;
+        gpu_pass_desc_init(&desc, NULL, NULL, NULL, 0, NULL, 0, outputs, tex, 2);
+        ms = macs_pass_create(r->ctx, &desc, &pass);
+    }
+    if (!ms)
+        ms = macs_pass_run(pass, NULL);
+    for (int i = 0; i < 2 && !ms && ok; i++) {
+        ms = macs_texture_read(tex[i], texels, 0);
+        for (int k = 0; k < SIZE * SIZE * 4 && !ms && ok; k++)
+            if (texels[k] != want[k % 4]) {
+                snprintf(why, why_size, "an RGBA%s target read back %.9g instead of %.9g", i ? "16F" : "32F",
+                         (double)texels[k], (double)want[k % 4]);
+                ok = false;
+            }
+    }
+    if (ms) {
+        const char *detail = macs_context_error_message(r->ctx);
+        snprintf(why, why_size, "%s", detail && *detail ? detail : macs_status_string(ms));
+        ok = false;
+        /* The probe's failure is an answer, not an error of the caller's. */
+        if (before == MACS_OK)
+            macs_context_clear_error(r->ctx);
+    }
+    macs_pass_destroy(pass);
+    macs_texture_destroy(tex[0]);
+    macs_texture_destroy(tex[1]);
+    return ok;
 }
 
 void gpu_targets_release(bg_renderer *r)
@@ -54,7 +134,7 @@ bg_status gpu_targets_prepare(bg_renderer *r, int w, int h)
     bg_status st = BG_OK;
     for (int s = 0; s < GPU_SLOT_COUNT && st == BG_OK; s++)
         if (r->features.slot[s])
-            st = texture(r, w, h, MACS_FORMAT_RGBA32F, &r->gbuffer[s], "G-buffer texture");
+            st = texture(r, w, h, gpu_slot_format(r, (gpu_slot)s), &r->gbuffer[s], "G-buffer texture");
     if (st == BG_OK)
         st = texture(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
     /* Visibility is 0 or 1 per channel: 8 bits hold it exactly. */
