@@ -109,6 +109,72 @@ bool image_metrics_compare(const bg_image *reference, const bg_image *test, int 
     return true;
 }
 
+/* The largest channel difference of test over reference at (x, y), and of reference over test. */
+static void channel_drops(const bg_image *ref, const bg_image *test, int x, int y, int *darker, int *brighter)
+{
+    const unsigned char *a = pixel8(ref, x, y), *b = pixel8(test, x, y);
+    *darker = 0;
+    *brighter = 0;
+    for (int c = 0; c < 3; c++) {
+        int d = (int)a[c] - (int)b[c];
+        if (d > *darker)
+            *darker = d;
+        if (-d > *brighter)
+            *brighter = -d;
+    }
+}
+
+static bool differs(const bg_image *ref, const bg_image *test, int x, int y)
+{
+    int darker, brighter;
+    channel_drops(ref, test, x, y, &darker, &brighter);
+    return darker > IMAGE_METRICS_OVER || brighter > IMAGE_METRICS_OVER;
+}
+
+static bool lone(const bg_image *ref, const bg_image *test, int x, int y)
+{
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int nx = x + dx, ny = y + dy;
+            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= ref->width || ny >= ref->height)
+                continue;
+            if (differs(ref, test, nx, ny))
+                return false;
+        }
+    return true;
+}
+
+bool image_metrics_acne(const bg_image *reference, const bg_image *test, int silhouette_threshold, image_acne *out)
+{
+    if (!out)
+        return false;
+    memset(out, 0, sizeof *out);
+    out->first_x = out->first_y = -1;
+    if (!is_rgba8(reference) || !is_rgba8(test) || reference->width != test->width ||
+        reference->height != test->height)
+        return false;
+    for (int y = 0; y < reference->height; y++)
+        for (int x = 0; x < reference->width; x++) {
+            if (silhouette(reference, x, y, silhouette_threshold))
+                continue;
+            out->interior++;
+            int darker, brighter;
+            channel_drops(reference, test, x, y, &darker, &brighter);
+            bool shadowed = darker > IMAGE_METRICS_OVER && brighter <= IMAGE_METRICS_ACNE_ROUNDING;
+            bool speckle = (darker > IMAGE_METRICS_OVER || brighter > IMAGE_METRICS_OVER) && lone(reference, test, x, y);
+            out->shadowed += shadowed;
+            out->speckles += speckle;
+            if (shadowed || speckle) {
+                if (out->pixels == 0) {
+                    out->first_x = x;
+                    out->first_y = y;
+                }
+                out->pixels++;
+            }
+        }
+    return true;
+}
+
 size_t image_metrics_count_nonfinite(const bg_image *image)
 {
     if (!image || !image->pixels || image->format != BG_PIXEL_RGBA32F || image->width <= 0 || image->height <= 0)
