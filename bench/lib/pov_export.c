@@ -8,7 +8,7 @@
  * maps one onto the other without mirroring the image: our default camera at +z looking at -z
  * becomes POV-Ray's usual camera at -z looking at +z, with x to the right and y up in both. Every
  * position and transform is written as S applied to ours. */
-#include "lib/pov_export.h"
+#include "pov_export.h" /* same directory: bench/lib objects are built without -Ibench */
 
 #include <errno.h>
 #include <fcntl.h>
