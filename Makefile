@@ -162,16 +162,22 @@ valgrind: $(VALGRIND_TESTS)
 
 # Benchmarks and stress (DESIGN.md section 8) run under the test environment's GL 2.1 / GLSL 1.10, so
 # they measure what the tests check. QUICK=1 makes them short. Results: tables on stdout, CSV and (with
-# gnuplot) PNG plots in BENCH_OUT; progress on stderr.
+# gnuplot) PNG plots in BENCH_OUT, where each program's table is also kept as <program>.txt; progress
+# on stderr.
 BENCH_OUT ?= bench/out
 BENCH_ENV := $(TEST_ENV) QUICK=$(QUICK)
 BENCH_PROGRAMS := bench_paper bench_scaling bench_tradeoffs bench_phases
 bench: all $(BENCH_BIN)
-	@for b in $(BENCH_PROGRAMS); do env $(BENCH_ENV) $(BUILD)/bench/$$b $(BENCH_OUT) || exit 1; echo; done
+	@mkdir -p $(BENCH_OUT)
+	@for b in $(BENCH_PROGRAMS); do \
+	  { env $(BENCH_ENV) $(BUILD)/bench/$$b $(BENCH_OUT); echo $$? > $(BENCH_OUT)/$$b.status; } | tee $(BENCH_OUT)/$$b.txt; \
+	  [ "$$(cat $(BENCH_OUT)/$$b.status)" = 0 ] || exit 1; echo; done
 	@if command -v gnuplot >/dev/null 2>&1; then gnuplot -e "dir='$(BENCH_OUT)'" bench/plots.gp && \
 	  echo "plots: $(BENCH_OUT)/*.png"; else echo "gnuplot is not installed: no plots"; fi
 stress: all $(BENCH_BIN)
-	@env $(BENCH_ENV) $(BUILD)/bench/stress $(BENCH_OUT)
+	@mkdir -p $(BENCH_OUT)
+	@{ env $(BENCH_ENV) $(BUILD)/bench/stress $(BENCH_OUT); echo $$? > $(BENCH_OUT)/stress.status; } | tee $(BENCH_OUT)/stress.txt; \
+	  [ "$$(cat $(BENCH_OUT)/stress.status)" = 0 ]
 
 install: all
 	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
