@@ -228,7 +228,7 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
     macs_pass *pass = *out;
     float fi = (float)index, m16[16], m9[9];
     macs_status ms = macs_pass_set_uniform(pass, "bg_index", &fi);
-    column_major(&obj->to_object[0][0], 4, m16);
+    gpu_origin_to_object(state, index, m16);
     if (!ms)
         ms = macs_pass_set_uniform(pass, "bg_to_object", m16);
     column_major(&obj->normal_to_world[0][0], 3, m9);

@@ -108,6 +108,12 @@ bg_status gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
 /* Frees every GPU object (passes, targets, textures) so the next render starts afresh. */
 void gpu_release_all(bg_renderer *r);
 
+/* ---- gpu_origin.c ---- */
+/* Every position the GPU sees is relative to the camera (float bits stay near the scene, not near
+ * the world origin): the object's to_object for such points, column-major, and a moved point. */
+void gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16]);
+void gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3]);
+
 /* ---- gpu_shader_source.c ---- */
 /* A growing string built through the renderer's allocator; a failed append leaves it failed. */
 typedef struct gpu_text {

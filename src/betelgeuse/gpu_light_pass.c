@@ -36,10 +36,13 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
     for (int i = 0; i < count; i++) {
         const bg_light *l = &state->lights[first + i];
         bool dir = l->type == BG_LIGHT_DIRECTIONAL;
-        const bg_vec3 *v = dir ? &l->direction : &l->position;
-        pos[4 * i + 0] = (float)v->x;
-        pos[4 * i + 1] = (float)v->y;
-        pos[4 * i + 2] = (float)v->z;
+        if (dir) {
+            pos[4 * i + 0] = (float)l->direction.x;
+            pos[4 * i + 1] = (float)l->direction.y;
+            pos[4 * i + 2] = (float)l->direction.z;
+        } else {
+            gpu_origin_point(state, &l->position, &pos[4 * i]);
+        }
         pos[4 * i + 3] = dir ? 1.0f : 0.0f;
         for (int k = 0; k < 3; k++) {
             rad[3 * i + k] = (float)(l->color[k] * l->intensity);
@@ -120,9 +123,7 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uin
     if (st != BG_OK)
         return st;
     float m16[16], fi = (float)object;
-    for (int c = 0; c < 4; c++)
-        for (int k = 0; k < 4; k++)
-            m16[c * 4 + k] = (float)state->objects[object].to_object[k][c];
+    gpu_origin_to_object(state, object, m16);
     macs_status ms = macs_pass_set_uniform(*out, "bg_index", &fi);
     if (!ms)
         ms = macs_pass_set_uniform(*out, "bg_to_object", m16);

@@ -117,7 +117,8 @@ static bg_status build_ray_passes(bg_renderer *r, const bg_scene_state *state, c
             return st;
         const bg_camera_data *c = &state->camera;
         float size[2] = {(float)r->width, (float)r->height};
-        float eye[3] = {(float)c->camera.position.x, (float)c->camera.position.y, (float)c->camera.position.z};
+        float eye[3];
+        gpu_origin_point(state, &c->camera.position, eye); /* (0, 0, 0): the frame's origin */
         float fw[3], rt[3], up[3];
         for (int i = 0; i < 3; i++) {
             fw[i] = (float)c->forward[i];
