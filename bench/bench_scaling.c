@@ -63,12 +63,12 @@ static bool run_point(bench_gpu *gpu, const series *s, int x, int size, int gpu_
             passes += stats.passes[k];
         bench_error e = bench_error_of(&ci, &gi);
         char text[128];
-        printf("%-11s %5d %5d | %8.1f [%7.1f-%7.1f] | %8.1f | %6.2f | %5d %4d | %s\n", s->name, x, size, tg.median,
-               tg.min, tg.max, tc.median, tc.median / tg.median, passes, stats.ray_sets,
+        printf("%-11s %5d %5d | %8.1f [%7.1f-%7.1f] %d | %8.1f | %6.2f | %5d %4d | %s\n", s->name, x, size,
+               tg.median, tg.min, tg.max, tg.runs, tc.median, tc.median / tg.median, passes, stats.ray_sets,
                bench_error_text(&e, text, sizeof text));
         fflush(stdout);
-        fprintf(csv, "%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%d,", x, size, tg.median, tg.min, tg.max, tc.median,
-                tc.median / tg.median, passes, stats.ray_sets);
+        fprintf(csv, "%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%d,%d,", x, size, tg.median, tg.min, tg.max, tc.median,
+                tc.median / tg.median, passes, stats.ray_sets, tg.runs);
         bench_error_csv(csv, &e);
         fputc('\n', csv);
     }
@@ -89,7 +89,7 @@ int main(int argc, char **argv)
     printf("== Scaling on the GPU path (%dx%d unless the series is resolution; CPU reference %d run%s)\n", size,
            size, cpu_runs, cpu_runs > 1 ? "s" : "");
     bench_print_setup(stdout, &gpu, gpu_runs);
-    printf("%-11s %5s %5s | %-26s | %8s | %6s | %5s %4s | %s\n", "series", "x", "size", "GPU ms median [min-max]",
+    printf("%-11s %5s %5s | %-28s | %8s | %6s | %5s %4s | %s\n", "series", "x", "size", "GPU ms median [min-max] n",
            "CPU ms", "CPU/GPU", "passes", "sets", "GPU error vs CPU");
     int status = 0;
     for (size_t i = 0; i < sizeof all_series / sizeof all_series[0] && !status; i++) {
@@ -98,7 +98,7 @@ int main(int argc, char **argv)
         snprintf(name, sizeof name, "scaling_%s.csv", s->name);
         FILE *csv = bench_csv_open(dir, name,
                                    "x,size,gpu_median_ms,gpu_min_ms,gpu_max_ms,cpu_median_ms,cpu_over_gpu,passes,"
-                                   "ray_sets," BENCH_ERROR_CSV_HEADER);
+                                   "ray_sets,gpu_runs," BENCH_ERROR_CSV_HEADER);
         if (!csv) {
             status = 1;
             break;

@@ -31,9 +31,12 @@ static bool time_renders(bg_renderer *renderer, bg_scene *scene, const bg_render
         fprintf(stderr, "out of memory\n");
         return false;
     }
+    double t0 = bench_now_ms();
     bool ok = renderer ? gpu_once(renderer, scene, settings, image) : cpu_once(scene, settings, image);
+    if (bench_now_ms() - t0 > BENCH_SLOW_MS && runs > BENCH_SLOW_RUNS)
+        runs = BENCH_SLOW_RUNS;
     for (int r = 0; r < runs && ok; r++) {
-        double t0 = bench_now_ms();
+        t0 = bench_now_ms();
         ok = renderer ? gpu_once(renderer, scene, settings, image) : cpu_once(scene, settings, image);
         t[r] = bench_now_ms() - t0;
     }

@@ -12,9 +12,15 @@
  * is a silhouette pixel, left out of the "interior" set. The same value the paper benchmark always used. */
 #define BENCH_SILHOUETTE 24
 
+/* A case whose warm-up render takes longer than BENCH_SLOW_MS is timed BENCH_SLOW_RUNS times at most,
+ * so that the slowest points of a series do not take most of the run (bench_times.runs says how many). */
+#define BENCH_SLOW_MS 1500.0
+#define BENCH_SLOW_RUNS 3
+
 /* One untimed warm-up render (shader compilation, allocation, llvmpipe's first-use variants), then
- * `runs` timed renders back to back. GPU times are wall times of bg_render_gpu, including the
- * read-back into the caller's image. On failure prints the renderer's message and returns false. */
+ * `runs` timed renders back to back (fewer for slow cases, above). GPU times are wall times of
+ * bg_render_gpu, including the read-back into the caller's image. On failure prints the renderer's
+ * message and returns false. */
 bool bench_time_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image,
                     int runs, bench_times *out);
 /* The same for the CPU reference renderer. */
