@@ -2,7 +2,7 @@
 # Reads the CSV files the bench programs wrote into dir and writes PNG files beside them.
 if (!exists("dir")) dir = 'bench/out'
 set datafile separator ','
-set terminal pngcairo size 900,600 font 'sans,10'
+set terminal pngcairo size 900,600 font 'sans,10' noenhanced
 set grid
 set key top left
 
@@ -10,7 +10,7 @@ set key top left
 scaling(name) = sprintf('%s/scaling_%s.csv', dir, name)
 
 set output dir.'/scaling_objects.png'
-set title 'Time against objects (many\_spheres: N spheres of six materials and a wall)'
+set title 'Time against objects (many_spheres: N spheres of six materials and a wall)'
 set xlabel 'spheres'; set ylabel 'ms per frame (median)'
 set logscale xy 2
 plot scaling('objects') using 1:3:4:5 with yerrorlines title 'GPU path (min-max bars)', \
@@ -18,40 +18,62 @@ plot scaling('objects') using 1:3:4:5 with yerrorlines title 'GPU path (min-max 
 unset logscale
 
 set output dir.'/scaling_lights.png'
-set title 'Time against lights (many\_lights)'
+set title 'Time against lights (many_lights)'
 set xlabel 'point lights'
 plot scaling('lights') using 1:3:4:5 with yerrorlines title 'GPU path (min-max bars)', \
      '' using 1:6 with linespoints title 'CPU reference'
 
 set output dir.'/scaling_depth.png'
 set title 'Time against bounce depth (glass: mirror and glass spheres)'
-set xlabel 'max\_depth (bounce levels)'
+set xlabel 'max_depth (bounce levels)'
 set logscale y
 plot scaling('depth') using 1:3:4:5 with yerrorlines title 'GPU path (min-max bars)', \
      '' using 1:6 with linespoints title 'CPU reference'
 unset logscale
 
 set output dir.'/scaling_resolution.png'
-set title 'Time against resolution (paper\_earth\_shadow)'
+set title 'Time against resolution (paper_earth_shadow)'
 set xlabel 'image side (pixels)'
 set logscale xy 2
 plot scaling('resolution') using 1:3:4:5 with yerrorlines title 'GPU path (min-max bars)', \
      '' using 1:6 with linespoints title 'CPU reference'
 unset logscale
 
-# Time against error: one panel per scene, each trade-off variant a labelled point. Columns of
-# tradeoffs.csv: 1 scene, 2 variant, 7 time ratio against the baseline, 14 mean absolute error.
+# Time against error: one panel per scene, a labelled point per precision trade-off (depth format,
+# G-buffer format, dmax) and the baseline. Columns of tradeoffs.csv: 1 scene, 2 variant, 7 time ratio
+# against the baseline, 14 mean absolute error.
+scenes = 'paper_earth_shadow glass textured_aniso'
+precision(v) = (v eq 'baseline' || v eq 'float_depth_32' || v eq 'gbuffer_rgba16f' || v eq 'dmax_x10' || v eq 'dmax_x1000')
 set output dir.'/time_vs_error.png'
-set terminal pngcairo size 1400,500 font 'sans,9'
-set multiplot layout 1,3 title 'Run time against error of each trade-off (mean absolute error against the CPU reference, 0..255 units)'
+set terminal pngcairo size 1400,500 font 'sans,9' noenhanced
+set multiplot layout 1,3 title 'Run time against error of the precision trade-offs (mean absolute error against the CPU reference, 0..255 units)'
 set xlabel 'time / baseline time'
-set ylabel 'mean absolute error'
+set ylabel 'mean absolute error (log)'
 set logscale y
 set key off
-scenes = 'paper_earth_shadow glass textured_aniso'
 do for [s in scenes] {
     set title s noenhanced
-    plot dir.'/tradeoffs.csv' using (strcol(1) eq s ? $7 : 1/0):($14 > 0 ? $14 : 1e-5) with points pt 7, \
-         '' using (strcol(1) eq s ? $7 : 1/0):($14 > 0 ? $14 : 1e-5):2 with labels font ',7' offset 0,0.6 noenhanced
+    plot dir.'/tradeoffs.csv' using ((strcol(1) eq s && precision(strcol(2))) ? $7 : 1/0):($14 > 0 ? $14 : 1e-5) with points pt 7 ps 1.2, \
+         '' using ((strcol(1) eq s && precision(strcol(2))) ? $7 : 1/0):($14 > 0 ? $14 : 1e-5):2 with labels font ',8' rotate by 30 left offset 0.5,0.4 noenhanced
 }
 unset multiplot
+unset logscale
+
+# What each skip saves: time with the skip switched off, against the baseline (bars clipped at 4x,
+# the value printed). Every skip leaves the image bit-identical (pixels_changed, column 8).
+set output dir.'/skips.png'
+set terminal pngcairo size 1400,500 font 'sans,9' noenhanced
+set multiplot layout 1,3 title 'Time with one skip switched off, relative to the baseline (1 = no saving); images are identical'
+set xlabel 'time / baseline time'
+set ylabel ''
+set xrange [0:4.6]
+set style fill solid 0.6
+set arrow 1 from 1, graph 0 to 1, graph 1 nohead dashtype 2
+skip(v) = (v[1:3] eq 'no_')
+do for [s in scenes] {
+    set title s noenhanced
+    plot dir.'/tradeoffs.csv' using ((strcol(1) eq s && skip(strcol(2))) ? ($7 < 4 ? $7 : 4) / 2 : 1/0):0:((($7 < 4) ? $7 : 4) / 2):(0.35):ytic(2) with boxxyerror, \
+         '' using ((strcol(1) eq s && skip(strcol(2))) ? ($7 < 4 ? $7 : 4) + 0.05 : 1/0):0:(sprintf('%.2f', $7)) with labels left font ',8'
+}
+unset multiplot
+unset arrow 1
