@@ -36,6 +36,7 @@ static const variant variants[] = {
     {"no_scissor", V_SKIP_OFF, 0, BG_SKIP_SCISSOR},
     {"no_shadow_cull", V_SKIP_OFF, 0, BG_SKIP_SHADOW_CULL},
     {"no_facing", V_SKIP_OFF, 0, BG_SKIP_FACING},
+    {"no_batch", V_SKIP_OFF, 0, BG_SKIP_BATCH},
     {"no_skips_at_all", V_SKIP_OFF, 0, BG_SKIP_ALL},
     {"baseline_again", V_BASELINE, 0, 0}, /* a second renderer, same settings: the noise floor */
 };

@@ -1,9 +1,8 @@
 #version 110
 // requires: bg_common.glsl bg_hit_code.glsl
-// One object against one ray map (docs/shading.md sections 2.7 and 3). The shape's span comes from
-// the one bg_shape_*.glsl file linked into the program.
-
-int bg_shape_span(vec3 o, vec3 d, out vec2 t, out vec3 n0, out vec3 n1);
+// What every intersection pass shares (docs/shading.md sections 2.7 and 3): the depth of a hit, the
+// key the depth test compares, and the normal facing the ray. The roots come from bg_hit_root.glsl,
+// once per shape of the pass (gpu_hit_pass.c renames it for each).
 
 // Depth of a hit at distance t > 0: t / (2 dmax) up to dmax, where the scene's bounded objects are
 // and depth steps are finest, then 1 - dmax / (2 t) beyond, so that planes reach the horizon. The
@@ -14,39 +13,20 @@ float bg_depth(float t, float dmax)
     return t < dmax ? 0.5 * (t / dmax) : 1.0 - 0.5 * (dmax / t);
 }
 
-// The root this object gives the ray, or false. ray_o.w is the object the ray skips, ray_d.w the
-// object it travels inside (far root only).
-bool bg_hit_root(vec4 ray_o, vec4 ray_d, float index, mat4 to_object, out float t, out vec3 p_obj,
-                 out vec3 n_obj, out bool first_root)
+// The value the depth buffer stores for depth z, for choosing among several objects in one pass
+// exactly as the depth test LESS between separate passes would: unorm24 buffers round z * (2^24 - 1)
+// to the nearest integer (ties to even, as the conversion instructions do), float buffers keep z.
+// The steps below are exact in float: x < 2^24, so x - floor(x) and the +1 lose nothing.
+float bg_depth_key(float z, bool fixed24)
 {
-    t = 0.0;
-    p_obj = vec3(0.0);
-    n_obj = vec3(0.0, 1.0, 0.0);
-    first_root = true;
-    if (ray_o.w == index)
-        return false;
-    vec3 o = (to_object * vec4(ray_o.xyz, 1.0)).xyz;
-    vec3 d = (to_object * vec4(ray_d.xyz, 0.0)).xyz;
-    vec2 span;
-    vec3 n0, n1;
-    int count = bg_shape_span(o, d, span, n0, n1);
-    if (count == 0)
-        return false;
-    bool far_only = ray_d.w == index;
-    if (count == 1 || (!far_only && span.x > 0.0)) {
-        if (!(span.x > 0.0))
-            return false;
-        t = span.x;
-        n_obj = n0;
-    } else {
-        if (!(span.y > 0.0))
-            return false;
-        t = span.y;
-        n_obj = n1;
-        first_root = false;
-    }
-    p_obj = o + t * d;
-    return true;
+    if (!fixed24)
+        return z;
+    float x = z * 16777215.0;
+    float q = floor(x);
+    float f = x - q;
+    if (f > 0.5 || (f == 0.5 && mod(q, 2.0) == 1.0))
+        q += 1.0;
+    return q;
 }
 
 // The world normal facing the ray and whether the ray arrives from outside (section 3).

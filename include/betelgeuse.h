@@ -329,7 +329,9 @@ enum {
                                       shadow or can only shadow itself (the pass then blocks nothing) */
     BG_SKIP_FACING = 1u << 6,      /* off: shadow and light work also for surfaces facing away from a
                                       light (the result is then multiplied by 0) */
-    BG_SKIP_ALL = (1u << 7) - 1u
+    BG_SKIP_BATCH = 1u << 7,       /* off: one object per intersection pass and per shadow pass, not
+                                      several objects (up to the hardware's limits) in one */
+    BG_SKIP_ALL = (1u << 8) - 1u   /* every bit above: all skips off, the most literal frame */
 };
 
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
@@ -399,9 +401,9 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
 typedef enum bg_pass_kind {
     BG_PASS_RAYS = 0,   /* camera ray maps */
     BG_PASS_MARK,       /* live-pixel stencil of a secondary ray set */
-    BG_PASS_INTERSECT,  /* one object against one ray set, writing the G-buffer */
+    BG_PASS_INTERSECT,  /* one object (or batch) against one ray set, writing the G-buffer */
     BG_PASS_BACKGROUND, /* the background colour where a live ray missed */
-    BG_PASS_SHADOW,     /* one object against the shadow segments of up to four lights */
+    BG_PASS_SHADOW,     /* one object (or batch) against the shadow segments of up to four lights */
     BG_PASS_LIGHT,      /* up to four lights (and ambient and emission once) into the accumulation */
     BG_PASS_SPAWN,      /* reflected or transmitted ray maps of the next level */
     BG_PASS_RESOLVE,    /* accumulation to the output encoding */
@@ -440,6 +442,9 @@ typedef struct bg_render_stats {
     double phase_ms[BG_PHASE_COUNT_];
     double total_ms;
     uint64_t shaded_fragments;       /* fragments kept by shadow and light passes (gpu_timing) */
+    int intersect_objects;           /* objects tested by intersection passes, summed over the passes
+                                        (over passes[BG_PASS_INTERSECT]: objects per pass) */
+    int shadow_objects;              /* the same for shadow passes */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

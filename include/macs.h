@@ -166,6 +166,10 @@ void macs_context_clear_error(macs_context *ctx);
 /* Copies the limits GL reports (real) and the ones passes obey after caps (effective); either may be NULL. */
 void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
 
+/* GL_MAX_FRAGMENT_UNIFORM_COMPONENTS: the floats of uniforms one fragment shader may declare, for
+ * callers that size generated shaders by it (0 for a NULL context). */
+int macs_context_max_uniform_components(const macs_context *ctx);
+
 /* Copies the GL strings read at creation. */
 void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info);
 

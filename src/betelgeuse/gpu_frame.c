@@ -1,5 +1,5 @@
 /* One GPU frame (DESIGN.md section 3, docs/gpu_pipeline.md): camera rays, then ray sets traced
- * depth-first from the CPU. Each set is intersected object by object into the G-buffer, shaded
+ * depth-first from the CPU. Each set is intersected batch by batch (gpu_batch.c) into the G-buffer, shaded
  * (background, shadows, lights, ambient and emission into the accumulation texture) and spawns at
  * most two child sets (reflected, transmitted). A child's live rays are marked in the stencil and
  * counted by an occlusion query; a set with none is never traced. Depth-first order keeps at most
@@ -130,8 +130,9 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
 {
     bg_renderer *r = f->r;
     bool scissor = level == 0 && !(r->key.disable_skips & BG_SKIP_SCISSOR);
-    for (int o = 0; o < r->passes.object_count; o++) {
-        macs_pass *p = r->passes.hit[o];
+    for (int b = 0; b < r->passes.hit_count; b++) {
+        const gpu_batch *batch = &r->passes.hit[b];
+        macs_pass *p = batch->pass;
         bg_status st = bind(r, p, GPU_HIT_IN_ORIGIN, set->origin);
         if (st == BG_OK)
             st = bind(r, p, GPU_HIT_IN_DIR, set->dir);
@@ -143,7 +144,7 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
             return st;
         macs_run_desc d = set_run(f, level);
         int rect[4];
-        if (scissor && gpu_object_scissor(f->state, (uint32_t)o, r->width, r->height, rect)) {
+        if (scissor && gpu_batch_scissor(f->state, batch, r->width, r->height, rect)) {
             if (rect[2] == 0 || rect[3] == 0)
                 continue; /* entirely off screen */
             d.scissor = true;
@@ -160,6 +161,7 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
         st = run(f, p, BG_PASS_INTERSECT, &d);
         if (st != BG_OK)
             return st;
+        r->stats.intersect_objects += batch->count;
     }
     return BG_OK;
 }
@@ -183,10 +185,10 @@ static bg_status shade(frame *f, const gpu_ray_set *set, int level)
     for (int g = 0; g < p->group_count && st == BG_OK; g++) {
         phase_start(f);
         bool cleared = false;
-        for (int o = 0; o < p->object_count && st == BG_OK; o++) {
-            macs_pass *sp = p->shadow[(size_t)o * (size_t)p->group_count + (size_t)g];
-            if (!sp)
+        for (int b = 0; b < p->shadow_count && st == BG_OK; b++) {
+            if (p->shadow[b].group != g)
                 continue;
+            macs_pass *sp = p->shadow[b].pass;
             if (!cleared) {
                 macs_status ms = macs_texture_clear(r->vis, one);
                 if (ms)
@@ -194,6 +196,7 @@ static bg_status shade(frame *f, const gpu_ray_set *set, int level)
                 cleared = true;
             }
             st = run_counted(f, sp, BG_PASS_SHADOW, level);
+            r->stats.shadow_objects += p->shadow[b].count;
         }
         phase_end(f, BG_PHASE_SHADOW);
         if (st != BG_OK)

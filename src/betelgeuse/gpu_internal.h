@@ -40,14 +40,33 @@ typedef struct gpu_ray_set {
     macs_texture *origin, *dir, *weight;
 } gpu_ray_set;
 
+/* Most objects one intersection or shadow pass tests (DESIGN.md section 5): bounds the shader's
+ * length where no GL limit does (instruction counts are not queryable in GL 2.1). */
+#define GPU_BATCH_MAX 8
+/* Most scene textures (plus the white texel) one object's material samples. */
+#define GPU_HIT_MAX_TEXTURES 9
+
+/* One pass over several objects. */
+typedef struct gpu_batch {
+    macs_pass *pass;
+    int first, count; /* intersection: objects first .. first + count - 1, in pass order; shadow:
+                         entries first .. of gpu_passes.casters */
+    int group;        /* shadow: the light group */
+} gpu_batch;
+
 /* Passes built for one scene structure, image size and skip setting. */
 typedef struct gpu_passes {
     macs_pass *camera;
     macs_pass *mark;
     macs_pass *background;
     macs_pass *once;          /* ambient and emission, weighted in the G-buffer */
-    macs_pass **hit;          /* per object */
-    macs_pass **shadow;       /* per object and light group: [object * groups + group], may be NULL */
+    gpu_batch *hit;           /* intersection batches in pass order */
+    int hit_count;
+    gpu_batch *shadow;        /* shadow batches, by light group */
+    int shadow_count;
+    uint32_t *casters;        /* objects of the shadow batches, group by group */
+    bool *caster_blocks;      /* false: in the pass without a test (shadow cull switched off) */
+    int caster_count;
     macs_pass **light;        /* per light group */
     macs_pass *reflect, *refract;
     macs_pass *resolve;
@@ -129,6 +148,11 @@ void gpu_text_printf(gpu_text *t, const char *format, ...);
  * once per text, tracked in seen), without the #version lines. False if a file is missing. */
 bool gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *seen_count, int seen_cap);
 void gpu_text_free(gpu_text *t);
+/* Like gpu_text_snippet, with each name in the NULL-terminated list renamed to name_suffix by
+ * #define around the file, which is then forgotten by seen so that the next suffix inlines it again:
+ * one program can hold several shapes' copies of a function (gpu_hit_pass.c, shadow batches). */
+bool gpu_text_snippet_renamed(gpu_text *t, const char *file, const char *const *names, const char *suffix,
+                              const char **seen, int *seen_count, int seen_cap);
 
 /* ---- gpu_features.c ---- */
 /* Whether a material can spawn a secondary ray somewhere (mirror share or transparency). */
@@ -176,15 +200,44 @@ void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_de
 bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *defines,
                           macs_pass_desc *desc, macs_pass **out);
 
+/* Creates a pass from assembled functions. With trial, a shader GL refuses (compile or link) is
+ * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
+bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+                       macs_pass **out, bool *rejected);
+
+/* ---- gpu_batch.c ---- */
+/* Plans the intersection batches (first, count) into out (room for every object); returns how many. */
+int gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out);
+/* Plans the shadow batches of a group over casters[first .. first + n - 1] into out; returns how many. */
+int gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, int group, int first, int n,
+                           gpu_batch *out);
+/* The camera-ray scissor rectangle of a batch (the union of its objects'); false when unbounded.
+ * An empty rectangle means every object is off screen. */
+bool gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4]);
+
 /* ---- gpu_hit_pass.c ---- */
-/* The intersection pass of one object, writing the G-buffer slots of the features. */
-bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, macs_pass **out);
+/* The intersection pass of objects first .. first + count - 1 (count <= GPU_BATCH_MAX), writing
+ * the G-buffer slots of the features; trial as for gpu_pass_try. */
+bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
+                             macs_pass **out, bool *rejected);
+/* Uniform components (in whole vec4s, as old hardware allocates them) one object adds to an
+ * intersection pass, and the scene textures it samples (0 = the white texel). */
+int gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint32_t object,
+                         uint32_t textures[GPU_HIT_MAX_TEXTURES], int *texture_count);
+/* Uniform components every intersection pass has whatever its objects. */
+int gpu_hit_shared_components(void);
 /* Sets the per-frame uniforms of an object's intersection pass (dmax of the level). */
 bg_status gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax);
 
 /* ---- gpu_light_pass.c ---- */
-bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, int group,
-                                bool blocks, macs_pass **out);
+/* The shadow pass of a batch: objects casters[0 .. count - 1] (blocks[i] false: no test) against
+ * the segments of light group `group`; trial as for gpu_pass_try. */
+bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
+                                const bool *blocks, int count, int group, bool trial, macs_pass **out,
+                                bool *rejected);
+/* Uniform components of a shadow pass: per object, and shared for a group of `lights` lights. */
+#define GPU_SHADOW_OBJECT_COMPONENTS 20
+#define GPU_SHADOW_LIGHT_COMPONENTS 20
 /* The light pass of a group of up to four lights (vis: read the visibility texture); a group past
  * the last light makes the ambient and emission pass instead. */
 bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out);

@@ -4,6 +4,7 @@
  * unrolled to the group's exact size, into the accumulation texture. Ambient and emission, already
  * weighted in the G-buffer's ONCE slot, are added by a pass of their own. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "gpu_internal.h"
@@ -79,34 +80,82 @@ static void hit_stencil(const bg_renderer *r, macs_stencil_state *s)
     s->write_mask = 0;
 }
 
-bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t object, int group,
-                                bool blocks, macs_pass **out)
+static const char *const shape_name[BG_SHAPE_COUNT_] = {"sphere", "plane", "box", "cylinder", "rectangle"};
+
+bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
+                                const bool *blocks, int count, int group, bool trial, macs_pass **out,
+                                bool *rejected)
 {
-    int count = group_size(state, group);
+    *out = NULL;
+    if (rejected)
+        *rejected = false;
+    if (count < 1 || count > GPU_BATCH_MAX)
+        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: shadow batch of %d objects", count);
+    int lights = group_size(state, group);
     bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
     macs_input_desc inputs[2] = {{"bg_g_hit"}, {"bg_g_normal"}};
     macs_texture *input_tex[2] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL]};
-    macs_uniform_desc uniforms[8];
+    macs_uniform_desc uniforms[5 + 2 * GPU_BATCH_MAX];
+    char names[GPU_BATCH_MAX][2][24];
     int nu = 0;
-    uniforms[nu++] = (macs_uniform_desc){"bg_index", MACS_UNIFORM_FLOAT, 0};
-    uniforms[nu++] = (macs_uniform_desc){"bg_to_object", MACS_UNIFORM_MAT4, 0};
-    light_uniforms(uniforms, &nu, count);
+    for (int j = 0; j < count; j++) {
+        snprintf(names[j][0], sizeof names[j][0], "bg_index_%d", j);
+        snprintf(names[j][1], sizeof names[j][1], "bg_to_object_%d", j);
+        uniforms[nu++] = (macs_uniform_desc){names[j][0], MACS_UNIFORM_FLOAT, 0};
+        uniforms[nu++] = (macs_uniform_desc){names[j][1], MACS_UNIFORM_MAT4, 0};
+    }
+    light_uniforms(uniforms, &nu, lights);
 
+    /* Per light, the segment is found once and tested against every object of the batch; a point
+     * never tests the object it lies on (a convex object cannot shadow its own lit surface). */
     gpu_text main;
     gpu_text_init(&main, &r->allocator);
     gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
-    /* A convex object never shadows its own lit surface; one that casts nothing blocks nothing. */
-    if (!blocks)
+    bool any = false;
+    for (int j = 0; j < count; j++)
+        any = any || blocks[j];
+    /* One that casts nothing blocks nothing. */
+    if (!any)
         gpu_text_append(&main, "if (true)\n    discard;\n");
-    gpu_text_append(&main, "if (bg_hit_index(bg_h.w) == bg_index) discard;\n"
-                           "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
-                           "vec4 bg_vis = vec4(1.0);\n");
-    for (int i = 0; i < count; i++)
+    gpu_text_append(&main, "float bg_self = bg_hit_index(bg_h.w);\n");
+    if (count == 1)
+        gpu_text_append(&main, "if (bg_self == bg_index_0) discard;\n");
+    gpu_text_append(&main, "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
+                           "vec4 bg_vis = vec4(1.0);\nvec3 bg_l, bg_e;\nfloat bg_dist;\n");
+    for (int i = 0; i < lights; i++) {
         gpu_text_printf(&main,
-                        "bg_vis.%c = bg_shadow_visibility(bg_h.xyz, bg_n, bg_to_object, bg_lpos[%d], bg_lrad[%d], "
-                        "bg_latt[%d], bg_lspot[%d], bg_lexp[%d], %s);\n",
-                        "xyzw"[i], i, i, i, i, i, skip_facing ? "true" : "false");
+                        "if (bg_light_at(bg_h.xyz, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], bg_lexp[%d], "
+                        "bg_l, bg_dist, bg_e)%s) {\n    if (false",
+                        i, i, i, i, i, skip_facing ? " && !(dot(bg_n, bg_l) <= 0.0)" : "");
+        for (int j = 0; j < count; j++) {
+            if (!blocks[j])
+                continue;
+            const char *shape = shape_name[state->objects[casters[j]].shape];
+            gpu_text_printf(&main, "\n        || (bg_self != bg_index_%d && bg_segment_blocked_%s(bg_h.xyz, bg_l, bg_dist, "
+                                   "bg_to_object_%d))", j, shape, j);
+        }
+        gpu_text_printf(&main, ")\n        bg_vis.%c = 0.0;\n}\n", "xyzw"[i]);
+    }
     gpu_text_append(&main, "if (min(min(bg_vis.x, bg_vis.y), min(bg_vis.z, bg_vis.w)) > 0.5) discard;\n");
+
+    /* Each shape's segment test, renamed so that several shapes share the program. */
+    gpu_text functions;
+    gpu_text_init(&functions, &r->allocator);
+    const char *seen[32];
+    int n = 0;
+    bool have = gpu_text_snippet(&functions, "bg_hit_code.glsl", seen, &n, 32) &&
+                gpu_text_snippet(&functions, "bg_light.glsl", seen, &n, 32);
+    static const char *const span[] = {"bg_shape_span", NULL};
+    static const char *const stage[] = {"bg_shape_span", "bg_segment_blocked", "bg_shadow_visibility", NULL};
+    bool done[BG_SHAPE_COUNT_] = {false};
+    for (int j = 0; j < count && have; j++) {
+        bg_shape shape = state->objects[casters[j]].shape;
+        if (done[shape])
+            continue;
+        done[shape] = true;
+        have = gpu_text_snippet_renamed(&functions, shape_file[shape], span, shape_name[shape], seen, &n, 32) &&
+               gpu_text_snippet_renamed(&functions, "bg_stage_shadow.glsl", stage, shape_name[shape], seen, &n, 32);
+    }
 
     macs_output_desc output = {"visibility", "bg_vis"};
     macs_texture *output_tex[1] = {r->vis};
@@ -116,20 +165,28 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, uin
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_MULTIPLY;
 
-    const char *files[] = {"bg_hit_code.glsl", "bg_stage_shadow.glsl", shape_file[state->objects[object].shape], NULL};
-    bg_status st = main.failed ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a shadow shader")
-                               : gpu_pass_create(r, "shadow pass", files, NULL, &desc, out);
+    bg_status st;
+    if (main.failed || functions.failed)
+        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a shadow shader");
+    else if (!have)
+        st = gpu_fail(r, BG_ERR_GL, "bg_render_gpu: shadow pass: a shape shader file is missing");
+    else
+        st = gpu_pass_try(r, "shadow pass", functions.s, &desc, trial, out, rejected);
     gpu_text_free(&main);
-    if (st != BG_OK)
+    gpu_text_free(&functions);
+    if (st != BG_OK || !*out)
         return st;
-    float m16[16], fi = (float)object;
-    gpu_origin_to_object(state, object, m16);
-    macs_status ms = macs_pass_set_uniform(*out, "bg_index", &fi);
-    if (!ms)
-        ms = macs_pass_set_uniform(*out, "bg_to_object", m16);
+    macs_status ms = MACS_OK;
+    for (int j = 0; j < count && !ms; j++) {
+        float m16[16], fi = (float)casters[j];
+        gpu_origin_to_object(state, casters[j], m16);
+        ms = macs_pass_set_uniform(*out, names[j][0], &fi);
+        if (!ms)
+            ms = macs_pass_set_uniform(*out, names[j][1], m16);
+    }
     if (ms)
         return gpu_fail_macs(r, ms, "shadow pass uniforms");
-    return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
+    return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, lights);
 }
 
 bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out)

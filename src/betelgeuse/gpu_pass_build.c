@@ -2,6 +2,7 @@
  * rays, live-pixel marking, per-object intersection, background, shadows, lights, ambient and
  * emission, secondary rays and the resolve. Ray-map inputs are bound per ray set by gpu_frame.c at
  * the fixed input positions named in gpu_internal.h. */
+#include <stdio.h>
 #include <string.h>
 
 #include "alloc.h"
@@ -51,6 +52,33 @@ bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *f
         return gpu_fail_macs(r, ms, what);
     }
     return BG_OK;
+}
+
+bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+                       macs_pass **out, bool *rejected)
+{
+    desc->functions = functions;
+    /* A batch's failure is forgotten only if nothing was wrong before it. */
+    bool clean = macs_context_error(r->ctx) == MACS_OK;
+    macs_status ms = macs_pass_create(r->ctx, desc, out);
+    if (ms == MACS_OK)
+        return BG_OK;
+    *out = NULL;
+    if (trial && clean && (ms == MACS_ERR_SHADER_COMPILE || ms == MACS_ERR_SHADER_LINK)) {
+        /* The longer shader of a batch is beyond this GL: the caller falls back to smaller passes. */
+        if (r->log) {
+            char message[GPU_MESSAGE_SIZE];
+            snprintf(message, sizeof message, "bg_render_gpu: %s: the batched shader was refused (%s), "
+                     "falling back to one object per pass: %s", what, macs_status_string(ms),
+                     macs_context_error_message(r->ctx));
+            r->log(BG_LOG_WARNING, message, r->log_user);
+        }
+        macs_context_clear_error(r->ctx);
+        if (rejected)
+            *rejected = true;
+        return BG_OK;
+    }
+    return gpu_fail_macs(r, ms, what);
 }
 
 /* A pass over the live (and, with hit_bits, hit or missed) pixels with one or two ray-map inputs. */
@@ -310,6 +338,63 @@ static bool shadow_needed(const bg_scene_state *state, uint32_t o, int group)
     return state->objects[o].bounded || plane_can_shadow(state, o, group);
 }
 
+/* Builds the planned intersection batches; a batch whose shader GL refuses becomes one pass per
+ * object (the order, and so every tie, stays the same). */
+static bg_status build_hit_batches(bg_renderer *r, const bg_scene_state *state)
+{
+    gpu_passes *p = &r->passes;
+    int n = (int)state->object_count;
+    gpu_batch *plan = bg_alloc(&r->allocator, (size_t)(n ? n : 1) * sizeof *plan);
+    if (!plan)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
+    int planned = gpu_batch_plan_hits(r, state, plan);
+    bg_status st = BG_OK;
+    for (int b = 0; b < planned && st == BG_OK; b++) {
+        bool rejected = false;
+        gpu_batch *out = &p->hit[p->hit_count];
+        *out = plan[b];
+        st = gpu_hit_pass_build(r, state, (uint32_t)plan[b].first, plan[b].count, plan[b].count > 1, &out->pass,
+                                &rejected);
+        if (st == BG_OK && !rejected) {
+            p->hit_count++;
+            continue;
+        }
+        for (int j = 0; j < plan[b].count && st == BG_OK; j++) {
+            out = &p->hit[p->hit_count];
+            *out = (gpu_batch){NULL, plan[b].first + j, 1, 0};
+            st = gpu_hit_pass_build(r, state, (uint32_t)out->first, 1, false, &out->pass, NULL);
+            if (st == BG_OK)
+                p->hit_count++;
+        }
+    }
+    bg_free(&r->allocator, plan);
+    return st;
+}
+
+/* Builds one planned shadow batch, or one pass per object where GL refuses the batched shader. */
+static bg_status build_shadow_batch(bg_renderer *r, const bg_scene_state *state, const gpu_batch *planned)
+{
+    gpu_passes *p = &r->passes;
+    bool rejected = false;
+    gpu_batch *out = &p->shadow[p->shadow_count];
+    *out = *planned;
+    bg_status st = gpu_shadow_pass_build(r, state, &p->casters[planned->first], &p->caster_blocks[planned->first],
+                                         planned->count, planned->group, planned->count > 1, &out->pass, &rejected);
+    if (st == BG_OK && !rejected) {
+        p->shadow_count++;
+        return BG_OK;
+    }
+    for (int j = 0; j < planned->count && st == BG_OK; j++) {
+        out = &p->shadow[p->shadow_count];
+        *out = (gpu_batch){NULL, planned->first + j, 1, planned->group};
+        st = gpu_shadow_pass_build(r, state, &p->casters[out->first], &p->caster_blocks[out->first], 1,
+                                   planned->group, false, &out->pass, NULL);
+        if (st == BG_OK)
+            p->shadow_count++;
+    }
+    return st;
+}
+
 bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
 {
     gpu_passes *p = &r->passes;
@@ -318,28 +403,47 @@ bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg
     p->group_count = groups;
     size_t n_hit = state->object_count ? state->object_count : 1;
     size_t n_shadow = (size_t)state->object_count * (size_t)(groups ? groups : 1);
+    if (!n_shadow)
+        n_shadow = 1;
     p->hit = bg_alloc(&r->allocator, n_hit * sizeof *p->hit);
-    p->shadow = bg_alloc(&r->allocator, (n_shadow ? n_shadow : 1) * sizeof *p->shadow);
+    p->shadow = bg_alloc(&r->allocator, n_shadow * sizeof *p->shadow);
+    p->casters = bg_alloc(&r->allocator, n_shadow * sizeof *p->casters);
+    p->caster_blocks = bg_alloc(&r->allocator, n_shadow * sizeof *p->caster_blocks);
     p->light = bg_alloc(&r->allocator, (size_t)(groups ? groups : 1) * sizeof *p->light);
-    if (!p->hit || !p->shadow || !p->light)
+    if (!p->hit || !p->shadow || !p->casters || !p->caster_blocks || !p->light)
         return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
-    memset(p->hit, 0, n_hit * sizeof *p->hit);
-    memset(p->shadow, 0, (n_shadow ? n_shadow : 1) * sizeof *p->shadow);
     memset(p->light, 0, (size_t)(groups ? groups : 1) * sizeof *p->light);
 
     bg_status st = build_ray_passes(r, state, settings);
-    for (uint32_t o = 0; o < state->object_count && st == BG_OK; o++)
-        st = gpu_hit_pass_build(r, state, o, &p->hit[o]);
+    if (st == BG_OK)
+        st = build_hit_batches(r, state);
 
+    /* Shadow casters group by group. With the cull switched off the objects it would drop are in
+     * too, without a test and in batches of their own, so that the pass count shows the saving. */
     bool cull = !(r->key.disable_skips & BG_SKIP_SHADOW_CULL);
     bool any_shadow = false;
-    for (uint32_t o = 0; o < state->object_count && st == BG_OK; o++) {
-        for (int g = 0; g < groups && st == BG_OK; g++) {
-            bool needed = shadow_needed(state, o, g);
-            if (cull && !needed)
+    for (int g = 0; g < groups && st == BG_OK; g++) {
+        for (int kept = 1; kept >= 0 && st == BG_OK; kept--) {
+            if (!kept && cull)
+                break;
+            int first = p->caster_count;
+            for (uint32_t o = 0; o < state->object_count; o++) {
+                if (shadow_needed(state, o, g) != (kept == 1))
+                    continue;
+                p->casters[p->caster_count] = o;
+                p->caster_blocks[p->caster_count++] = kept == 1;
+            }
+            int n = p->caster_count - first;
+            if (n == 0)
                 continue;
-            st = gpu_shadow_pass_build(r, state, o, g, needed, &p->shadow[(size_t)o * (size_t)groups + (size_t)g]);
             any_shadow = true;
+            gpu_batch *plan = bg_alloc(&r->allocator, (size_t)n * sizeof *plan);
+            if (!plan)
+                return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for shadow passes");
+            int planned = gpu_batch_plan_shadows(r, state, g, first, n, plan);
+            for (int b = 0; b < planned && st == BG_OK; b++)
+                st = build_shadow_batch(r, state, &plan[b]);
+            bg_free(&r->allocator, plan);
         }
     }
     /* Ambient and emission get a pass of their own rather than riding on the first light pass: the
@@ -363,14 +467,16 @@ void gpu_passes_release(bg_renderer *r)
     macs_pass_destroy(p->refract);
     macs_pass_destroy(p->resolve);
     int groups = p->group_count;
-    for (int o = 0; p->hit && o < p->object_count; o++)
-        macs_pass_destroy(p->hit[o]);
-    for (int i = 0; p->shadow && i < p->object_count * groups; i++)
-        macs_pass_destroy(p->shadow[i]);
+    for (int b = 0; p->hit && b < p->hit_count; b++)
+        macs_pass_destroy(p->hit[b].pass);
+    for (int b = 0; p->shadow && b < p->shadow_count; b++)
+        macs_pass_destroy(p->shadow[b].pass);
     for (int g = 0; p->light && g < groups; g++)
         macs_pass_destroy(p->light[g]);
     bg_free(&r->allocator, p->hit);
     bg_free(&r->allocator, p->shadow);
+    bg_free(&r->allocator, p->casters);
+    bg_free(&r->allocator, p->caster_blocks);
     bg_free(&r->allocator, p->light);
     memset(p, 0, sizeof *p);
 }

@@ -114,3 +114,23 @@ bool gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *see
     gpu_text_append(t, "\n");
     return true;
 }
+
+bool gpu_text_snippet_renamed(gpu_text *t, const char *file, const char *const *names, const char *suffix,
+                              const char **seen, int *seen_count, int seen_cap)
+{
+    for (int i = 0; names[i]; i++)
+        gpu_text_printf(t, "#define %s %s_%s\n", names[i], names[i], suffix);
+    /* The file itself must be inlined again under the next suffix; what it requires is shared. */
+    int before = *seen_count;
+    bool ok = gpu_text_snippet(t, file, seen, seen_count, seen_cap);
+    for (int i = 0; names[i]; i++)
+        gpu_text_printf(t, "#undef %s\n", names[i]);
+    for (int i = before; i < *seen_count; i++) {
+        if (strcmp(seen[i], file) == 0) {
+            memmove(&seen[i], &seen[i + 1], (size_t)(*seen_count - i - 1) * sizeof *seen);
+            (*seen_count)--;
+            break;
+        }
+    }
+    return ok;
+}

@@ -17,6 +17,9 @@ void macs_limits_query(macs_context *ctx)
     v = 0; ctx->gl.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &v); r->max_color_attachments = v;
     v = 0; ctx->gl.GetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &v); r->max_texture_units = v;
     v = 0; ctx->gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &v); r->max_texture_size = v;
+    /* GL 2.0 promises 64; a driver reporting less is taken at that word rather than at zero. */
+    v = 0; ctx->gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &v);
+    ctx->max_fragment_uniform_components = v < 64 ? 64 : v;
     /* Depth/stencil objects are renderbuffers of the output size, so the smaller limit rules both. */
     GLint rb = 0;
     ctx->gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
@@ -62,4 +65,9 @@ void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits
         *real = ctx->real;
     if (effective)
         *effective = ctx->effective;
+}
+
+int macs_context_max_uniform_components(const macs_context *ctx)
+{
+    return ctx ? ctx->max_fragment_uniform_components : 0;
 }
