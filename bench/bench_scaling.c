@@ -22,7 +22,7 @@ typedef struct series {
 
 static const series all_series[] = {
     {SERIES_OBJECTS, "objects", "spheres (plus one wall plane)", SCENE_MANY_SPHERES,
-     {1, 2, 4, 8, 16, 32, 64}, 7, {1, 4, 16, 32}, 4},
+     {1, 2, 4, 8, 16, 32, 64}, 7, {1, 4, 16}, 3},
     {SERIES_LIGHTS, "lights", "point lights", SCENE_MANY_LIGHTS, {1, 2, 3, 4, 5, 6, 7, 8}, 8, {1, 2, 4, 8}, 4},
     {SERIES_DEPTH, "depth", "bounce levels (max_depth)", SCENE_GLASS, {0, 1, 2, 3, 4, 5, 6}, 7, {0, 2, 4, 6}, 4},
     {SERIES_RESOLUTION, "resolution", "image side (pixels)", SCENE_PAPER_EARTH_SHADOW, {256, 512, 1024, 2048}, 4,
