@@ -51,6 +51,8 @@ set xlabel 'time / baseline time'
 set ylabel 'mean absolute error (log)'
 set logscale y
 set key off
+set offsets graph 0.05, graph 0.3, graph 0.1, graph 0.1
+set format y '%g'
 do for [s in scenes] {
     set title s noenhanced
     plot dir.'/tradeoffs.csv' using ((strcol(1) eq s && precision(strcol(2))) ? $7 : 1/0):($14 > 0 ? $14 : 1e-5) with points pt 7 ps 1.2, \
@@ -58,6 +60,8 @@ do for [s in scenes] {
 }
 unset multiplot
 unset logscale
+set offsets 0, 0, 0, 0
+set format y '% h'
 
 # What each skip saves: time with the skip switched off, against the baseline (bars clipped at 4x,
 # the value printed). Every skip leaves the image bit-identical (pixels_changed, column 8).
