@@ -86,16 +86,3 @@ void util_fill_pattern(float *data, size_t n, unsigned seed)
         data[i] = (x & 1) ? -v : v;
     }
 }
-
-/* LeakSanitizer (make SANITIZE=1) reads this hook at exit. The same Mesa-internal leaks that
- * tests/valgrind.supp documents: OSMesa's process-wide state-tracker manager and its framebuffer
- * list, which OSMesaDestroyContext does not free. LSan's fast unwinder stops inside libOSMesa (built
- * without frame pointers), so the entry points are not always visible and the library name is the
- * anchor: OSMesa never calls back into MACS or the tests, so no allocation of ours has it on its stack. */
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void)
-{
-    return "leak:OSMesaCreateContextAttribs\n"
-           "leak:OSMesaMakeCurrent\n"
-           "leak:libOSMesa.so\n";
-}
