@@ -4,7 +4,8 @@
 
 int bg_shape_span(vec3 o, vec3 d, out vec2 t, out vec3 n0, out vec3 n1);
 
-// True when the open segment p + t l, 0 < t < dist (dist < 0: unbounded), meets the object.
+// True when the open segment p + t l, 0 < t < dist (1 - BG_SHADOW_END_REL) (dist < 0: unbounded),
+// meets the object.
 bool bg_segment_blocked(vec3 p, vec3 l, float dist, mat4 to_object)
 {
     vec3 o = (to_object * vec4(p, 1.0)).xyz;
@@ -14,7 +15,12 @@ bool bg_segment_blocked(vec3 p, vec3 l, float dist, mat4 to_object)
     int count = bg_shape_span(o, d, t, n0, n1);
     if (count == 0)
         return false;
-    bool before_light = dist < 0.0 || t.x < dist;
+    // The segment is open at the light's end by 2^-16 of its length (BG_SHADOW_END_REL in
+    // cpu_internal.h, which says why this value): a light lying on a surface ends the segment on
+    // it, and float cannot tell on which side of dist that root falls. A local constant, since
+    // this file is inlined once per shape of a batch. GLSL 1.10 allows no exp2() here.
+    const float BG_SHADOW_END_REL = 1.52587890625e-05;
+    bool before_light = dist < 0.0 || t.x < dist * (1.0 - BG_SHADOW_END_REL);
     if (count == 1)
         return t.x > 0.0 && before_light;
     return t.y > 0.0 && before_light;

@@ -382,6 +382,40 @@ static void test_segment_blocked(void **state)
     bg_scene_destroy(scene);
 }
 
+/* The segment is open at its light end by BG_SHADOW_END_REL of its length (docs/shading.md 2.8): a
+ * light lying on a surface is not shadowed by that surface, whichever side of t_max rounding puts
+ * the root, and the tolerance scales with the segment. Without the rule the ends just past the
+ * root below would count as blocked. */
+static void test_segment_open_at_light(void **state)
+{
+    (void)state;
+    const double near_end = 1.0 + BG_SHADOW_END_REL / 4.0, before = 1.0 + BG_SHADOW_END_REL * 4.0;
+    const double scales[3] = {1e-6, 1.0, 1e6};
+    for (int k = 0; k < 3; k++) {
+        double a = scales[k];
+        bg_object_desc desc = bg_object_desc_init(BG_SHAPE_SPHERE, 1);
+        desc.transform = bg_mat4_scale(a, a, a);
+        bg_scene *scene = one_object(&desc);
+        const bg_scene_state *st = bg_scene_committed(scene);
+        const double o[3] = {0, 0, 5 * a}, l[3] = {0, 0, -1};
+        /* The sphere's near root is 4a. */
+        assert_false(bg_cpu_segment_blocked(&st->objects[0], o, l, 4 * a * near_end));
+        assert_false(bg_cpu_segment_blocked(&st->objects[0], o, l, 4 * a));
+        assert_true(bg_cpu_segment_blocked(&st->objects[0], o, l, 4 * a * before));
+        bg_scene_destroy(scene);
+
+        desc = bg_object_desc_init(BG_SHAPE_PLANE, 1);
+        desc.transform = bg_mat4_scale(a, a, a);
+        scene = one_object(&desc);
+        st = bg_scene_committed(scene);
+        /* From 3a above the plane, obliquely: the root is at 5a. */
+        const double p[3] = {0, 3 * a, 0}, m[3] = {0.8, -0.6, 0};
+        assert_false(bg_cpu_segment_blocked(&st->objects[0], p, m, 5 * a * near_end));
+        assert_true(bg_cpu_segment_blocked(&st->objects[0], p, m, 5 * a * before));
+        bg_scene_destroy(scene);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -397,6 +431,7 @@ int main(void)
         cmocka_unit_test(test_transformed_plane_both_sides),
         cmocka_unit_test(test_transformed_cylinder_and_rectangle),
         cmocka_unit_test(test_segment_blocked),
+        cmocka_unit_test(test_segment_open_at_light),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -454,8 +454,9 @@ static const stress_case table[] = {
         true, 0, 0, 0),
     /* degenerate but legal input */
     OWN("sphere radius 1e-6", "a 1e-6 sphere on a unit sphere, seen from 5e-6", tiny_sphere, STRESS_SWEEP, true, 0, 0, 0),
-    OWN("light on a surface", "point lights exactly on a sphere and on the floor", light_on_surface, STRESS_SWEEP, true,
-        0, 0, 0),
+    /* must hold since shadow segments are open at the light's end (docs/shading.md 2.8) */
+    OWN("light on a surface", "point lights exactly on a sphere and on the floor", light_on_surface, STRESS_MUST_HOLD,
+        true, 0, 0, 0),
     OWN("pole of spherical UV", "the earth seen from above its pole (asin)", pole_uv, STRESS_SWEEP, true, 0, 0, 0),
 };
 

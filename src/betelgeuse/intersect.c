@@ -221,7 +221,8 @@ bool bg_cpu_segment_blocked(const bg_object_data *object, const double o[3], con
     if (span.count == 0)
         return false;
     double exit_t = span.t[span.count - 1];
-    return exit_t > 0.0 && span.t[0] < t_max;
+    /* Open at the light's end by BG_SHADOW_END_REL of its length (cpu_internal.h). */
+    return exit_t > 0.0 && span.t[0] < t_max * (1.0 - BG_SHADOW_END_REL);
 }
 
 /* Any unit vector perpendicular to n: the coordinate axis least aligned with it, orthogonalised. */
