@@ -51,9 +51,7 @@ static bool run_scene(bench_gpu *gpu, scene_id id, int size, int runs, FILE *csv
             fprintf(csv, "%s,%d,%s,%.3f,%.4f,%.3f,%.3f\n", scenes_name(id), size, phase_names[p], pt.median,
                     t.median > 0 ? pt.median / t.median : 0.0, t.median, untimed.median);
         }
-        int passes = 0;
-        for (int k = 0; k < BG_PASS_KIND_COUNT_; k++)
-            passes += stats.passes[k];
+        int passes = bench_total_passes(&stats);
         printf(" | %5d %3d %4d %4d\n", passes, stats.ray_sets, stats.passes[BG_PASS_INTERSECT],
                stats.passes[BG_PASS_SHADOW]);
         fflush(stdout);

@@ -58,9 +58,7 @@ static bool run_point(bench_gpu *gpu, const series *s, int x, int size, int gpu_
     bg_renderer_stats(gpu->renderer, &stats);
     ok = ok && bench_time_cpu(scene, &settings, &ci, cpu_runs, &tc);
     if (ok) {
-        int passes = 0;
-        for (int k = 0; k < BG_PASS_KIND_COUNT_; k++)
-            passes += stats.passes[k];
+        int passes = bench_total_passes(&stats);
         bench_error e = bench_error_of(&ci, &gi);
         char text[128];
         printf("%-11s %5d %5d | %8.1f [%7.1f-%7.1f] %d | %8.1f | %6.2f | %5d %4d | %s\n", s->name, x, size,

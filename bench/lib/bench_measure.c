@@ -96,6 +96,14 @@ char *bench_error_text(const bench_error *e, char *buffer, size_t size)
     return buffer;
 }
 
+int bench_total_passes(const bg_render_stats *stats)
+{
+    int passes = 0;
+    for (int k = 0; k < BG_PASS_KIND_COUNT_; k++)
+        passes += stats->passes[k];
+    return passes;
+}
+
 /* The CPU model from /proc/cpuinfo, or "?" where there is none. */
 static void cpu_model(char *buffer, size_t size)
 {

@@ -44,6 +44,9 @@ void bench_error_csv(FILE *f, const bench_error *e);
 /* A short human-readable form: "PSNR 71.1 dB, max 2, mean 0.005, over 0.0%". */
 char *bench_error_text(const bench_error *e, char *buffer, size_t size);
 
+/* Passes of every kind the last frame drew. */
+int bench_total_passes(const bg_render_stats *stats);
+
 /* The machine, GL renderer and thread settings, printed at the top of every benchmark's output. */
 void bench_print_setup(FILE *f, const bench_gpu *gpu, int runs);
 
