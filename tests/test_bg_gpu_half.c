@@ -21,6 +21,7 @@
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_thresholds.h"
 
 enum { W = 160, H = 120 };
 
@@ -61,8 +62,7 @@ static void record_log(bg_log_level level, const char *message, void *user)
     snprintf(l->last, sizeof l->last, "%s", message);
 }
 
-/* One context for the suite, with a full-precision and a half-precision renderer on it. */
-static util_gpu fx;
+/* One context for the suite (util_fx), with a full-precision and a half-precision renderer on it. */
 static bg_renderer *half;
 static log_record half_log;
 
@@ -81,26 +81,15 @@ static bg_renderer *renderer_on(macs_context *ctx, bool half_gbuffer, log_record
 
 static int group_setup(void **state)
 {
-    (void)state;
-    util_gpu_open(&fx, NULL);
-    half = renderer_on(fx.ctx, true, &half_log);
+    util_gpu_group_setup(state);
+    half = renderer_on(util_fx.ctx, true, &half_log);
     return 0;
 }
 
 static int group_teardown(void **state)
 {
-    (void)state;
     bg_renderer_destroy(half);
-    util_gpu_close(&fx);
-    return 0;
-}
-
-static void render(bg_renderer *r, bg_scene *s, bg_image *img, const char *name)
-{
-    bg_render_settings set = bg_render_settings_init();
-    bg_status st = bg_render_gpu(r, s, &set, img);
-    if (st != BG_OK)
-        fail_msg("%s: bg_render_gpu: %s: %s", name, bg_status_string(st), bg_renderer_error_message(r));
+    return util_gpu_group_teardown(state);
 }
 
 /* Llvmpipe renders to RGBA16F: the probe found it, said nothing, and left no error behind. */
@@ -110,7 +99,7 @@ static void probe_finds_rgba16f(void **state)
     if (half_log.warnings || half_log.errors)
         fail_msg("the probe logged: %s", half_log.last);
     assert_int_equal(bg_renderer_error(half), BG_OK);
-    assert_int_equal(macs_context_error(fx.ctx), MACS_OK);
+    assert_int_equal(macs_context_error(util_fx.ctx), MACS_OK);
 }
 
 static void check_scene(scene_id id)
@@ -127,10 +116,10 @@ static void check_scene(scene_id id)
     bg_render_settings set = bg_render_settings_init();
     assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
 
-    render(fx.renderer, s, &fi8, name);
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &fi8, name);
     bg_render_stats full_stats, half_stats;
-    bg_renderer_stats(fx.renderer, &full_stats);
-    render(half, s, &hi8, name);
+    bg_renderer_stats(util_fx.renderer, &full_stats);
+    util_render_gpu(half, util_fx.ctx, s, &set, &hi8, name);
     bg_renderer_stats(half, &half_stats);
 
     /* Every slot but HIT and ONCE (both always written) is half; the default renderer has none. */
@@ -152,8 +141,8 @@ static void check_scene(scene_id id)
         fail_msg("%s with the RGBA16F G-buffer: %s", name, why);
 
     /* Float output: finite, and the bits say whether half precision reached the image at all. */
-    render(fx.renderer, s, &fif, name);
-    render(half, s, &hif, name);
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &fif, name);
+    util_render_gpu(half, util_fx.ctx, s, &set, &hif, name);
     size_t bad = image_metrics_count_nonfinite(&hif);
     if (bad != 0)
         fail_msg("%s: %zu non-finite values in the RGBA32F output with the RGBA16F G-buffer", name, bad);
@@ -172,55 +161,14 @@ static void check_scene(scene_id id)
     bg_scene_destroy(s);
 }
 
-#define SCENE_TEST(fn, id)          \
-    static void fn(void **state)    \
-    {                               \
-        (void)state;                \
-        check_scene(id);            \
-    }
-SCENE_TEST(paper_earth, SCENE_PAPER_EARTH)
-SCENE_TEST(paper_earth_shadow, SCENE_PAPER_EARTH_SHADOW)
-SCENE_TEST(mirror, SCENE_MIRROR)
-SCENE_TEST(glass, SCENE_GLASS)
-SCENE_TEST(many_spheres, SCENE_MANY_SPHERES)
-SCENE_TEST(many_lights, SCENE_MANY_LIGHTS)
-SCENE_TEST(all_primitives, SCENE_ALL_PRIMITIVES)
-SCENE_TEST(textured_aniso, SCENE_TEXTURED_ANISO)
+UTIL_EACH_SCENE(UTIL_SCENE_TEST)
 
 /* Loose as some rows are, they are not blind: the CPU reference seen through a camera turned by half
  * a pixel breaks them on every scene, as it breaks gpu_thresholds.h. */
 static void half_thresholds_catch_half_pixel_offset(void **state)
 {
     (void)state;
-    unsigned char *a = malloc((size_t)W * H * 4), *b = malloc((size_t)W * H * 4);
-    assert_true(a && b);
-    for (int id = 0; id < SCENE_COUNT; id++) {
-        assert_int_equal(half_thresholds[id].scene, id);
-        bg_scene *s = util_scene((scene_id)id);
-        bg_render_settings set = bg_render_settings_init();
-        bg_image ai = {W, H, BG_PIXEL_RGBA8, 0, a}, bi = {W, H, BG_PIXEL_RGBA8, 0, b};
-        assert_int_equal(bg_render_cpu(s, &set, &ai), BG_OK);
-        const bg_camera_data *cd = &bg_scene_committed(s)->camera;
-        bg_camera cam = cd->camera;
-        double dx = cam.look_at.x - cam.position.x, dy = cam.look_at.y - cam.position.y,
-               dz = cam.look_at.z - cam.position.z;
-        double shift = sqrt(dx * dx + dy * dy + dz * dz) * cd->tan_half_fov_y * 2.0 / H * 0.5;
-        cam.look_at.x += cd->right[0] * shift;
-        cam.look_at.y += cd->right[1] * shift;
-        cam.look_at.z += cd->right[2] * shift;
-        assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
-        assert_int_equal(bg_scene_commit(s), BG_OK);
-        assert_int_equal(bg_render_cpu(s, &set, &bi), BG_OK);
-        image_metrics m;
-        char why[256], line[512];
-        assert_true(image_metrics_compare(&ai, &bi, GPU_SILHOUETTE_THRESHOLD, &m));
-        if (gpu_threshold_check(&half_thresholds[id], &m, why, sizeof why))
-            fail_msg("%s: a half-pixel offset passes the half-precision bounds: %s", scenes_name((scene_id)id),
-                     image_metrics_format(&m, line, sizeof line));
-        bg_scene_destroy(s);
-    }
-    free(a);
-    free(b);
+    util_thresholds_catch_half_pixel_offset(half_thresholds, W, H, "the half-precision bounds");
 }
 
 /* One draw buffer splits the intersection pass into one chunk per target, so RGBA32F and RGBA16F
@@ -230,7 +178,7 @@ static void split_passes_give_the_same_bits(void **state)
     (void)state;
     macs_limits caps = {0};
     caps.max_draw_buffers = 1;
-    macs_context *ctx = util_context(fx.headless, &caps);
+    macs_context *ctx = util_context(util_fx.headless, &caps);
     log_record log = {0};
     bg_renderer *r = renderer_on(ctx, true, &log);
     size_t n = (size_t)W * H * 4;
@@ -238,8 +186,9 @@ static void split_passes_give_the_same_bits(void **state)
     assert_true(a && b);
     bg_image ai = {W, H, BG_PIXEL_RGBA32F, 0, a}, bi = {W, H, BG_PIXEL_RGBA32F, 0, b};
     bg_scene *s = util_scene(SCENE_TEXTURED_ANISO); /* every slot: transparency, tangents and coats */
-    render(half, s, &ai, "uncapped");
-    render(r, s, &bi, "one draw buffer");
+    bg_render_settings set = bg_render_settings_init();
+    util_render_gpu(half, util_fx.ctx, s, &set, &ai, "uncapped");
+    util_render_gpu(r, ctx, s, &set, &bi, "one draw buffer");
     bg_render_stats stats;
     bg_renderer_stats(r, &stats);
     assert_int_equal(stats.gbuffer_half_targets, stats.gbuffer_targets - 2);
@@ -314,8 +263,8 @@ static void fallback_without_rgba16f(void **state)
 {
     (void)state;
     memset(&no16, 0, sizeof no16);
-    no16.real = macs_headless_get_proc_address(fx.headless);
-    no16.real_user = macs_headless_proc_user(fx.headless);
+    no16.real = macs_headless_get_proc_address(util_fx.headless);
+    no16.real_user = macs_headless_proc_user(util_fx.headless);
     macs_context_desc cd = {0};
     cd.get_proc_address = no16_loader;
     macs_context *ctx = NULL;
@@ -336,8 +285,9 @@ static void fallback_without_rgba16f(void **state)
     assert_true(a && b);
     bg_image ai = {W, H, BG_PIXEL_RGBA32F, 0, a}, bi = {W, H, BG_PIXEL_RGBA32F, 0, b};
     bg_scene *s = util_scene(SCENE_GLASS);
-    render(r, s, &ai, "fallback");
-    render(full, s, &bi, "default");
+    bg_render_settings set = bg_render_settings_init();
+    util_render_gpu(r, ctx, s, &set, &ai, "fallback");
+    util_render_gpu(full, ctx, s, &set, &bi, "default");
     bg_render_stats stats;
     bg_renderer_stats(r, &stats);
     assert_true(stats.gbuffer_targets >= 4);
@@ -358,14 +308,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(probe_finds_rgba16f),
         cmocka_unit_test(half_thresholds_catch_half_pixel_offset),
-        cmocka_unit_test(paper_earth),
-        cmocka_unit_test(paper_earth_shadow),
-        cmocka_unit_test(mirror),
-        cmocka_unit_test(glass),
-        cmocka_unit_test(many_spheres),
-        cmocka_unit_test(many_lights),
-        cmocka_unit_test(all_primitives),
-        cmocka_unit_test(textured_aniso),
+        UTIL_EACH_SCENE(UTIL_SCENE_UNIT_TEST)
         cmocka_unit_test(split_passes_give_the_same_bits),
         cmocka_unit_test(fallback_without_rgba16f),
     };

@@ -24,33 +24,11 @@
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_thresholds.h"
 
 enum { W = 160, H = 120 };
 
-/* One context and renderer for the whole suite: the renderer also meets scene after scene. */
-static util_gpu fx;
-
-static int group_setup(void **state)
-{
-    (void)state;
-    util_gpu_open(&fx, NULL);
-    return 0;
-}
-
-static int group_teardown(void **state)
-{
-    (void)state;
-    util_gpu_close(&fx);
-    return 0;
-}
-
-static void render_gpu(bg_scene *s, const bg_render_settings *set, bg_image *img, const char *name)
-{
-    bg_status st = bg_render_gpu(fx.renderer, s, set, img);
-    if (st != BG_OK)
-        fail_msg("%s: bg_render_gpu: %s: %s (MACS: %s)", name, bg_status_string(st),
-                 bg_renderer_error_message(fx.renderer), macs_context_error_message(fx.ctx));
-}
+/* One context and renderer for the whole suite (util_fx): the renderer also meets scene after scene. */
 
 /* Does the scene have mirror or glass materials (bounce levels expected), by construction in
  * examples/scenes/scenes.c: a specular share needs a roughness below 1/2 in some layer. */
@@ -119,9 +97,9 @@ static void check_scene(scene_id id)
     bg_image fi = {W, H, BG_PIXEL_RGBA32F, 0, gpuf};
     assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
     memset(gpu, 0xCD, (size_t)W * H * 4);
-    render_gpu(s, &set, &gi, name);
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &gi, name);
     bg_render_stats stats;
-    bg_renderer_stats(fx.renderer, &stats);
+    bg_renderer_stats(util_fx.renderer, &stats);
 
     image_metrics m;
     assert_true(image_metrics_compare(&ci, &gi, GPU_SILHOUETTE_THRESHOLD, &m));
@@ -144,7 +122,7 @@ static void check_scene(scene_id id)
     check_stats(id, s, &stats);
 
     /* The float output: finite, non-negative, and what the RGBA8 output encodes. */
-    render_gpu(s, &set, &fi, name);
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &fi, name);
     size_t bad = image_metrics_count_nonfinite(&fi);
     if (bad != 0)
         fail_msg("%s: %zu non-finite values in the RGBA32F output", name, bad);
@@ -162,55 +140,14 @@ static void check_scene(scene_id id)
     bg_scene_destroy(s);
 }
 
-#define SCENE_TEST(fn, id)          \
-    static void fn(void **state)    \
-    {                               \
-        (void)state;                \
-        check_scene(id);            \
-    }
-SCENE_TEST(paper_earth, SCENE_PAPER_EARTH)
-SCENE_TEST(paper_earth_shadow, SCENE_PAPER_EARTH_SHADOW)
-SCENE_TEST(mirror, SCENE_MIRROR)
-SCENE_TEST(glass, SCENE_GLASS)
-SCENE_TEST(many_spheres, SCENE_MANY_SPHERES)
-SCENE_TEST(many_lights, SCENE_MANY_LIGHTS)
-SCENE_TEST(all_primitives, SCENE_ALL_PRIMITIVES)
-SCENE_TEST(textured_aniso, SCENE_TEXTURED_ANISO)
+UTIL_EACH_SCENE(UTIL_SCENE_TEST)
 
 /* The thresholds are tight enough to matter: the CPU reference seen through a camera turned by half
  * a pixel (the classic pixel-centre mistake) breaks them on every scene. */
 static void thresholds_catch_half_pixel_offset(void **state)
 {
     (void)state;
-    unsigned char *a = malloc((size_t)W * H * 4), *b = malloc((size_t)W * H * 4);
-    assert_non_null(a);
-    assert_non_null(b);
-    for (int id = 0; id < SCENE_COUNT; id++) {
-        bg_scene *s = util_scene((scene_id)id);
-        bg_render_settings set = bg_render_settings_init();
-        bg_image ai = {W, H, BG_PIXEL_RGBA8, 0, a}, bi = {W, H, BG_PIXEL_RGBA8, 0, b};
-        assert_int_equal(bg_render_cpu(s, &set, &ai), BG_OK);
-        const bg_camera_data *cd = &bg_scene_committed(s)->camera;
-        bg_camera cam = cd->camera;
-        double dx = cam.look_at.x - cam.position.x, dy = cam.look_at.y - cam.position.y,
-               dz = cam.look_at.z - cam.position.z;
-        double shift = sqrt(dx * dx + dy * dy + dz * dz) * cd->tan_half_fov_y * 2.0 / H * 0.5;
-        cam.look_at.x += cd->right[0] * shift;
-        cam.look_at.y += cd->right[1] * shift;
-        cam.look_at.z += cd->right[2] * shift;
-        assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
-        assert_int_equal(bg_scene_commit(s), BG_OK);
-        assert_int_equal(bg_render_cpu(s, &set, &bi), BG_OK);
-        image_metrics m;
-        char why[256], line[512];
-        assert_true(image_metrics_compare(&ai, &bi, GPU_SILHOUETTE_THRESHOLD, &m));
-        if (gpu_threshold_check(gpu_threshold_of((scene_id)id), &m, why, sizeof why))
-            fail_msg("%s: a half-pixel offset passes the thresholds: %s", scenes_name((scene_id)id),
-                     image_metrics_format(&m, line, sizeof line));
-        bg_scene_destroy(s);
-    }
-    free(a);
-    free(b);
+    util_thresholds_catch_half_pixel_offset(gpu_thresholds, W, H, "the thresholds");
 }
 
 /* The table is in scene_id order, one row per scene. */
@@ -230,8 +167,8 @@ static void float_depth(void **state)
 {
     (void)state;
     macs_context_desc cd = {0};
-    cd.get_proc_address = macs_headless_get_proc_address(fx.headless);
-    cd.get_proc_address_user = macs_headless_proc_user(fx.headless);
+    cd.get_proc_address = macs_headless_get_proc_address(util_fx.headless);
+    cd.get_proc_address_user = macs_headless_proc_user(util_fx.headless);
     cd.allow_float_depth = true;
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
@@ -275,15 +212,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(threshold_table_is_complete),
         cmocka_unit_test(thresholds_catch_half_pixel_offset),
-        cmocka_unit_test(paper_earth),
-        cmocka_unit_test(paper_earth_shadow),
-        cmocka_unit_test(mirror),
-        cmocka_unit_test(glass),
-        cmocka_unit_test(many_spheres),
-        cmocka_unit_test(many_lights),
-        cmocka_unit_test(all_primitives),
-        cmocka_unit_test(textured_aniso),
+        UTIL_EACH_SCENE(UTIL_SCENE_UNIT_TEST)
         cmocka_unit_test(float_depth),
     };
-    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+    return cmocka_run_group_tests(tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

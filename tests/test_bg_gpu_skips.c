@@ -18,22 +18,6 @@
 
 enum { W = 96, H = 72 };
 
-static util_gpu fx;
-
-static int group_setup(void **state)
-{
-    (void)state;
-    util_gpu_open(&fx, NULL);
-    return 0;
-}
-
-static int group_teardown(void **state)
-{
-    (void)state;
-    util_gpu_close(&fx);
-    return 0;
-}
-
 /* One render of a scene with some skips switched off. */
 typedef struct run {
     float *px;
@@ -51,10 +35,10 @@ static run render(bg_scene *s, unsigned disable, bool timing, int max_depth)
     if (max_depth >= 0)
         set.max_depth = max_depth;
     bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, r.px};
-    bg_status st = bg_render_gpu(fx.renderer, s, &set, &img);
-    if (st != BG_OK)
-        fail_msg("skips 0x%x off: %s: %s", disable, bg_status_string(st), bg_renderer_error_message(fx.renderer));
-    bg_renderer_stats(fx.renderer, &r.stats);
+    char label[32];
+    snprintf(label, sizeof label, "skips 0x%x off", disable);
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &img, label);
+    bg_renderer_stats(util_fx.renderer, &r.stats);
     assert_int_equal(r.stats.timed, timing);
     return r;
 }
@@ -284,5 +268,5 @@ int main(void)
         cmocka_unit_test(facing),
         cmocka_unit_test(timing_changes_nothing),
     };
-    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+    return cmocka_run_group_tests(tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

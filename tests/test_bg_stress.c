@@ -24,22 +24,6 @@
 
 enum { W = STRESS_WIDTH, H = STRESS_HEIGHT };
 
-static util_gpu fx;
-
-static int group_setup(void **state)
-{
-    (void)state;
-    util_gpu_open(&fx, NULL);
-    return 0;
-}
-
-static int group_teardown(void **state)
-{
-    (void)state;
-    util_gpu_close(&fx);
-    return 0;
-}
-
 static bg_scene *build(const stress_case *c, bool origin)
 {
     bg_scene *s = NULL;
@@ -53,9 +37,7 @@ static bg_scene *build(const stress_case *c, bool origin)
 static void render_gpu(const stress_case *c, bg_scene *s, bg_image *img)
 {
     bg_render_settings set = stress_case_settings(c);
-    bg_status st = bg_render_gpu(fx.renderer, s, &set, img);
-    if (st != BG_OK)
-        fail_msg("%s: bg_render_gpu: %s: %s", c->name, bg_status_string(st), bg_renderer_error_message(fx.renderer));
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, img, c->name);
 }
 
 static void render_cpu(const stress_case *c, bg_scene *s, bg_image *img)
@@ -176,5 +158,5 @@ int main(void)
         cmocka_unit_test(must_hold_cases),
         cmocka_unit_test(no_case_has_nan_or_inf),
     };
-    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+    return cmocka_run_group_tests(tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

@@ -47,3 +47,28 @@ bg_scene *util_scene(scene_id id)
         fail_msg("%s: %s", scenes_name(id), bg_scene_error_message(s));
     return s;
 }
+
+void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_render_settings *set, bg_image *img,
+                     const char *label)
+{
+    bg_status st = bg_render_gpu(r, s, set, img);
+    if (st != BG_OK)
+        fail_msg("%s: bg_render_gpu: %s: %s (MACS: %s)", label, bg_status_string(st), bg_renderer_error_message(r),
+                 macs_context_error_message(ctx));
+}
+
+util_gpu util_fx;
+
+int util_gpu_group_setup(void **state)
+{
+    (void)state;
+    util_gpu_open(&util_fx, NULL);
+    return 0;
+}
+
+int util_gpu_group_teardown(void **state)
+{
+    (void)state;
+    util_gpu_close(&util_fx);
+    return 0;
+}

@@ -21,4 +21,39 @@ void util_gpu_close(util_gpu *g);
 /* A new scene built as the shared scene id and committed; fails the test on error. */
 bg_scene *util_scene(scene_id id);
 
+/* Renders s with bg_render_gpu; on failure fails the test with label, the status, the renderer's
+ * message and the message of ctx (the MACS context r renders with). */
+void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_render_settings *set, bg_image *img,
+                     const char *label);
+
+/* The suite-wide fixture of the GPU suites: util_gpu_group_setup opens it with default caps
+ * (util_gpu_open), util_gpu_group_teardown closes it; pass both to cmocka_run_group_tests, or call
+ * them from a suite's own group functions (setup first, teardown last). */
+extern util_gpu util_fx;
+int util_gpu_group_setup(void **state);
+int util_gpu_group_teardown(void **state);
+
+/* Applies X(test, id) to every shared scene, in scene_id order: X names a test function per scene
+ * (paper_earth, ...) and the scene's id. For suites that run one test per shared scene. */
+#define UTIL_EACH_SCENE(X)                          \
+    X(paper_earth, SCENE_PAPER_EARTH)               \
+    X(paper_earth_shadow, SCENE_PAPER_EARTH_SHADOW) \
+    X(mirror, SCENE_MIRROR)                         \
+    X(glass, SCENE_GLASS)                           \
+    X(many_spheres, SCENE_MANY_SPHERES)             \
+    X(many_lights, SCENE_MANY_LIGHTS)               \
+    X(all_primitives, SCENE_ALL_PRIMITIVES)         \
+    X(textured_aniso, SCENE_TEXTURED_ANISO)
+
+/* For UTIL_EACH_SCENE: UTIL_EACH_SCENE(UTIL_SCENE_TEST) defines each scene's test as a call of the
+ * suite's own static void check_scene(scene_id id), declared before it; UTIL_EACH_SCENE(UTIL_SCENE_UNIT_TEST)
+ * lists those tests in a CMUnitTest array. */
+#define UTIL_SCENE_TEST(fn, id)     \
+    static void fn(void **state)    \
+    {                               \
+        (void)state;                \
+        check_scene(id);            \
+    }
+#define UTIL_SCENE_UNIT_TEST(fn, id) cmocka_unit_test(fn),
+
 #endif
