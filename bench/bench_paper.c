@@ -57,7 +57,7 @@ static bool time_pov(scene_id id, const char *dir, int size, int runs, const bg_
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "bench/out";
+    const char *dir = bench_out_dir(argc, argv);
     const bool quick = bench_quick();
     const int runs = quick ? 3 : 7;
     bench_gpu gpu;

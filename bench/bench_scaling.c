@@ -78,7 +78,7 @@ static bool run_point(bench_gpu *gpu, const series *s, int x, int size, int gpu_
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "bench/out";
+    const char *dir = bench_out_dir(argc, argv);
     const bool quick = bench_quick();
     const int gpu_runs = quick ? 3 : 5, cpu_runs = quick ? 1 : 3, size = quick ? 256 : 512;
     bench_gpu gpu;

@@ -161,7 +161,7 @@ static bool run_scene(bench_gpu *gpu, scene_id id, int size, int runs, FILE *csv
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "bench/out";
+    const char *dir = bench_out_dir(argc, argv);
     const bool quick = bench_quick();
     const int runs = quick ? 3 : 7, size = quick ? 256 : 512;
     bench_gpu gpu;

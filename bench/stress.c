@@ -167,7 +167,7 @@ static void csv_row(FILE *f, const stress_case *c, const outcome *o)
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "bench/out";
+    const char *dir = bench_out_dir(argc, argv);
     bool quick = bench_quick();
     bench_gpu gpu;
     if (!bench_gpu_open(&gpu))

@@ -127,6 +127,11 @@ bg_scene *bench_scene(int id, const struct scene_params *params)
     return scene;
 }
 
+const char *bench_out_dir(int argc, char **argv)
+{
+    return argc > 1 ? argv[1] : "bench/out";
+}
+
 FILE *bench_csv_open(const char *dir, const char *name, const char *header)
 {
     if (mkdir(dir, 0777) != 0 && errno != EEXIST) {

@@ -40,6 +40,9 @@ void bench_image_free(bg_image *image);
 struct scene_params;
 bg_scene *bench_scene(int id, const struct scene_params *params);
 
+/* The output folder every bench program takes as its first argument, default bench/out. */
+const char *bench_out_dir(int argc, char **argv);
+
 /* Opens dir/name for writing (creating dir) and writes the header line; NULL + stderr on failure. */
 FILE *bench_csv_open(const char *dir, const char *name, const char *header);
 

@@ -1,16 +1,10 @@
 /* The shared scenes. Each builder fills an empty scene; scenes_build_ex commits it. */
 #include "scenes.h"
+#include "scene_try.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#define TRY(call)                   \
-    do {                            \
-        bg_status st_ = (call);     \
-        if (st_ != BG_OK)           \
-            return st_;             \
-    } while (0)
 
 static const double PI = 3.14159265358979323846;
 

@@ -1,14 +1,8 @@
 /* The float32 stress cases: the table and the small scenes of their own (stress_cases.h). */
 #include "stress_cases.h"
+#include "scene_try.h"
 
 #include <string.h>
-
-#define TRY(call)                   \
-    do {                            \
-        bg_status st_ = (call);     \
-        if (st_ != BG_OK)           \
-            return st_;             \
-    } while (0)
 
 /* ---- small scene helpers ---- */
 
