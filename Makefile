@@ -36,7 +36,11 @@ MACS_SHADERS := $(sort $(wildcard glsl110/macs_*))
 BG_SHADERS   := $(sort $(filter-out $(MACS_SHADERS),$(wildcard glsl110/*)))
 
 MACS_SRC := $(sort $(wildcard src/macs/*.c))
-BG_SRC   := $(sort $(wildcard src/betelgeuse/*.c))
+# Betelgeuse has one folder per part (docs/architecture.md): common, scene, cpu, gpu, io.
+BG_SRC   := $(sort $(wildcard src/betelgeuse/*/*.c))
+# ar keeps members by file name, so two sources with one name would silently drop one object.
+BG_DUP_NAMES := $(shell printf '%s\n' $(notdir $(BG_SRC)) | sort | uniq -d)
+$(if $(BG_DUP_NAMES),$(error src/betelgeuse: file names used twice: $(BG_DUP_NAMES)))
 MACS_OBJ := $(MACS_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/macs_shaders.o
 BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
 
@@ -73,7 +77,7 @@ FORCE:
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
 
-$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
+$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
@@ -141,7 +145,7 @@ examples: all $(EXAMPLE_BIN)
 glsl-check:
 	@sh tests/glsl_check.sh glsl110
 
-# The test environment of DESIGN.md section 7: GL 2.1 and GLSL 1.10 forced, no shader disk cache.
+# The test environment (docs/architecture.md, "Tests"): GL 2.1 and GLSL 1.10 forced, no shader disk cache.
 TEST_ENV := MESA_GL_VERSION_OVERRIDE=2.1 MESA_GLSL_VERSION_OVERRIDE=110 MESA_SHADER_CACHE_DISABLE=true
 # Suites that also run on EGL surfaceless and on softpipe (smoke subset).
 SMOKE_TESTS ?= $(filter $(BUILD)/tests/test_smoke%,$(TEST_BIN))
@@ -160,7 +164,7 @@ valgrind: $(VALGRIND_TESTS)
 	    --show-leak-kinds=definite,indirect --suppressions=tests/valgrind.supp -q $$t >/dev/null || exit 1; \
 	done; echo "valgrind: clean"
 
-# Benchmarks and stress (DESIGN.md section 8) run under the test environment's GL 2.1 / GLSL 1.10, so
+# Benchmarks and stress run under the test environment's GL 2.1 / GLSL 1.10, so
 # they measure what the tests check. QUICK=1 makes them short. Results: tables on stdout, CSV and (with
 # gnuplot) PNG plots in BENCH_OUT, where each program's table is also kept as <program>.txt; progress
 # on stderr.

@@ -1,6 +1,6 @@
 /* Run time against error for every setting that trades one for the other, side by side per scene:
  * 24-bit against 32-bit float depth, RGBA32F against RGBA16F G-buffer slots, dmax automatic against
- * 10x and 1000x looser, and each skip of DESIGN.md section 5 switched off.
+ * 10x and 1000x looser, and each skip of docs/gpu_pipeline.md switched off.
  *
  * Usage: bench_tradeoffs [out_dir]   (default bench/out; QUICK=1 for fewer runs and pixels)
  * Every variant has a renderer of its own (a renderer's caches are keyed on its settings, so sharing

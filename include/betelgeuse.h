@@ -313,7 +313,7 @@ typedef enum bg_output_encoding {
     BG_ENCODING_LINEAR    /* RGBA8 output is clamped linear radiance x 255 */
 } bg_output_encoding;
 
-/* Work the GPU renderer skips when a scene does not need it (DESIGN.md section 5). Each skip can be
+/* Work the GPU renderer skips when a scene does not need it (docs/gpu_pipeline.md). Each skip can be
  * switched off through bg_render_settings.gpu_disable_skips to test that it changes no pixel and to
  * measure what it saves. */
 enum {

@@ -2,7 +2,7 @@
  * one table behind test_bg_gpu_scenes (160x120) and test_smoke_bg_gpu (96x96, every backend and
  * driver). Errors are in 0..255 units of the sRGB-encoded RGBA8 output; image_metrics computes them.
  *
- * Silhouette pixels (DESIGN.md section 7) get their allowance through the split below: the largest
+ * Silhouette pixels (docs/architecture.md, "Tests") get their allowance through the split below: the largest
  * error is bounded only away from silhouettes, where a float-versus-double difference cannot change
  * which object a ray hits; the mean, the PSNR and the share of pixels over 8/255 count every pixel,
  * silhouettes included, so a shifted or missing edge still shows. */

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/cpu_internal.h"
+#include "betelgeuse/cpu/cpu_internal.h"
 #include "scenes/scenes.h"
 
 static const double PI = 3.14159265358979323846;

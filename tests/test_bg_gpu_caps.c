@@ -1,4 +1,4 @@
-/* The limits matrix of DESIGN.md section 7: draw buffers and colour attachments capped at 1, 2, 4
+/* The limits matrix (docs/architecture.md, "Tests"): draw buffers and colour attachments capped at 1, 2, 4
  * and 8, and texture units at 8 and 16, give the same bits (RGBA32F output) as the uncapped
  * context, on the glass scene (bounces: the most pass kinds) and textured_aniso (textures, coats
  * and anisotropy: the most G-buffer targets); and the caps really split passes. */

@@ -15,7 +15,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/scene_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
 #include "scenes/scenes.h"
@@ -172,7 +172,7 @@ static void half_thresholds_catch_half_pixel_offset(void **state)
 }
 
 /* One draw buffer splits the intersection pass into one chunk per target, so RGBA32F and RGBA16F
- * targets land in separate framebuffers: the bits must not change (DESIGN.md section 4). */
+ * targets land in separate framebuffers: the bits must not change (MACS splits passes exactly: docs/gpu_pipeline.md). */
 static void split_passes_give_the_same_bits(void **state)
 {
     (void)state;

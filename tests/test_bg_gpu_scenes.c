@@ -17,8 +17,8 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/cpu_internal.h"
-#include "betelgeuse/scene_internal.h"
+#include "betelgeuse/cpu/cpu_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
 #include "scenes/scenes.h"

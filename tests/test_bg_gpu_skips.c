@@ -1,4 +1,4 @@
-/* Every skip of DESIGN.md section 5 changes no pixel (RGBA32F output, bit for bit, with the skip
+/* Every skip (docs/gpu_pipeline.md) changes no pixel (RGBA32F output, bit for bit, with the skip
  * switched off through bg_render_settings.gpu_disable_skips) and really saves work, shown by the
  * statistics on a scene where the skip applies. */
 #include <setjmp.h>

@@ -12,8 +12,8 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/scene_internal.h"
-#include "betelgeuse/srgb.h"
+#include "betelgeuse/scene/scene_internal.h"
+#include "betelgeuse/common/srgb.h"
 
 /* A fresh path under /tmp; the file exists (empty) until the test removes it. */
 static void temp_path(char path[64])

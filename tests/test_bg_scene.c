@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/scene_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
 
 /* ---- helpers ---- */
 

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/scene_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
 #include "scenes/scenes.h"
 
 static const bg_scene_state *build(scene_id id, const scene_params *p, bg_scene **out)

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/cpu_internal.h"
+#include "betelgeuse/cpu/cpu_internal.h"
 
 #define EPS 1e-12
 

@@ -9,7 +9,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/scene_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
 #include "util_gpu.h"
 #include "util_thresholds.h"
 

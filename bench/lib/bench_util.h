@@ -1,5 +1,5 @@
 /* What every benchmark and stress program shares: a clock, run statistics, a headless GPU session,
- * CSV output and progress lines. Timing belongs here, never in a pass/fail test (DESIGN.md 8). */
+ * CSV output and progress lines. Timing belongs here, never in a pass/fail test (docs/architecture.md, "Tests"). */
 #ifndef BENCH_UTIL_H
 #define BENCH_UTIL_H
 

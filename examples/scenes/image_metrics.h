@@ -1,4 +1,4 @@
-/* Image comparison metrics (DESIGN.md section 7): two RGBA8 images of one size compared on their RGB
+/* Image comparison metrics (docs/architecture.md, "Tests"): two RGBA8 images of one size compared on their RGB
  * channels, once over every pixel and once without the silhouette pixels of the reference, where a
  * sub-pixel shift legitimately changes which object a ray hits. Alpha is ignored. */
 #ifndef IMAGE_METRICS_H

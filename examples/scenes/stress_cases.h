@@ -1,4 +1,4 @@
-/* The float32 stress cases (DESIGN.md section 8): scenes that push the GPU renderer's single
+/* The float32 stress cases (docs/stress.md): scenes that push the GPU renderer's single
  * precision where it is weakest, each rendered by bench/stress.c and, for the must-hold ones,
  * asserted by tests/test_bg_stress.c against the double-precision CPU reference. One table, so the
  * program and the test can never disagree about what a case is. */

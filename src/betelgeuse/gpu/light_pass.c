@@ -1,4 +1,4 @@
-/* Shadow and lighting passes (DESIGN.md sections 3.2.2 and 3.2.3). Lights go in groups of four: one
+/* Shadow and lighting passes (docs/gpu_pipeline.md). Lights go in groups of four: one
  * shadow pass per shadow-casting object and group multiplies a 0 into the RGBA visibility channel of
  * each light the object blocks; one lighting pass per group adds the Schlick terms of its lights,
  * unrolled to the group's exact size, into the accumulation texture. Ambient and emission, already

@@ -8,7 +8,6 @@
 
 /* Handles fit comfortably in 32 bits and array sizes in size_t. */
 #define BG_MAX_ITEMS (1u << 24)
-#define BG_MAX_IMAGE_SIDE 16384
 #define BG_MESSAGE_SIZE 512
 
 /* A growable array of elem-sized items; storage is kept across commits for reuse. */

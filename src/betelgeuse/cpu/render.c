@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "cpu_internal.h"
-#include "render_settings.h"
+#include "../common/render_settings.h"
 
 #define MAX_SIDE 16384
 #define MAX_THREADS BG_MAX_THREADS

@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "affine.h"
+#include "../common/affine.h"
 #include "scene_private.h"
 
 bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material)

@@ -1,5 +1,5 @@
-/* Groups objects into batches: several objects tested in one intersection or shadow pass (DESIGN.md
- * section 5). On llvmpipe a pass costs its scissor area whatever the ray set holds (writing
+/* Groups objects into batches: several objects tested in one intersection or shadow pass
+ * (docs/gpu_pipeline.md). On llvmpipe a pass costs its scissor area whatever the ray set holds (writing
  * gl_FragDepth moves the stencil test after the shader), so fewer, longer passes save most where
  * few rays are live; what bounds a batch is the hardware (uniform components, texture units), the
  * shader length (GPU_BATCH_MAX) and, for camera rays, the area a merged scissor would add.

@@ -5,9 +5,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "image.h"
-#include "scene_private.h"
+#include "../common/alloc.h"
+#include "../common/image.h"
+#include "../scene/scene_private.h"
 
 static bg_status io_fail(const char *path, const png_image *png, const char *what,
                          char *message, size_t size)

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "../common/alloc.h"
 #include "gpu_internal.h"
 
 static bg_status texture(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
@@ -32,7 +32,7 @@ macs_format gpu_slot_format(const bg_renderer *r, gpu_slot slot)
         return MACS_FORMAT_RGBA32F;
     case GPU_SLOT_ONCE:
         /* rgb is weight x (emission + opaque x ambient), which the API does not bound: above 65504
-         * half gives Inf, which DESIGN.md section 4 rules out. w is the index of refraction, which
+         * half gives Inf, which the renderer never lets reach a target. w is the index of refraction, which
          * Snell's law and total internal reflection use at every level of a refracted path. */
         return MACS_FORMAT_RGBA32F;
     default:

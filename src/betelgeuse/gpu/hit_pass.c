@@ -1,4 +1,4 @@
-/* The intersection pass of a batch of objects (DESIGN.md sections 3.2.1 and 5): each object's root
+/* The intersection pass of a batch of objects (docs/gpu_pipeline.md): each object's root
  * by its shape's code, the nearest kept exactly as the depth test between one-object passes would
  * keep it, then the winner's material evaluated at the hit (texture lookups only for textured
  * parameters unless specialisation is off), its depth and the G-buffer slots the scene's features
@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "../common/alloc.h"
 #include "gpu_internal.h"
 
 static const char *const shape_file[BG_SHAPE_COUNT_] = {

@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "../common/alloc.h"
 #include "scene_private.h"
 
 bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)

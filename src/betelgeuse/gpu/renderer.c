@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "../common/alloc.h"
 #include "gpu_internal.h"
 
 bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...)

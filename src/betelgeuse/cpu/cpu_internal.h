@@ -7,7 +7,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "scene_internal.h"
+#include "../scene/scene_internal.h"
 
 /* "No object" for the skip and inside indices of a ray. */
 #define BG_CPU_NONE UINT32_MAX

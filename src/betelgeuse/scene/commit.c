@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "affine.h"
+#include "../common/affine.h"
 #include "scene_private.h"
 
 static const char where_commit[] = "bg_scene_commit";

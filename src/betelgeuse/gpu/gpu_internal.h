@@ -3,7 +3,7 @@
 #ifndef BG_GPU_INTERNAL_H
 #define BG_GPU_INTERNAL_H
 
-#include "scene_internal.h"
+#include "../scene/scene_internal.h"
 
 #define GPU_MESSAGE_SIZE 1024
 #define GPU_LIGHTS_PER_GROUP 4
@@ -40,7 +40,7 @@ typedef struct gpu_ray_set {
     macs_texture *origin, *dir, *weight;
 } gpu_ray_set;
 
-/* Most objects one intersection or shadow pass tests (DESIGN.md section 5): bounds the shader's
+/* Most objects one intersection or shadow pass tests (docs/gpu_pipeline.md): bounds the shader's
  * length where no GL limit does (instruction counts are not queryable in GL 2.1). */
 #define GPU_BATCH_MAX 8
 /* Most scene textures (plus the white texel) one object's material samples. */

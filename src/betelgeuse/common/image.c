@@ -4,7 +4,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene_private.h"
 
 size_t bg_image_pixel_size(bg_pixel_format format)
 {

@@ -1,5 +1,5 @@
-/* dmax per bounce level and the screen rectangles of bounded objects (DESIGN.md section 4,
- * docs/gpu_pipeline.md).
+/* dmax per bounce level and the screen rectangles of bounded objects (docs/gpu_pipeline.md,
+ * "Depth").
  *
  * Depth is t / (2 dmax) below dmax and 1 - dmax / (2 t) beyond it (bg_depth in bg_stage_hit.glsl):
  * one monotonic scale, linear and finest where the scene's bounded objects are, compressed beyond,

@@ -4,10 +4,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "alloc.h"
-#include "image.h"
+#include "../common/alloc.h"
+#include "../common/image.h"
 #include "scene_private.h"
-#include "srgb.h"
+#include "../common/srgb.h"
 
 bg_status bg_texture_add(bg_scene *scene, const char *where, const bg_image *image,
                          const bg_texture_desc *desc, uint32_t *out_texture)

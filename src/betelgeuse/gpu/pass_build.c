@@ -1,11 +1,11 @@
-/* Builds the passes of a frame for one scene structure and image size (DESIGN.md section 3): camera
+/* Builds the passes of a frame for one scene structure and image size (docs/gpu_pipeline.md): camera
  * rays, live-pixel marking, per-object intersection, background, shadows, lights, ambient and
  * emission, secondary rays and the resolve. Ray-map inputs are bound per ray set by gpu_frame.c at
  * the fixed input positions named in gpu_internal.h. */
 #include <stdio.h>
 #include <string.h>
 
-#include "alloc.h"
+#include "../common/alloc.h"
 #include "gpu_internal.h"
 
 void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,

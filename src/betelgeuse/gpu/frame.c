@@ -1,4 +1,4 @@
-/* One GPU frame (DESIGN.md section 3, docs/gpu_pipeline.md): camera rays, then ray sets traced
+/* One GPU frame (docs/gpu_pipeline.md): camera rays, then ray sets traced
  * depth-first from the CPU. Each set is intersected batch by batch (gpu_batch.c) into the G-buffer, shaded
  * (background, shadows, lights, ambient and emission into the accumulation texture) and spawns at
  * most two child sets (reflected, transmitted). A child's live rays are marked in the stencil and
@@ -7,10 +7,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "alloc.h"
+#include "../common/alloc.h"
 #include "gpu_internal.h"
-#include "image.h"
-#include "render_settings.h"
+#include "../common/image.h"
+#include "../common/render_settings.h"
 
 typedef struct frame {
     bg_renderer *r;

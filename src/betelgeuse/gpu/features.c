@@ -1,4 +1,4 @@
-/* Which shader features and G-buffer slots a committed scene needs (DESIGN.md section 5): a scene
+/* Which shader features and G-buffer slots a committed scene needs (docs/gpu_pipeline.md): a scene
  * pays only for what its materials can produce. Texture lanes count as "may": a textured roughness
  * may fall below 1/2 somewhere, so it may reflect. */
 #include <string.h>

@@ -3,7 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "affine.h"
+#include "../common/affine.h"
 #include "scene_private.h"
 
 #define FAIL(...) bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, __VA_ARGS__)
