@@ -16,11 +16,12 @@ OPT     ?= -O2 -g
 CFLAGS  ?=
 LDFLAGS ?=
 
+# BUILD may be set to keep several builds apart (default build/release, or build/san).
 ifeq ($(SANITIZE),1)
-BUILD   := build/san
+BUILD   ?= build/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 else
-BUILD   := build/release
+BUILD   ?= build/release
 SANFLAGS :=
 endif
 
