@@ -379,9 +379,10 @@ typedef struct bg_renderer_desc {
     bg_allocator allocator;
 } bg_renderer_desc;
 
-/* Creates a renderer; textures and passes are made at the first render and kept while the scene's
- * structure and the image size stay the same. */
-bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer);
+/* Creates a renderer, whose textures and passes are made at the first render and kept while the
+ * scene's structure and the image size stay the same; on failure message (if not NULL) gets the reason. */
+bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer, char *message,
+                             size_t message_size);
 /* Frees the renderer and its GPU objects (the MACS context stays the caller's); NULL is ignored. */
 void bg_renderer_destroy(bg_renderer *renderer);
 /* The first error since the last clear (BG_OK if none). */

@@ -1,6 +1,7 @@
 /* The GPU renderer's error paths and edge cases: bad arguments, uncommitted scenes, image sizes
  * beyond the GL limits, bad settings, the sticky first error, empty and unlit scenes, GPU out of
- * memory (injected through a GL loader wrapper), and no leak over many renderers on one context. */
+ * memory (injected through a GL loader wrapper), no leak over many renderers on one context, and a
+ * reason for every failed creation. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -67,13 +68,13 @@ static void null_arguments(void **state)
     macs_context *ctx = util_context(*state, NULL);
     bg_renderer *r = (bg_renderer *)ctx; /* must be reset to NULL on failure */
     bg_renderer_desc d = {0};
-    assert_int_equal(bg_renderer_create(NULL, &r), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bg_renderer_create(NULL, &r, NULL, 0), BG_ERR_INVALID_ARGUMENT);
     assert_null(r);
     r = (bg_renderer *)ctx;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_ERR_INVALID_ARGUMENT); /* no context */
+    assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_ERR_INVALID_ARGUMENT); /* no context */
     assert_null(r);
     d.context = ctx;
-    assert_int_equal(bg_renderer_create(&d, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bg_renderer_create(&d, NULL, NULL, 0), BG_ERR_INVALID_ARGUMENT);
     bg_renderer_destroy(NULL);
 
     r = util_renderer(ctx);
@@ -406,7 +407,7 @@ static void renderers_do_not_leak(void **state)
         d.allocator.free = count_free;
         d.allocator.user = &bc;
         bg_renderer *r = NULL;
-        assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
+        assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_OK);
         render_ok(r, s, &set, &img);
         assert_true(bc.allocs > 0); /* the hooks are really used */
         bg_renderer_destroy(r);
@@ -441,12 +442,82 @@ static void renderer_allocation_failure(void **state)
     counter c = {0, 0};
     d.allocator.user = &c;
     bg_renderer *r = (bg_renderer *)ctx;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_ERR_OUT_OF_MEMORY);
+    assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_ERR_OUT_OF_MEMORY);
     assert_null(r);
     /* half a set of hooks is a caller mistake */
     d.allocator.free = NULL;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_ERR_INVALID_ARGUMENT);
     assert_null(r);
+    macs_context_destroy(ctx);
+}
+
+/* What a logger was last handed, and how often at each level. */
+typedef struct log_record {
+    int errors, others;
+    char last[512];
+} log_record;
+
+static void record_log(bg_log_level level, const char *message, void *user)
+{
+    log_record *l = user;
+    if (level == BG_LOG_ERROR)
+        l->errors++;
+    else
+        l->others++;
+    snprintf(l->last, sizeof l->last, "%s", message);
+}
+
+/* One failed creation: the status, no renderer, and the reason naming `names` both in the
+ * caller's buffer and (when the desc has a logger) at the logger, as one error. */
+static void assert_create_fails(const bg_renderer_desc *d, bool with_out, bg_status want, const char *names)
+{
+    log_record log = {0, 0, ""};
+    bg_renderer_desc copy = {0};
+    if (d) {
+        copy = *d;
+        copy.log = record_log;
+        copy.log_user = &log;
+    }
+    char message[256] = "unchanged";
+    bg_renderer *r = (bg_renderer *)message; /* must be reset to NULL on failure */
+    assert_int_equal(bg_renderer_create(d ? &copy : NULL, with_out ? &r : NULL, message, sizeof message), want);
+    if (with_out)
+        assert_null(r);
+    if (!strstr(message, names) || !strstr(message, "bg_renderer_create"))
+        fail_msg("the message \"%s\" does not name %s", message, names);
+    if (d) {
+        assert_int_equal(log.errors, 1);
+        assert_int_equal(log.others, 0);
+        assert_string_equal(log.last, message);
+    }
+    /* a tiny buffer gets a truncated, terminated message; none at all is fine */
+    char tiny[4] = "xxx";
+    assert_int_equal(bg_renderer_create(d ? &copy : NULL, with_out ? &r : NULL, tiny, sizeof tiny), want);
+    assert_int_equal(strlen(tiny), 3);
+    assert_int_equal(bg_renderer_create(d ? &copy : NULL, with_out ? &r : NULL, NULL, 0), want);
+}
+
+static void creation_failures_say_why(void **state)
+{
+    macs_context *ctx = util_context(*state, NULL);
+    bg_renderer_desc d = {0};
+    assert_create_fails(NULL, true, BG_ERR_INVALID_ARGUMENT, "desc");
+    assert_create_fails(&d, true, BG_ERR_INVALID_ARGUMENT, "desc->context");
+    d.context = ctx;
+    assert_create_fails(&d, false, BG_ERR_INVALID_ARGUMENT, "out_renderer");
+    counter c = {0, 0};
+    d.allocator.alloc = no_alloc;
+    d.allocator.user = &c;
+    assert_create_fails(&d, true, BG_ERR_INVALID_ARGUMENT, "desc->allocator"); /* alloc without free */
+    d.allocator.free = count_free;
+    assert_create_fails(&d, true, BG_ERR_OUT_OF_MEMORY, "desc->allocator");
+    /* success leaves an empty message */
+    memset(&d.allocator, 0, sizeof d.allocator);
+    char message[64] = "unchanged";
+    bg_renderer *r = NULL;
+    assert_int_equal(bg_renderer_create(&d, &r, message, sizeof message), BG_OK);
+    assert_string_equal(message, "");
+    bg_renderer_destroy(r);
     macs_context_destroy(ctx);
 }
 
@@ -510,6 +581,7 @@ int main(void)
         cmocka_unit_test(unlit_scene_matches_cpu),
         cmocka_unit_test(renderers_do_not_leak),
         cmocka_unit_test(renderer_allocation_failure),
+        cmocka_unit_test(creation_failures_say_why),
         cmocka_unit_test(gpu_out_of_memory_is_reported_and_recoverable),
     };
     return cmocka_run_group_tests(tests, util_group_setup, util_group_teardown);

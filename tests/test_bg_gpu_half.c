@@ -74,7 +74,7 @@ static bg_renderer *renderer_on(macs_context *ctx, bool half_gbuffer, log_record
     d.log = record_log;
     d.log_user = log;
     bg_renderer *r = NULL;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
+    assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_OK);
     assert_int_equal(bg_renderer_error(r), BG_OK);
     return r;
 }

@@ -178,7 +178,7 @@ static void float_depth(void **state)
     rd.context = ctx;
     rd.float_depth = true;
     bg_renderer *r = NULL;
-    assert_int_equal(bg_renderer_create(&rd, &r), BG_OK);
+    assert_int_equal(bg_renderer_create(&rd, &r, NULL, 0), BG_OK);
     const scene_id ids[2] = {SCENE_PAPER_EARTH_SHADOW, SCENE_GLASS};
     unsigned char *cpu = malloc((size_t)W * H * 4), *gpu = malloc((size_t)W * H * 4);
     assert_non_null(cpu);

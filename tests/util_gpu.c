@@ -14,7 +14,10 @@ bg_renderer *util_renderer(macs_context *ctx)
     bg_renderer_desc d = {0};
     d.context = ctx;
     bg_renderer *r = NULL;
-    assert_int_equal(bg_renderer_create(&d, &r), BG_OK);
+    char message[256];
+    bg_status st = bg_renderer_create(&d, &r, message, sizeof message);
+    if (st != BG_OK)
+        fail_msg("bg_renderer_create: %s: %s", bg_status_string(st), message);
     assert_non_null(r);
     assert_int_equal(bg_renderer_error(r), BG_OK);
     assert_string_equal(bg_renderer_error_message(r), "");

@@ -83,9 +83,10 @@ bg_renderer *bench_gpu_renderer(bench_gpu *gpu, bg_renderer_desc desc)
 {
     desc.context = gpu->context;
     bg_renderer *r = NULL;
-    bg_status st = bg_renderer_create(&desc, &r);
+    char message[512];
+    bg_status st = bg_renderer_create(&desc, &r, message, sizeof message);
     if (st != BG_OK) {
-        fprintf(stderr, "renderer: %s\n", bg_status_string(st));
+        fprintf(stderr, "renderer: %s: %s\n", bg_status_string(st), message);
         return NULL;
     }
     return r;

@@ -23,9 +23,9 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "betelgeuse/cpu_internal.h"
-#include "betelgeuse/scene_internal.h"
-#include "betelgeuse/srgb.h"
+#include "betelgeuse/cpu/cpu_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
+#include "betelgeuse/common/srgb.h"
 
 enum { POV_PATH_MAX = 4096 };
 

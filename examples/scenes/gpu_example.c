@@ -55,9 +55,9 @@ static bool example_render(example *e, scene_id id, int size)
     }
     bg_renderer_desc rd = {0};
     rd.context = e->context;
-    bg_status st = bg_renderer_create(&rd, &e->renderer);
+    bg_status st = bg_renderer_create(&rd, &e->renderer, message, sizeof message);
     if (st != BG_OK) {
-        report_bg(e, "creating the renderer", st);
+        fprintf(stderr, "%s: renderer: %s: %s\n", e->name, bg_status_string(st), message);
         return false;
     }
     st = bg_scene_create(NULL, &e->scene);

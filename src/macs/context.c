@@ -77,43 +77,43 @@ static macs_status build_shared_objects(macs_context *ctx)
     return macs_gl_check(ctx, "creating the shared vertex shader and buffer");
 }
 
-static macs_status create_fail(macs_context *ctx, const macs_context_desc *desc, macs_status st, char *message,
-                               size_t size)
+static macs_status create_fail(macs_context *ctx, macs_status st, char *message, size_t size)
 {
     /* The context is about to vanish, so its message goes to the caller's buffer; macs_fail already
      * logged it. */
     if (message && size > 0)
-        snprintf(message, size, "%s", ctx->error_message);
-    (void)desc;
+        snprintf(message, size, "%s", ctx->error.message);
     macs_context_destroy(ctx);
     return st;
 }
 
-macs_status macs_context_create(const macs_context_desc *desc, macs_context **out, char *message,
-                                size_t message_size)
+/* Refuses a descriptor before anything is allocated: there is no context yet to hold the message. */
+static macs_status check_desc(const macs_context_desc *desc, macs_context **out, char *message, size_t size)
 {
-    if (message && message_size > 0)
-        message[0] = '\0';
-    if (out)
-        *out = NULL;
     if (!desc || !out || !desc->get_proc_address) {
-        macs_report(desc ? desc->logger : NULL, desc ? desc->logger_user : NULL, message, message_size,
+        macs_report(desc ? desc->logger : NULL, desc ? desc->logger_user : NULL, message, size,
                     MACS_ERR_INVALID_ARGUMENT, "desc, out and desc->get_proc_address are required");
         return MACS_ERR_INVALID_ARGUMENT;
     }
     if (!macs_allocator_valid(&desc->allocator)) {
-        macs_report(desc->logger, desc->logger_user, message, message_size, MACS_ERR_INVALID_ARGUMENT,
+        macs_report(desc->logger, desc->logger_user, message, size, MACS_ERR_INVALID_ARGUMENT,
                     "allocator: set alloc, realloc and free together or leave all NULL");
         return MACS_ERR_INVALID_ARGUMENT;
     }
     char text[MACS_MESSAGE_SIZE];
     if (macs_limits_check_caps(&desc->caps, text, sizeof text) != MACS_OK) {
-        macs_report(desc->logger, desc->logger_user, message, message_size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
+        macs_report(desc->logger, desc->logger_user, message, size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
         return MACS_ERR_INVALID_ARGUMENT;
     }
+    return MACS_OK;
+}
+
+/* A zeroed context holding the descriptor's allocator, logger and options. */
+static macs_status allocate_context(const macs_context_desc *desc, macs_context **out, char *message, size_t size)
+{
     macs_context *ctx = macs_calloc(&desc->allocator, 1, sizeof *ctx);
     if (!ctx) {
-        macs_report(desc->logger, desc->logger_user, message, message_size, MACS_ERR_OUT_OF_MEMORY,
+        macs_report(desc->logger, desc->logger_user, message, size, MACS_ERR_OUT_OF_MEMORY,
                     "allocating the context");
         return MACS_ERR_OUT_OF_MEMORY;
     }
@@ -121,27 +121,41 @@ macs_status macs_context_create(const macs_context_desc *desc, macs_context **ou
     ctx->logger = desc->logger;
     ctx->logger_user = desc->logger_user;
     ctx->allow_float_depth = desc->allow_float_depth;
+    *out = ctx;
+    return MACS_OK;
+}
 
-    /* The few functions needed to decide what to load come first. */
+/* The few functions needed to decide what to load come first. */
+static macs_status load_query_functions(macs_context *ctx, const macs_context_desc *desc)
+{
     void *p = desc->get_proc_address("glGetString", desc->get_proc_address_user);
     memcpy(&ctx->gl.GetString, &p, sizeof p);
     void *q = desc->get_proc_address("glGetError", desc->get_proc_address_user);
     memcpy(&ctx->gl.GetError, &q, sizeof q);
     if (!p || !q)
-        return create_fail(ctx, desc, macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED,
-                                                "get_proc_address gave no glGetString or glGetError"),
-                           message, message_size);
+        return macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "get_proc_address gave no glGetString or glGetError");
+    return MACS_OK;
+}
+
+/* Requires a current desktop GL 2.1 or later; gives its version string and major number. */
+static macs_status check_gl_version(macs_context *ctx, const char **out_version, int *out_major)
+{
     const char *version = (const char *)ctx->gl.GetString(GL_VERSION);
     if (!version)
-        return create_fail(ctx, desc, macs_fail(ctx, MACS_ERR_CONTEXT,
-                                                "glGetString(GL_VERSION) returned NULL: is a GL context current "
-                                                "on this thread?"),
-                           message, message_size);
+        return macs_fail(ctx, MACS_ERR_CONTEXT,
+                         "glGetString(GL_VERSION) returned NULL: is a GL context current on this thread?");
     int major = 0, minor = 0;
     if (!parse_version(version, &major, &minor) || major < 2 || (major == 2 && minor < 1))
-        return create_fail(ctx, desc, macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED,
-                                                "OpenGL 2.1 is required, the context offers \"%s\"", version),
-                           message, message_size);
+        return macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "OpenGL 2.1 is required, the context offers \"%s\"", version);
+    *out_version = version;
+    *out_major = major;
+    return MACS_OK;
+}
+
+/* Requires float textures and a framebuffer object extension (core from 3.0), naming every one
+ * missing at once; records which FBO flavour and which optional extensions are there. */
+static macs_status read_extensions(macs_context *ctx, int major)
+{
     const char *ext = (const char *)ctx->gl.GetString(GL_EXTENSIONS);
     char missing[1024] = "";
     if (!macs_gl_has_extension(ext, "GL_ARB_texture_float"))
@@ -155,21 +169,28 @@ macs_status macs_context_create(const macs_context_desc *desc, macs_context **ou
                  "with GL_EXT_packed_depth_stencil)", used ? ", " : "");
     }
     if (missing[0])
-        return create_fail(ctx, desc, macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "missing extension(s): %s", missing),
-                           message, message_size);
+        return macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "missing extension(s): %s", missing);
     ctx->features.arb_framebuffer_object = arb_fbo;
     ctx->features.depth_buffer_float = macs_gl_has_extension(ext, "GL_ARB_depth_buffer_float");
     ctx->features.color_buffer_float = macs_gl_has_extension(ext, "GL_ARB_color_buffer_float");
     ctx->features.half_float_pixel = macs_gl_has_extension(ext, "GL_ARB_half_float_pixel");
+    return MACS_OK;
+}
 
+/* Fills the whole GL table, through the EXT names where ARB_framebuffer_object is absent. */
+static macs_status load_gl_table(macs_context *ctx, const macs_context_desc *desc)
+{
     char missing_fns[1024];
-    if (macs_gl_load(&ctx->gl, desc->get_proc_address, desc->get_proc_address_user, !arb_fbo, missing_fns,
-                     sizeof missing_fns) != MACS_OK)
-        return create_fail(ctx, desc, macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "missing GL function(s): %s",
-                                                missing_fns),
-                           message, message_size);
+    if (macs_gl_load(&ctx->gl, desc->get_proc_address, desc->get_proc_address_user,
+                     !ctx->features.arb_framebuffer_object, missing_fns, sizeof missing_fns) != MACS_OK)
+        return macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "missing GL function(s): %s", missing_fns);
     macs_gl_drain(ctx);
+    return MACS_OK;
+}
 
+/* Keeps the vendor, renderer, version and GLSL version strings for macs_context_gl_info. */
+static macs_status copy_gl_strings(macs_context *ctx)
+{
     bool oom = false;
     ctx->gl_strings[0] = copy_gl_string(ctx, GL_VENDOR, &oom);
     ctx->gl_strings[1] = copy_gl_string(ctx, GL_RENDERER, &oom);
@@ -178,16 +199,22 @@ macs_status macs_context_create(const macs_context_desc *desc, macs_context **ou
     ctx->gl_strings[3] = copy_gl_string(ctx, GL_SHADING_LANGUAGE_VERSION, &oom);
     macs_gl_drain(ctx);
     if (oom)
-        return create_fail(ctx, desc, macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "copying GL strings"), message,
-                           message_size);
+        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "copying GL strings");
+    return MACS_OK;
+}
 
+/* The hardware's limits, lowered by the descriptor's caps. */
+static macs_status read_limits(macs_context *ctx, const macs_limits *caps)
+{
     macs_limits_query(ctx);
-    macs_apply_caps(ctx, &desc->caps);
-    macs_status st = macs_gl_check(ctx, "querying limits");
-    if (st == MACS_OK)
-        st = build_shared_objects(ctx);
-    if (st != MACS_OK)
-        return create_fail(ctx, desc, st, message, message_size);
+    macs_apply_caps(ctx, caps);
+    return macs_gl_check(ctx, "querying limits");
+}
+
+/* One info line saying what the context runs on and with which limits, and a warning where float
+ * outputs may be clamped. */
+static void log_context_summary(macs_context *ctx, const char *version)
+{
     char info[256];
     snprintf(info, sizeof info, "MACS context on \"%s\" (%s); draw buffers %d, colour attachments %d, texture "
              "units %d", ctx->gl_strings[1] ? ctx->gl_strings[1] : "?", version, ctx->effective.max_draw_buffers,
@@ -196,6 +223,40 @@ macs_status macs_context_create(const macs_context_desc *desc, macs_context **ou
     if (!ctx->features.color_buffer_float)
         macs_log(ctx, MACS_LOG_WARNING, "GL_ARB_color_buffer_float is missing: the implementation may clamp "
                  "float outputs and clear colours to 0..1");
+}
+
+macs_status macs_context_create(const macs_context_desc *desc, macs_context **out, char *message,
+                                size_t message_size)
+{
+    if (message && message_size > 0)
+        message[0] = '\0';
+    if (out)
+        *out = NULL;
+    macs_status st = check_desc(desc, out, message, message_size);
+    macs_context *ctx = NULL;
+    if (st == MACS_OK)
+        st = allocate_context(desc, &ctx, message, message_size);
+    if (st != MACS_OK)
+        return st;
+
+    const char *version = NULL;
+    int major = 0;
+    st = load_query_functions(ctx, desc);
+    if (st == MACS_OK)
+        st = check_gl_version(ctx, &version, &major);
+    if (st == MACS_OK)
+        st = read_extensions(ctx, major);
+    if (st == MACS_OK)
+        st = load_gl_table(ctx, desc);
+    if (st == MACS_OK)
+        st = copy_gl_strings(ctx);
+    if (st == MACS_OK)
+        st = read_limits(ctx, &desc->caps);
+    if (st == MACS_OK)
+        st = build_shared_objects(ctx);
+    if (st != MACS_OK)
+        return create_fail(ctx, st, message, message_size);
+    log_context_summary(ctx, version);
     *out = ctx;
     return MACS_OK;
 }

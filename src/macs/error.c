@@ -23,61 +23,55 @@ void macs_log(const macs_context *ctx, int level, const char *message)
         ctx->logger(level, message, ctx->logger_user);
 }
 
-/* "<status message>: <details>", truncated to MACS_MESSAGE_SIZE. */
-static void format_message(char buffer[MACS_MESSAGE_SIZE], macs_status status, const char *format,
-                           va_list args)
+/* Every MACS message starts with its status's message: "<status message>: <details>". The status
+ * messages are short phrases, far below the prefix's room. */
+enum { PREFIX_SIZE = 128 };
+static const char *status_prefix(char prefix[PREFIX_SIZE], macs_status status)
 {
-    int n = snprintf(buffer, MACS_MESSAGE_SIZE, "%s: ", macs_status_string(status));
-    if (n > 0 && n < MACS_MESSAGE_SIZE)
-        vsnprintf(buffer + n, MACS_MESSAGE_SIZE - (size_t)n, format, args);
+    snprintf(prefix, PREFIX_SIZE, "%s: ", macs_status_string(status));
+    return prefix;
 }
 
 macs_status macs_fail(macs_context *ctx, macs_status status, const char *format, ...)
 {
-    char buffer[MACS_MESSAGE_SIZE];
+    char prefix[PREFIX_SIZE], buffer[MACS_MESSAGE_SIZE];
     va_list args;
     va_start(args, format);
-    format_message(buffer, status, format, args);
+    const char *message =
+        macs_first_error_vrecord(&ctx->error, status, buffer, status_prefix(prefix, status), format, args);
     va_end(args);
-    /* Only the first error is kept: later ones are usually consequences of it. */
-    if (ctx->error == MACS_OK) {
-        ctx->error = status;
-        memcpy(ctx->error_message, buffer, sizeof buffer);
-    }
-    macs_log(ctx, MACS_LOG_ERROR, buffer);
+    macs_log(ctx, MACS_LOG_ERROR, message);
     return status;
 }
 
 void macs_report(macs_log_fn logger, void *user, char *message, size_t size, macs_status status,
                  const char *format, ...)
 {
-    char buffer[MACS_MESSAGE_SIZE];
+    char prefix[PREFIX_SIZE], buffer[MACS_MESSAGE_SIZE];
     va_list args;
     va_start(args, format);
-    format_message(buffer, status, format, args);
+    macs_message_vformat(buffer, status_prefix(prefix, status), format, args);
     va_end(args);
-    if (message && size > 0)
-        snprintf(message, size, "%s", buffer);
+    macs_message_give(message, size, buffer);
     if (logger)
         logger(MACS_LOG_ERROR, buffer, user);
 }
 
 macs_status macs_context_error(const macs_context *ctx)
 {
-    return ctx ? ctx->error : MACS_ERR_INVALID_ARGUMENT;
+    return ctx ? (macs_status)ctx->error.status : MACS_ERR_INVALID_ARGUMENT;
 }
 
 const char *macs_context_error_message(const macs_context *ctx)
 {
-    return ctx ? ctx->error_message : "";
+    return ctx ? ctx->error.message : "";
 }
 
 void macs_context_clear_error(macs_context *ctx)
 {
     if (!ctx)
         return;
-    ctx->error = MACS_OK;
-    ctx->error_message[0] = '\0';
+    macs_first_error_clear(&ctx->error);
 }
 
 void macs_gl_drain(macs_context *ctx)

@@ -6,10 +6,9 @@
 #include <GL/glext.h>
 
 #include "macs.h"
+#include "first_error.h"
 #include "gl_functions.h"
 
-/* Size of the buffer that keeps the first error's message (info logs are truncated to it). */
-#define MACS_MESSAGE_SIZE 4096
 /* The caller's stencil bits: everything but the bits MACS reserves for splitting. */
 #define MACS_STENCIL_CALLER_BITS (0xFFu & ~MACS_STENCIL_RESERVED_BITS)
 
@@ -101,8 +100,7 @@ struct macs_context {
     macs_features features;
     char *gl_strings[4];
     bool allow_float_depth;
-    macs_status error;
-    char error_message[MACS_MESSAGE_SIZE];
+    macs_first_error error; /* status is a macs_status */
     GLuint vertex_shader;
     GLuint vertex_buffer;
     GLuint scratch_fbo;

@@ -178,8 +178,6 @@ void bg_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *set
 void bg_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3]);
 
-/* The sRGB transfer function of a linear value clamped to [0, 1]. */
-double bg_cpu_srgb_encode(double linear);
 /* An 8-bit channel: floor(clamp(x, 0, 1) * 255 + 0.5) after the encoding. */
 uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding);
 

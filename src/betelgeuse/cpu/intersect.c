@@ -3,6 +3,7 @@
 #include <float.h>
 #include <string.h>
 
+#include "../common/shapes.h"
 #include "cpu_internal.h"
 
 /* Below this share of the largest direction component a slab or cap counts as parallel: the
@@ -76,7 +77,7 @@ static bool stable_roots(double a, double b, double c, double disc, double *t0, 
     return true;
 }
 
-static void sphere(const double o[3], const double d[3], bg_cpu_span *span)
+static void sphere_span(const double o[3], const double d[3], bg_cpu_span *span)
 {
     double a = bg_v3_dot(d, d), b = bg_v3_dot(o, d), c = bg_v3_dot(o, o) - 1.0;
     if (!(a > 0.0))
@@ -108,7 +109,7 @@ static void store_interval(const interval *iv, bg_cpu_span *span)
     memcpy(span->normal[1], iv->n_hi, sizeof iv->n_hi);
 }
 
-static void box(const double o[3], const double d[3], bg_cpu_span *span)
+static void box_span(const double o[3], const double d[3], bg_cpu_span *span)
 {
     interval iv = {false, false, 0.0, 0.0, {0, 0, 0}, {0, 0, 0}};
     double scale = max_abs3(d);
@@ -118,7 +119,7 @@ static void box(const double o[3], const double d[3], bg_cpu_span *span)
     store_interval(&iv, span);
 }
 
-static void cylinder(const double o[3], const double d[3], bg_cpu_span *span)
+static void cylinder_span(const double o[3], const double d[3], bg_cpu_span *span)
 {
     interval iv = {false, false, 0.0, 0.0, {0, 0, 0}, {0, 0, 0}};
     double scale = max_abs3(d);
@@ -160,17 +161,27 @@ static void thin(const double o[3], const double d[3], bool bounded, bg_cpu_span
     bg_v3_set(span->normal[1], 0.0, 1.0, 0.0);
 }
 
+static void plane_span(const double o[3], const double d[3], bg_cpu_span *span)
+{
+    thin(o, d, false, span);
+}
+
+static void rectangle_span(const double o[3], const double d[3], bg_cpu_span *span)
+{
+    thin(o, d, true, span);
+}
+
+/* Each shape's intersector, from its row of common/shapes.h. */
+#define SPAN_OF(shape, name, glsl, is_thin, default_uv, cpu_span, half_extent) [shape] = cpu_span,
+static void (*const shape_span[BG_SHAPE_COUNT_])(const double o[3], const double d[3], bg_cpu_span *span) = {
+    BG_SHAPES(SPAN_OF)};
+#undef SPAN_OF
+
 void bg_cpu_intersect_prototype(bg_shape shape, const double o[3], const double d[3], bg_cpu_span *span)
 {
     memset(span, 0, sizeof *span);
-    switch (shape) {
-    case BG_SHAPE_SPHERE: sphere(o, d, span); break;
-    case BG_SHAPE_PLANE: thin(o, d, false, span); break;
-    case BG_SHAPE_BOX: box(o, d, span); break;
-    case BG_SHAPE_CYLINDER: cylinder(o, d, span); break;
-    case BG_SHAPE_RECTANGLE: thin(o, d, true, span); break;
-    default: break;
-    }
+    if ((unsigned)shape < BG_SHAPE_COUNT_)
+        shape_span[shape](o, d, span);
 }
 
 void bg_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
@@ -256,8 +267,7 @@ void bg_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const d
     if (!bg_v3_normalize(hit->normal))
         bg_v3_set(hit->normal, -d[0], -d[1], -d[2]);
 
-    bool thin = object->shape == BG_SHAPE_PLANE || object->shape == BG_SHAPE_RECTANGLE;
-    if (thin) {
+    if (bg_shape_thin(object->shape)) {
         hit->entering = bg_v3_dot(hit->normal, d) <= 0.0;
     } else {
         hit->entering = candidate->root == 0;

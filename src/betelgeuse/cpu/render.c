@@ -6,24 +6,17 @@
 #include <unistd.h>
 
 #include "cpu_internal.h"
+#include "../common/render_args.h"
 #include "../common/render_settings.h"
+#include "../common/srgb.h"
 
-#define MAX_SIDE 16384
 #define MAX_THREADS BG_MAX_THREADS
-
-double bg_cpu_srgb_encode(double linear)
-{
-    double x = linear < 0.0 ? 0.0 : (linear > 1.0 ? 1.0 : linear);
-    if (x <= 0.0031308)
-        return 12.92 * x;
-    return 1.055 * pow(x, 1.0 / 2.4) - 0.055;
-}
 
 uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding)
 {
     double x = linear < 0.0 ? 0.0 : (linear > 1.0 ? 1.0 : linear);
     if (encoding == BG_ENCODING_SRGB)
-        x = bg_cpu_srgb_encode(x);
+        x = bg_linear_to_srgb(x);
     double y = floor(x * 255.0 + 0.5);
     return (uint8_t)(y < 0.0 ? 0.0 : (y > 255.0 ? 255.0 : y));
 }
@@ -74,49 +67,15 @@ static void *worker(void *arg)
     return NULL;
 }
 
-static bg_status check_image(bg_scene *scene, const bg_image *image, size_t *stride)
-{
-    if (!image->pixels)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image.pixels is NULL");
-    if (image->width < 1 || image->width > MAX_SIDE || image->height < 1 || image->height > MAX_SIDE)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image size %dx%d is not in 1..%d",
-                             image->width, image->height, MAX_SIDE);
-    size_t bpp;
-    if (image->format == BG_PIXEL_RGBA8)
-        bpp = 4;
-    else if (image->format == BG_PIXEL_RGBA32F)
-        bpp = 16;
-    else
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image.format %d is unknown",
-                             (int)image->format);
-    size_t row = (size_t)image->width * bpp;
-    if (image->stride != 0 && image->stride < row)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
-                             "bg_render_cpu: image.stride %zu is below the row size %zu", image->stride, row);
-    if (image->format == BG_PIXEL_RGBA32F && image->stride % sizeof(float) != 0)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
-                             "bg_render_cpu: image.stride %zu of a float image is not a multiple of 4",
-                             image->stride);
-    *stride = image->stride ? image->stride : row;
-    return BG_OK;
-}
-
 bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image)
 {
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
-    if (!settings)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: settings is NULL");
-    if (!image)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_render_cpu: image is NULL");
     char message[256];
-    bg_status st = bg_render_settings_check(settings, "bg_render_cpu", message, sizeof message);
+    size_t stride = 0;
+    bg_status st = bg_render_args_check("bg_render_cpu", settings, image, &stride, message, sizeof message);
     if (st != BG_OK)
         return bg_scene_fail(scene, st, "%s", message);
-    size_t stride = 0;
-    st = check_image(scene, image, &stride);
-    if (st != BG_OK)
-        return st;
     const bg_scene_state *state = bg_scene_committed(scene);
     if (!state)
         return bg_scene_fail(scene, BG_ERR_NOT_COMMITTED, "bg_render_cpu: the scene was never committed");

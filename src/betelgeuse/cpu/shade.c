@@ -2,47 +2,105 @@
  * dielectric secondary rays (docs/shading.md sections 7-9). */
 #include <float.h>
 
+#include "../common/shapes.h"
 #include "cpu_internal.h"
 
 #define PI 3.14159265358979323846264338327950288
 
-static bool is_thin(bg_shape shape)
+/* The nearest-hit search of one ray: objects are offered by the tree walk (in tree order) and by
+ * the always-tested list; of two equal distances the lower object index wins, as it would in a
+ * loop over the objects in order, so the tree changes no pixel. */
+typedef struct nearest_search {
+    const bg_scene_state *state;
+    const double *o, *d;
+    uint32_t skip, inside;
+    bg_cpu_candidate best;
+    uint32_t best_index;
+} nearest_search;
+
+static void offer(nearest_search *n, uint32_t j, double t_max)
 {
-    return shape == BG_SHAPE_PLANE || shape == BG_SHAPE_RECTANGLE;
+    bg_cpu_candidate c;
+    if (j == n->skip || !bg_cpu_intersect_object(&n->state->objects[j], n->o, n->d, j == n->inside, t_max, &c))
+        return;
+    if (n->best_index == BG_CPU_NONE || c.t < n->best.t || (c.t == n->best.t && j < n->best_index)) {
+        n->best = c;
+        n->best_index = j;
+    }
+}
+
+static bool offer_tree_leaf(void *user, uint32_t prim, double *t_max)
+{
+    nearest_search *n = user;
+    offer(n, n->state->tree_objects[prim], *t_max);
+    if (n->best_index != BG_CPU_NONE)
+        *t_max = n->best.t;
+    return true;
+}
+
+/* Calls visit for every tree primitive: the exact answer when a walk is refused (which a tree
+ * built by commit never is; the walk's loop bound makes the refusal explicit, not silent). */
+static void visit_every_leaf(const bg_scene_state *state, bg_bvh_visit_fn visit, void *user, double t_max)
+{
+    for (uint32_t i = 0; i < state->tree_count; i++)
+        if (!visit(user, i, &t_max))
+            return;
+}
+
+static void walk_tree(const bg_scene_state *state, const double o[3], const double d[3], double t_max,
+                      bg_bvh_visit_fn visit, void *user)
+{
+    if (state->tree_count == 0)
+        return;
+    double t = t_max;
+    if (bg_bvh_traverse(state->tree, o, d, 0.0, &t, visit, user, NULL) != BG_OK)
+        visit_every_leaf(state, visit, user, t_max);
 }
 
 bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
                         uint32_t inside, bg_cpu_hit *hit)
 {
-    bg_cpu_candidate best = {0.0, 0, {0, 0, 0}, {0, 0, 0}}, c;
-    uint32_t best_index = BG_CPU_NONE;
-    double t_max = DBL_MAX;
-    for (uint32_t j = 0; j < state->object_count; j++) {
-        if (j == skip)
-            continue;
-        if (!bg_cpu_intersect_object(&state->objects[j], o, d, j == inside, t_max, &c))
-            continue;
-        if (best_index == BG_CPU_NONE || c.t < best.t) {
-            best = c;
-            best_index = j;
-            t_max = c.t;
-        }
-    }
-    if (best_index == BG_CPU_NONE)
+    nearest_search n = {state, o, d, skip, inside, {0.0, 0, {0, 0, 0}, {0, 0, 0}}, BG_CPU_NONE};
+    for (uint32_t k = 0; k < state->always_count; k++)
+        offer(&n, state->always_objects[k], n.best_index == BG_CPU_NONE ? DBL_MAX : n.best.t);
+    walk_tree(state, o, d, n.best_index == BG_CPU_NONE ? DBL_MAX : n.best.t, offer_tree_leaf, &n);
+    if (n.best_index == BG_CPU_NONE)
         return false;
-    bg_cpu_hit_attributes(&state->objects[best_index], best_index, o, d, &best, hit);
+    bg_cpu_hit_attributes(&state->objects[n.best_index], n.best_index, o, d, &n.best, hit);
     return true;
+}
+
+/* The any-hit search of one shadow segment. */
+typedef struct shadow_search {
+    const bg_scene_state *state;
+    const double *p, *l;
+    double t_max;
+    uint32_t self;
+    bool blocked;
+} shadow_search;
+
+static bool blocks(const shadow_search *s, uint32_t j)
+{
+    const bg_object_data *obj = &s->state->objects[j];
+    return j != s->self && obj->casts_shadows && bg_cpu_segment_blocked(obj, s->p, s->l, s->t_max);
+}
+
+static bool test_tree_blocker(void *user, uint32_t prim, double *t_max)
+{
+    (void)t_max;
+    shadow_search *s = user;
+    s->blocked = blocks(s, s->state->tree_objects[prim]);
+    return !s->blocked;
 }
 
 static bool shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self)
 {
-    for (uint32_t j = 0; j < state->object_count; j++) {
-        if (j == self || !state->objects[j].casts_shadows)
-            continue;
-        if (bg_cpu_segment_blocked(&state->objects[j], p, l, t_max))
+    shadow_search s = {state, p, l, t_max, self, false};
+    for (uint32_t k = 0; k < state->always_count; k++)
+        if (blocks(&s, state->always_objects[k]))
             return true;
-    }
-    return false;
+    walk_tree(state, p, l, t_max, test_tree_blocker, &s);
+    return s.blocked;
 }
 
 /* Radiance arriving from a light at p (0 outside a spot cone), its unit direction and the shadow
@@ -108,7 +166,7 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     const double view[3] = {-d[0], -d[1], -d[2]};
     double v = bg_v3_dot(n, view);
     double opaque = 1.0 - surface.transparency;
-    bool thin = is_thin(object->shape);
+    bool thin = bg_shape_thin(object->shape);
 
     for (int i = 0; i < 3; i++)
         out[i] += weight[i] * (surface.emission[i] + opaque * state->ambient[i] * surface.ambient[i]);

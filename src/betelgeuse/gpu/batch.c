@@ -5,7 +5,7 @@
  * shader length (GPU_BATCH_MAX) and, for camera rays, the area a merged scissor would add.
  *
  * Intersection batches are runs of consecutive objects: ties between objects go to the one drawn
- * first, and a run keeps that order both inside the pass (gpu_hit_pass.c) and between passes.
+ * first, and a run keeps that order both inside the pass (hit_pass.c) and between passes.
  * Shadow batches may take any casters of a group: visibility is a product of 0s and 1s. */
 #include "gpu_internal.h"
 
@@ -14,24 +14,23 @@
  * sphere-and-plane scene the merge it allows is 2-5 % slower (docs/gpu_pipeline.md, Batching). */
 #define PASS_COST_PIXELS 4096.0
 
+/* Uniform storage as old hardware allocates it: every float, vec2 or vec3 takes a whole vec4. */
+static int slots(macs_uniform_type t)
+{
+    return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
+}
+
+int gpu_uniform_components(const macs_uniform_desc *u, int count)
+{
+    int components = 0;
+    for (int i = 0; i < count; i++)
+        components += slots(u[i].type) * (u[i].count > 0 ? u[i].count : 1);
+    return components;
+}
+
 static bool batching(const bg_renderer *r)
 {
     return !(r->key.disable_skips & BG_SKIP_BATCH);
-}
-
-static void rect_union(int a[4], const int b[4])
-{
-    if (b[2] == 0 || b[3] == 0)
-        return;
-    if (a[2] == 0 || a[3] == 0) {
-        for (int i = 0; i < 4; i++)
-            a[i] = b[i];
-        return;
-    }
-    int x0 = a[0] < b[0] ? a[0] : b[0], y0 = a[1] < b[1] ? a[1] : b[1];
-    int x1 = a[0] + a[2] > b[0] + b[2] ? a[0] + a[2] : b[0] + b[2];
-    int y1 = a[1] + a[3] > b[1] + b[3] ? a[1] + a[3] : b[1] + b[3];
-    a[0] = x0, a[1] = y0, a[2] = x1 - x0, a[3] = y1 - y0;
 }
 
 bool gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4])
@@ -41,7 +40,7 @@ bool gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int widt
         int one[4];
         if (!gpu_object_scissor(state, (uint32_t)(b->first + j), width, height, one))
             return false;
-        rect_union(rect, one);
+        gpu_rect_union(rect, one);
     }
     return true;
 }
@@ -61,7 +60,7 @@ static double camera_area(const bg_renderer *r, const bg_scene_state *state, int
 
 /* Whether adding object `next` to the run first .. first + count - 1 costs camera rays no more than
  * it saves. A scene whose rays bounce always merges: every secondary set covers the same rectangle
- * for all objects (gpu_frame.c), where one pass fewer is a pure saving, and those sets outnumber the
+ * for all objects (frame.c), where one pass fewer is a pure saving, and those sets outnumber the
  * camera's one. Otherwise the cost of a pass is its overhead plus its area times (1 + objects): the
  * per-pixel work that does not depend on the objects counts once. */
 static bool merge_pays(const bg_renderer *r, const bg_scene_state *state, int first, int count)
@@ -87,20 +86,16 @@ int gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_b
             uint32_t own[GPU_HIT_MAX_TEXTURES];
             int own_count = 0;
             int c = gpu_hit_object_needs(r, state, (uint32_t)(o + count), own, &own_count);
-            int added = 0;
-            for (int i = 0; i < own_count; i++) {
-                bool shared = false;
-                for (int k = 0; k < texture_count; k++)
-                    shared = shared || textures[k] == own[i];
-                if (!shared)
-                    textures[texture_count + added++] = own[i];
-            }
+            /* Its textures join the run's on trial: kept only if the object goes in. */
+            int with_own = texture_count;
+            for (int i = 0; i < own_count; i++)
+                gpu_hit_texture_lane(textures, &with_own, own[i]);
             /* The first object always goes in: its one-object pass is what exists without batching. */
-            if (count > 0 && (!batching(r) || comps + c > budget || texture_count + added > units ||
+            if (count > 0 && (!batching(r) || comps + c > budget || with_own > units ||
                               !merge_pays(r, state, o, count)))
                 break;
             comps += c;
-            texture_count += added;
+            texture_count = with_own;
             count++;
         }
         out[batches++] = (gpu_batch){NULL, o, count, 0};
@@ -115,8 +110,8 @@ int gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, in
     int lights = (int)state->light_count - group * GPU_LIGHTS_PER_GROUP;
     if (lights > GPU_LIGHTS_PER_GROUP)
         lights = GPU_LIGHTS_PER_GROUP;
-    int per_batch = (macs_context_max_uniform_components(r->ctx) - lights * GPU_SHADOW_LIGHT_COMPONENTS) /
-                    GPU_SHADOW_OBJECT_COMPONENTS;
+    int per_batch = (macs_context_max_uniform_components(r->ctx) - gpu_shadow_shared_components(lights)) /
+                    gpu_shadow_object_components();
     if (per_batch > GPU_BATCH_MAX)
         per_batch = GPU_BATCH_MAX;
     if (per_batch < 1 || !batching(r))

@@ -9,7 +9,7 @@
 
 #include "../common/alloc.h"
 #include "gpu_internal.h"
-#include "../common/image.h"
+#include "../common/render_args.h"
 #include "../common/render_settings.h"
 
 typedef struct frame {
@@ -80,8 +80,7 @@ static void bounce_scissor(frame *f)
     const bg_scene_state *state = f->state;
     bg_renderer *r = f->r;
     f->bounce_scissor = !(r->key.disable_skips & BG_SKIP_SCISSOR);
-    bool any = false;
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    memset(f->bounce_rect, 0, sizeof f->bounce_rect);
     for (uint32_t o = 0; o < state->object_count && f->bounce_scissor; o++) {
         if (!gpu_material_may_bounce(&state->materials[state->objects[o].material]))
             continue;
@@ -90,18 +89,8 @@ static void bounce_scissor(frame *f)
             f->bounce_scissor = false;
             break;
         }
-        if (rect[2] == 0 || rect[3] == 0)
-            continue;
-        x0 = any && x0 < rect[0] ? x0 : rect[0];
-        y0 = any && y0 < rect[1] ? y0 : rect[1];
-        x1 = any && x1 > rect[0] + rect[2] ? x1 : rect[0] + rect[2];
-        y1 = any && y1 > rect[1] + rect[3] ? y1 : rect[1] + rect[3];
-        any = true;
+        gpu_rect_union(f->bounce_rect, rect);
     }
-    f->bounce_rect[0] = x0;
-    f->bounce_rect[1] = y0;
-    f->bounce_rect[2] = x1 - x0;
-    f->bounce_rect[3] = y1 - y0;
 }
 
 /* Runs a shadow or light pass, counting its kept fragments when timing (a query waits for them). */
@@ -452,17 +441,13 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     bg_renderer *r = renderer;
     if (!r)
         return BG_ERR_INVALID_ARGUMENT;
-    if (!scene || !settings || !image)
-        return gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "bg_render_gpu: %s is NULL",
-                        !scene ? "scene" : !settings ? "settings" : "image");
+    if (!scene)
+        return gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "bg_render_gpu: scene is NULL");
     char message[256];
-    bg_status st = bg_render_settings_check(settings, "bg_render_gpu", message, sizeof message);
+    size_t stride = 0;
+    bg_status st = bg_render_args_check("bg_render_gpu", settings, image, &stride, message, sizeof message);
     if (st != BG_OK)
         return gpu_fail(r, st, "%s", message);
-    size_t stride = 0;
-    st = bg_image_check(image, &stride, message, sizeof message);
-    if (st != BG_OK)
-        return gpu_fail(r, st, "bg_render_gpu: %s", message);
     int max = r->limits.max_texture_size;
     if (image->width > max || image->height > max)
         return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: image size %dx%d exceeds the GL texture size limit %d",

@@ -3,9 +3,9 @@
 #ifndef BG_GPU_INTERNAL_H
 #define BG_GPU_INTERNAL_H
 
+#include "../../macs/first_error.h"
 #include "../scene/scene_internal.h"
 
-#define GPU_MESSAGE_SIZE 1024
 #define GPU_LIGHTS_PER_GROUP 4
 /* "No object" in the skip and inside lanes of a ray map (object indices are >= 0). */
 #define GPU_NONE -1.0f
@@ -91,8 +91,7 @@ struct bg_renderer {
     bg_allocator allocator;
     bg_log_fn log;
     void *log_user;
-    bg_status error;
-    char message[GPU_MESSAGE_SIZE];
+    macs_first_error error; /* status is a bg_status; fail.c records it */
 
     macs_context *ctx;
     macs_limits limits; /* effective */
@@ -119,21 +118,31 @@ struct bg_renderer {
     gpu_passes passes;
 };
 
-/* ---- gpu_renderer.c ---- */
+#if defined(__GNUC__)
+#define GPU_PRINTF_(format_arg, first_arg) __attribute__((__format__(__printf__, format_arg, first_arg)))
+#else
+#define GPU_PRINTF_(format_arg, first_arg)
+#endif
+
+/* ---- fail.c: the error sink; calls nothing else in gpu/ ---- */
 /* Records the first error with a message and logs it; returns status. */
-bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...);
+bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...) GPU_PRINTF_(3, 4);
 /* Turns a MACS failure into a renderer error carrying MACS's message. */
 bg_status gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
+/* Logs a diagnostic that is not an error (a warning: something worked around; info: a choice made). */
+void gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...) GPU_PRINTF_(3, 4);
+
+/* ---- renderer.c ---- */
 /* Frees every GPU object (passes, targets, textures) so the next render starts afresh. */
 void gpu_release_all(bg_renderer *r);
 
-/* ---- gpu_origin.c ---- */
+/* ---- origin.c ---- */
 /* Every position the GPU sees is relative to the camera (float bits stay near the scene, not near
  * the world origin): the object's to_object for such points, column-major, and a moved point. */
 void gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16]);
 void gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3]);
 
-/* ---- gpu_shader_source.c ---- */
+/* ---- shader_source.c ---- */
 /* A growing string built through the renderer's allocator; a failed append leaves it failed. */
 typedef struct gpu_text {
     const bg_allocator *allocator;
@@ -150,28 +159,38 @@ bool gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *see
 void gpu_text_free(gpu_text *t);
 /* Like gpu_text_snippet, with each name in the NULL-terminated list renamed to name_suffix by
  * #define around the file, which is then forgotten by seen so that the next suffix inlines it again:
- * one program can hold several shapes' copies of a function (gpu_hit_pass.c, shadow batches). */
+ * one program can hold several shapes' copies of a function (hit_pass.c, shadow batches). */
 bool gpu_text_snippet_renamed(gpu_text *t, const char *file, const char *const *names, const char *suffix,
                               const char **seen, int *seen_count, int seen_cap);
 
-/* ---- gpu_features.c ---- */
+/* ---- shape_source.c ---- */
+/* The suffix of a shape's functions in a pass (bg_hit_root_sphere): its name in common/shapes.h. */
+const char *gpu_shape_suffix(bg_shape shape);
+/* Appends, once per distinct shape of objects[0 .. count - 1] (indices into state->objects), the
+ * shape's bg_shape_*.glsl and then stage_file, both with bg_shape_span and the NULL-terminated
+ * stage_names renamed by the shape's suffix. False if a file is missing. */
+bool gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint32_t *objects, int count,
+                           const char *stage_file, const char *const *stage_names, const char **seen,
+                           int *seen_count, int seen_cap);
+
+/* ---- features.c ---- */
 /* Whether a material can spawn a secondary ray somewhere (mirror share or transparency). */
 bool gpu_material_may_bounce(const bg_material *m);
 /* Decides slots and shader features from the committed scene; generic switches specialisation off. */
 void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
 
-/* ---- gpu_fingerprint.c ---- */
+/* ---- fingerprint.c ---- */
 /* A hash of every committed value the renderer's passes and textures depend on. */
 uint64_t gpu_scene_fingerprint(const bg_scene_state *state);
 
-/* ---- gpu_bounds.c ---- */
+/* ---- bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
 void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax);
 /* The pixel rectangle (GL window coordinates, bottom-up) that holds every camera ray able to hit a
  * bounded object; false when the object may cover the whole image (or is behind the camera). */
 bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
 
-/* ---- gpu_targets.c ---- */
+/* ---- targets.c ---- */
 /* (Re)creates the size-dependent targets for width x height and the features' G-buffer slots. */
 bg_status gpu_targets_prepare(bg_renderer *r, int width, int height);
 /* Whether RGBA16F works as a render target next to RGBA32F (one small pass, read back); false with
@@ -186,10 +205,7 @@ bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state
 void gpu_targets_release(bg_renderer *r);
 void gpu_scene_textures_release(bg_renderer *r);
 
-/* ---- gpu_pass_build.c ---- */
-/* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
-bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
-void gpu_passes_release(bg_renderer *r);
+/* ---- pass_create.c: making one pass; calls only shader_source.c and fail.c ---- */
 /* Fills the parts of a pass description every pass sets; depth, stencil, blend and colour mask stay
  * zero (off, default) for the caller to set. */
 void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
@@ -197,15 +213,24 @@ void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_de
                         int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
                         int output_count);
 /* Creates one pass whose functions are the listed glsl110/ files (plus extra text); reports errors. */
-bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *defines,
+bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
                           macs_pass_desc *desc, macs_pass **out);
-
 /* Creates a pass from assembled functions. With trial, a shader GL refuses (compile or link) is
  * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
 bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
                        macs_pass **out, bool *rejected);
 
-/* ---- gpu_batch.c ---- */
+/* ---- ray_passes.c: the passes that make, count, end and spawn rays ---- */
+/* The camera, mark, background, reflection, refraction and resolve passes, as the renderer's key
+ * decides them (background_on, bounces), over ray set 0's maps and the renderer's targets. */
+bg_status gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
+
+/* ---- passes.c: every pass of a frame, in the order the frame needs them ---- */
+/* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
+bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
+void gpu_passes_release(bg_renderer *r);
+
+/* ---- batch.c ---- */
 /* Plans the intersection batches (first, count) into out (room for every object); returns how many. */
 int gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out);
 /* Plans the shadow batches of a group over casters[first .. first + n - 1] into out; returns how many. */
@@ -214,8 +239,11 @@ int gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, in
 /* The camera-ray scissor rectangle of a batch (the union of its objects'); false when unbounded.
  * An empty rectangle means every object is off screen. */
 bool gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4]);
+/* Uniform components of the declared uniforms u[0 .. count - 1] as old hardware allocates them
+ * (every float, vec2 or vec3 a whole vec4; arrays per element): what batches are planned by. */
+int gpu_uniform_components(const macs_uniform_desc *u, int count);
 
-/* ---- gpu_hit_pass.c ---- */
+/* ---- hit_pass.c ---- */
 /* The intersection pass of objects first .. first + count - 1 (count <= GPU_BATCH_MAX), writing
  * the G-buffer slots of the features; trial as for gpu_pass_try. */
 bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
@@ -226,18 +254,22 @@ int gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint
                          uint32_t textures[GPU_HIT_MAX_TEXTURES], int *texture_count);
 /* Uniform components every intersection pass has whatever its objects. */
 int gpu_hit_shared_components(void);
+/* The lane of a scene texture (0 the white texel) among the distinct lanes[0 .. *lane_count - 1],
+ * appended when it is not there yet: how a pass, and the planner, count each texture once. */
+int gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture);
 /* Sets the per-frame uniforms of an object's intersection pass (dmax of the level). */
 bg_status gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax);
 
-/* ---- gpu_light_pass.c ---- */
+/* ---- light_pass.c ---- */
 /* The shadow pass of a batch: objects casters[0 .. count - 1] (blocks[i] false: no test) against
  * the segments of light group `group`; trial as for gpu_pass_try. */
 bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
                                 const bool *blocks, int count, int group, bool trial, macs_pass **out,
                                 bool *rejected);
-/* Uniform components of a shadow pass: per object, and shared for a group of `lights` lights. */
-#define GPU_SHADOW_OBJECT_COMPONENTS 20
-#define GPU_SHADOW_LIGHT_COMPONENTS 20
+/* Uniform components of a shadow pass (as gpu_uniform_components counts them, from what the pass
+ * declares): per object, and shared for a group of 1 .. GPU_LIGHTS_PER_GROUP lights. */
+int gpu_shadow_object_components(void);
+int gpu_shadow_shared_components(int lights);
 /* The light pass of a group of up to four lights (vis: read the visibility texture); a group past
  * the last light makes the ambient and emission pass instead. */
 bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out);
@@ -255,7 +287,11 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
 #define GPU_MARK_IN_WEIGHT 0
 #define GPU_BACKGROUND_IN_WEIGHT 0
 
-/* ---- gpu_frame.c ---- */
+/* ---- rect.c ---- */
+/* Grows a to the smallest rectangle holding a and b ({x, y, width, height}; empty ones add nothing). */
+void gpu_rect_union(int a[4], const int b[4]);
+
+/* ---- frame.c ---- */
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
 #define GPU_STENCIL_LIVE 0x1u
 #define GPU_STENCIL_HIT 0x2u

@@ -4,23 +4,20 @@
  * parameters unless specialisation is off), its depth and the G-buffer slots the scene's features
  * ask for. The source is unrolled per object with per-object uniforms (no dynamic indexing, which
  * old hardware lacks) and per-texture samplers (GLSL 1.10 indexes samplers by constants only).
- * Material constants are uniforms, so a value-only re-commit reuses the compiled program. */
+ * Material constants are uniforms, so a value-only re-commit reuses the compiled program.
+ *
+ * What an object declares is described once (member_describe): the batch planner's uniform budget
+ * (gpu_hit_object_needs) and the pass's declarations are both read from that description. */
 #include <stdio.h>
 #include <string.h>
 
 #include "../common/alloc.h"
+#include "../common/shapes.h"
 #include "gpu_internal.h"
 
-static const char *const shape_file[BG_SHAPE_COUNT_] = {
-    "bg_shape_sphere.glsl", "bg_shape_plane.glsl", "bg_shape_box.glsl", "bg_shape_cylinder.glsl",
-    "bg_shape_rectangle.glsl"};
 static const char *const uv_file[BG_UV_COUNT_] = {NULL, "bg_uv_spherical.glsl", "bg_uv_planar.glsl",
                                                   "bg_uv_box.glsl", "bg_uv_cylindrical.glsl"};
-
-static bool is_thin(bg_shape s)
-{
-    return s == BG_SHAPE_PLANE || s == BG_SHAPE_RECTANGLE;
-}
+static const char *const uv_name[BG_UV_COUNT_] = {"none", "spherical", "planar", "box", "cylindrical"};
 
 /* One material parameter: a uniform constant and an optional texture lane. */
 typedef struct param {
@@ -34,6 +31,8 @@ typedef struct param {
 } param;
 
 enum { P_BASE_C, P_BASE_R, P_BASE_P, P_AMBIENT, P_EMISSION, P_TRANSPARENCY, P_COAT_C, P_COAT_R, P_COAT_P, P_COUNT };
+/* Each parameter samples at most one texture. */
+typedef char every_parameter_textured_fits[P_COUNT <= GPU_HIT_MAX_TEXTURES ? 1 : -1];
 
 static void describe(const bg_material *m, const gpu_features *f, param p[P_COUNT])
 {
@@ -53,6 +52,13 @@ static void describe(const bg_material *m, const gpu_features *f, param p[P_COUN
     memcpy(p, list, sizeof list);
 }
 
+/* Whether a parameter reads a texture lane: its own texture, or in generic mode (every used
+ * parameter samples) the white texel where it has none. */
+static bool samples_texture(const param *p, const gpu_features *f)
+{
+    return p->used && (p->texture || f->generic);
+}
+
 /* GL takes matrices column by column; ours are row-major (m[row * n + col]). */
 static void column_major(const double *m, int n, float *out)
 {
@@ -61,57 +67,103 @@ static void column_major(const double *m, int n, float *out)
             out[c * n + r] = (float)m[r * n + c];
 }
 
+/* The uniforms of an object besides its material parameters: the name (%d: the object's place in
+ * the pass) and type of each. Which of them an object declares, member_describe decides. */
+typedef enum object_uniform {
+    U_INDEX,           /* its object index (the hit code and the skip and inside tests) */
+    U_TO_OBJECT,       /* world (camera-relative) to prototype */
+    U_NORMAL_TO_WORLD, /* inverse transpose of the linear part */
+    U_TO_WORLD3,       /* the linear part, for tangents: only with the TANGENT slot */
+    U_UV_SCALE,        /* only for an object that samples a texture */
+    U_IOR,             /* only with transparency */
+    U_COUNT
+} object_uniform;
 
-static const char *const shape_name[BG_SHAPE_COUNT_] = {"sphere", "plane", "box", "cylinder", "rectangle"};
-static const char *const uv_name[BG_UV_COUNT_] = {"none", "spherical", "planar", "box", "cylindrical"};
+static const struct {
+    const char *format;
+    macs_uniform_type type;
+} object_uniform_row[U_COUNT] = {
+    [U_INDEX] = {"bg_index_%d", MACS_UNIFORM_FLOAT},
+    [U_TO_OBJECT] = {"bg_to_object_%d", MACS_UNIFORM_MAT4},
+    [U_NORMAL_TO_WORLD] = {"bg_normal_to_world_%d", MACS_UNIFORM_MAT3},
+    [U_TO_WORLD3] = {"bg_to_world3_%d", MACS_UNIFORM_MAT3},
+    [U_UV_SCALE] = {"bg_uv_scale_%d", MACS_UNIFORM_VEC2},
+    [U_IOR] = {"bg_m%d_ior", MACS_UNIFORM_FLOAT},
+};
 
-/* Uniform storage as old hardware allocates it: every float, vec2 or vec3 takes a whole vec4. */
-static int slots(macs_uniform_type t)
-{
-    return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
-}
+/* The uniforms of every intersection pass whatever its objects (set per level: gpu_hit_pass_set_dmax). */
+static const macs_uniform_desc shared_uniforms[] = {{"bg_dmax", MACS_UNIFORM_FLOAT, 0}};
+#define SHARED_UNIFORM_COUNT ((int)(sizeof shared_uniforms / sizeof shared_uniforms[0]))
 
-/* One object of the pass: its parameters, whether it samples textures, its uniforms' names. */
+#define UNIFORM_NAME_SIZE 28
+
+/* One object of the pass: its parameters, the textures it samples and the uniforms it declares. */
 typedef struct member {
     uint32_t object;
     param p[P_COUNT];
-    bool need_uv;
-    char name[P_COUNT + 6][28];
+    uint32_t textures[GPU_HIT_MAX_TEXTURES]; /* distinct scene textures it samples, 0 the white texel */
+    int texture_count;
+    bool need_uv; /* it samples some texture */
+    bool declares[U_COUNT];
+    char object_uniform[U_COUNT][UNIFORM_NAME_SIZE];
+    char param_uniform[P_COUNT][UNIFORM_NAME_SIZE];
+    macs_uniform_desc uniforms[U_COUNT + P_COUNT]; /* what it declares, names pointing into the above */
+    int uniform_count;
 } member;
+
+int gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture)
+{
+    for (int k = 0; k < *lane_count; k++)
+        if (lanes[k] == texture)
+            return k;
+    lanes[*lane_count] = texture;
+    return (*lane_count)++;
+}
+
+/* Describes object `object` as member j of a pass. */
+static void member_describe(const bg_renderer *r, const bg_scene_state *state, uint32_t object, int j, member *mb)
+{
+    const gpu_features *f = &r->features;
+    mb->object = object;
+    describe(&state->materials[state->objects[object].material], f, mb->p);
+    mb->texture_count = 0;
+    for (int i = 0; i < P_COUNT; i++)
+        if (samples_texture(&mb->p[i], f))
+            gpu_hit_texture_lane(mb->textures, &mb->texture_count, mb->p[i].texture);
+    mb->need_uv = mb->texture_count > 0;
+
+    mb->declares[U_INDEX] = mb->declares[U_TO_OBJECT] = mb->declares[U_NORMAL_TO_WORLD] = true;
+    mb->declares[U_TO_WORLD3] = f->slot[GPU_SLOT_TANGENT];
+    mb->declares[U_UV_SCALE] = mb->need_uv;
+    mb->declares[U_IOR] = f->transparent;
+    mb->uniform_count = 0;
+    for (int u = 0; u < U_COUNT; u++) {
+        snprintf(mb->object_uniform[u], UNIFORM_NAME_SIZE, object_uniform_row[u].format, j);
+        if (mb->declares[u])
+            mb->uniforms[mb->uniform_count++] =
+                (macs_uniform_desc){mb->object_uniform[u], object_uniform_row[u].type, 0};
+    }
+    for (int i = 0; i < P_COUNT; i++) {
+        snprintf(mb->param_uniform[i], UNIFORM_NAME_SIZE, "bg_m%d_%s", j, mb->p[i].name);
+        if (mb->p[i].used)
+            mb->uniforms[mb->uniform_count++] =
+                (macs_uniform_desc){mb->param_uniform[i], mb->p[i].color ? MACS_UNIFORM_VEC3 : MACS_UNIFORM_FLOAT, 0};
+    }
+}
 
 int gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint32_t object,
                          uint32_t textures[GPU_HIT_MAX_TEXTURES], int *texture_count)
 {
-    const gpu_features *f = &r->features;
-    const bg_object_data *obj = &state->objects[object];
-    param p[P_COUNT];
-    describe(&state->materials[obj->material], f, p);
-    int comps = slots(MACS_UNIFORM_FLOAT) + slots(MACS_UNIFORM_MAT4) + slots(MACS_UNIFORM_MAT3);
-    if (f->slot[GPU_SLOT_TANGENT])
-        comps += slots(MACS_UNIFORM_MAT3);
-    if (f->transparent)
-        comps += slots(MACS_UNIFORM_FLOAT);
-    *texture_count = 0;
-    for (int i = 0; i < P_COUNT; i++) {
-        if (!p[i].used)
-            continue;
-        comps += slots(p[i].color ? MACS_UNIFORM_VEC3 : MACS_UNIFORM_FLOAT);
-        if (!p[i].texture && !f->generic)
-            continue;
-        bool seen = false;
-        for (int k = 0; k < *texture_count; k++)
-            seen = seen || textures[k] == p[i].texture;
-        if (!seen)
-            textures[(*texture_count)++] = p[i].texture;
-    }
-    if (*texture_count > 0)
-        comps += slots(MACS_UNIFORM_VEC2); /* uv scale */
-    return comps;
+    member mb;
+    member_describe(r, state, object, 0, &mb);
+    memcpy(textures, mb.textures, (size_t)mb.texture_count * sizeof *textures);
+    *texture_count = mb.texture_count;
+    return gpu_uniform_components(mb.uniforms, mb.uniform_count);
 }
 
 int gpu_hit_shared_components(void)
 {
-    return slots(MACS_UNIFORM_FLOAT); /* dmax */
+    return gpu_uniform_components(shared_uniforms, SHARED_UNIFORM_COUNT);
 }
 
 /* The functions of the pass: each distinct shape's root and each distinct UV mapping, renamed by
@@ -123,59 +175,60 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
     bool ok = gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, 48);
     if (need_tangent)
         ok = ok && gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, 48);
-    static const char *const span[] = {"bg_shape_span", NULL};
-    static const char *const root[] = {"bg_shape_span", "bg_hit_root", NULL};
+    uint32_t objects[GPU_BATCH_MAX];
+    for (int j = 0; j < count; j++)
+        objects[j] = m[j].object;
+    static const char *const root[] = {"bg_hit_root", NULL};
+    ok = ok && gpu_text_shape_stages(t, state, objects, count, "bg_hit_root.glsl", root, seen, &n, 48);
     static const char *const uv[] = {"bg_uv_map", NULL};
-    bool shape_done[BG_SHAPE_COUNT_] = {false}, uv_done[BG_UV_COUNT_] = {false};
+    bool uv_done[BG_UV_COUNT_] = {false};
     for (int j = 0; j < count && ok; j++) {
-        const bg_object_data *o = &state->objects[m[j].object];
-        if (!shape_done[o->shape]) {
-            shape_done[o->shape] = true;
-            ok = gpu_text_snippet_renamed(t, shape_file[o->shape], span, shape_name[o->shape], seen, &n, 48) &&
-                 gpu_text_snippet_renamed(t, "bg_hit_root.glsl", root, shape_name[o->shape], seen, &n, 48);
-        }
-        if ((m[j].need_uv || need_tangent) && !uv_done[o->uv_mapping] && ok) {
-            uv_done[o->uv_mapping] = true;
-            ok = uv_file[o->uv_mapping] &&
-                 gpu_text_snippet_renamed(t, uv_file[o->uv_mapping], uv, uv_name[o->uv_mapping], seen, &n, 48);
+        bg_uv_mapping mapping = state->objects[m[j].object].uv_mapping;
+        if ((m[j].need_uv || need_tangent) && !uv_done[mapping]) {
+            uv_done[mapping] = true;
+            ok = uv_file[mapping] && gpu_text_snippet_renamed(t, uv_file[mapping], uv, uv_name[mapping], seen, &n, 48);
         }
     }
     return ok;
 }
 
-/* Sets the constants of member j (object and material) into the pass. */
-static macs_status set_member_uniforms(const bg_renderer *r, macs_pass *pass, const bg_scene_state *state,
-                                       const member *mb, bool need_tangent)
+/* Sets a member's object constants (those it declares) into the pass. */
+static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const member *mb)
 {
-    const gpu_features *f = &r->features;
-    uint32_t index = mb->object;
-    const bg_object_data *obj = &state->objects[index];
-    const bg_material *m = &state->materials[obj->material];
-    const param *p = mb->p;
-    float fi = (float)index, m16[16], m9[9];
-    macs_status ms = macs_pass_set_uniform(pass, mb->name[P_COUNT + 0], &fi);
-    gpu_origin_to_object(state, index, m16);
+    const bg_object_data *obj = &state->objects[mb->object];
+    float fi = (float)mb->object, m16[16], m9[9];
+    macs_status ms = macs_pass_set_uniform(pass, mb->object_uniform[U_INDEX], &fi);
+    gpu_origin_to_object(state, mb->object, m16);
     if (!ms)
-        ms = macs_pass_set_uniform(pass, mb->name[P_COUNT + 1], m16);
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_TO_OBJECT], m16);
     column_major(&obj->normal_to_world[0][0], 3, m9);
     if (!ms)
-        ms = macs_pass_set_uniform(pass, mb->name[P_COUNT + 2], m9);
-    if (!ms && need_tangent) {
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_NORMAL_TO_WORLD], m9);
+    if (!ms && mb->declares[U_TO_WORLD3]) {
         double l3[3][3];
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
                 l3[i][j] = obj->to_world[i][j];
         column_major(&l3[0][0], 3, m9);
-        ms = macs_pass_set_uniform(pass, mb->name[P_COUNT + 3], m9);
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_TO_WORLD3], m9);
     }
-    if (!ms && mb->need_uv) {
+    if (!ms && mb->declares[U_UV_SCALE]) {
         float uv[2] = {(float)obj->uv_scale[0], (float)obj->uv_scale[1]};
-        ms = macs_pass_set_uniform(pass, mb->name[P_COUNT + 4], uv);
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_UV_SCALE], uv);
     }
+    return ms;
+}
+
+/* Sets a member's material constants (its used parameters and the ior) into the pass. */
+static macs_status set_material_uniforms(macs_pass *pass, const bg_scene_state *state, const member *mb)
+{
+    const bg_material *m = &state->materials[state->objects[mb->object].material];
+    const param *p = mb->p;
     const bg_color_param *colors[P_COUNT] = {&m->base.reflectance, NULL, NULL, &m->ambient, &m->emission, NULL,
                                              &m->coat.reflectance, NULL, NULL};
     const bg_scalar_param *scalars[P_COUNT] = {NULL, &m->base.roughness, &m->base.isotropy, NULL, NULL,
                                                &m->transparency, NULL, &m->coat.roughness, &m->coat.isotropy};
+    macs_status ms = MACS_OK;
     for (int i = 0; i < P_COUNT && !ms; i++) {
         if (!p[i].used)
             continue;
@@ -189,19 +242,19 @@ static macs_status set_member_uniforms(const bg_renderer *r, macs_pass *pass, co
             float v[3] = {(float)rgb[0], (float)rgb[1], (float)rgb[2]};
             if (i == P_COAT_C && !m->has_coat)
                 v[0] = v[1] = v[2] = 0.0f;
-            ms = macs_pass_set_uniform(pass, mb->name[i], v);
+            ms = macs_pass_set_uniform(pass, mb->param_uniform[i], v);
         } else {
             float v = (float)scalars[i]->value;
             if (i == P_COAT_R && !m->has_coat)
                 v = -1.0f;
             if (i == P_COAT_P && !m->has_coat)
                 v = 1.0f;
-            ms = macs_pass_set_uniform(pass, mb->name[i], &v);
+            ms = macs_pass_set_uniform(pass, mb->param_uniform[i], &v);
         }
     }
-    if (!ms && f->transparent) {
+    if (!ms && mb->declares[U_IOR]) {
         float ior = (float)m->ior;
-        ms = macs_pass_set_uniform(pass, mb->name[P_COUNT + 5], &ior);
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_IOR], &ior);
     }
     return ms;
 }
@@ -211,7 +264,7 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
                          bool transparent, bool coat)
 {
     const bg_object_data *obj = &state->objects[mb->object];
-    const char *thin = is_thin(obj->shape) ? "true" : "false";
+    const char *thin = bg_shape_thin(obj->shape) ? "true" : "false";
     gpu_text_printf(t, "    bg_n = bg_hit_normal(bg_normal_to_world_%d, bg_no, bg_rd.xyz, %s, bg_first, bg_entering);\n",
                     j, thin);
     gpu_text_printf(t, "    bg_code = bg_hit_code(bg_index_%d, %s, bg_entering);\n", j, thin);
@@ -232,9 +285,10 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
                 snprintf(lane, sizeof lane, "rgb");
             else
                 snprintf(lane, sizeof lane, "%c", "rgba"[p[i].channel & 3]);
-            snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, bg_uv).%s", mb->name[i], p[i].sampler, lane);
+            snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, bg_uv).%s", mb->param_uniform[i], p[i].sampler,
+                     lane);
         } else {
-            snprintf(value, sizeof value, "%s", mb->name[i]);
+            snprintf(value, sizeof value, "%s", mb->param_uniform[i]);
         }
         char clamped[192];
         snprintf(clamped, sizeof clamped, p[i].clamp, value);
@@ -242,106 +296,118 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
     }
     /* A negative coat roughness uniform marks a material without a coat. */
     if (coat)
-        gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->name[P_COAT_R]);
+        gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->param_uniform[P_COAT_R]);
     if (transparent)
-        gpu_text_printf(t, "    bg_ior = %s;\n", mb->name[P_COUNT + 5]);
+        gpu_text_printf(t, "    bg_ior = %s;\n", mb->object_uniform[U_IOR]);
 }
 
-bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
-                             macs_pass **out, bool *rejected)
-{
-    const gpu_features *f = &r->features;
-    *out = NULL;
-    if (rejected)
-        *rejected = false;
-    if (count < 1 || count > GPU_BATCH_MAX)
-        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: intersection batch of %d objects", count);
-    member *mbs = bg_alloc(&r->allocator, (size_t)count * sizeof *mbs);
-    if (!mbs)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building an intersection pass");
-    bool need_tangent = f->slot[GPU_SLOT_TANGENT];
+/* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
+ * used parameter samples something, the white texel where the material has no texture. */
+#define MAX_INPUTS (3 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
+#define MAX_UNIFORMS (SHARED_UNIFORM_COUNT + GPU_BATCH_MAX * (U_COUNT + P_COUNT))
 
-    /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
-     * used parameter samples something, the white texel where the material has no texture. */
-    enum { MAX_INPUTS = 3 + GPU_BATCH_MAX * P_COUNT };
+/* Everything a pass description points at while the pass is made. */
+typedef struct hit_pass_parts {
+    member *members;
+    int count;
+    uint32_t lane_texture[MAX_INPUTS];
+    int lanes;
     macs_input_desc inputs[MAX_INPUTS];
     macs_texture *input_tex[MAX_INPUTS];
     char input_names[MAX_INPUTS][24];
-    uint32_t lane_texture[MAX_INPUTS];
-    int input_count = 3, lanes = 0;
-    inputs[0].name = "bg_ray_origin";
-    inputs[1].name = "bg_ray_dir";
-    inputs[2].name = "bg_ray_weight";
-    input_tex[0] = input_tex[1] = input_tex[2] = NULL;
-
-    enum { MAX_UNIFORMS = 1 + GPU_BATCH_MAX * (P_COUNT + 6) };
+    int input_count;
     macs_uniform_desc uniforms[MAX_UNIFORMS];
-    int nu = 0;
-    uniforms[nu++] = (macs_uniform_desc){"bg_dmax", MACS_UNIFORM_FLOAT, 0};
-    for (int j = 0; j < count; j++) {
-        member *mb = &mbs[j];
-        mb->object = first + (uint32_t)j;
-        const bg_object_data *obj = &state->objects[mb->object];
-        describe(&state->materials[obj->material], f, mb->p);
-        param *p = mb->p;
-        mb->need_uv = false;
-        for (int i = 0; i < P_COUNT; i++) {
-            if (!p[i].used || (!p[i].texture && !f->generic))
-                continue;
-            int lane = -1;
-            for (int k = 0; k < lanes; k++)
-                if (lane_texture[k] == p[i].texture)
-                    lane = k;
-            if (lane < 0) {
-                lane = lanes++;
-                lane_texture[lane] = p[i].texture;
-                snprintf(input_names[lane], sizeof input_names[lane], "bg_tex%d", lane);
-                inputs[input_count].name = input_names[lane];
-                input_tex[input_count] = p[i].texture ? r->textures[p[i].texture - 1] : r->white;
-                input_count++;
-            }
-            p[i].sampler = lane;
-            mb->need_uv = true;
-        }
-        static const char *const fixed[6] = {"bg_index", "bg_to_object", "bg_normal_to_world", "bg_to_world3",
-                                             "bg_uv_scale", "bg_m%d_ior"};
-        static const macs_uniform_type fixed_type[6] = {MACS_UNIFORM_FLOAT, MACS_UNIFORM_MAT4, MACS_UNIFORM_MAT3,
-                                                        MACS_UNIFORM_MAT3, MACS_UNIFORM_VEC2, MACS_UNIFORM_FLOAT};
-        bool fixed_used[6] = {true, true, true, need_tangent, mb->need_uv, f->transparent};
-        for (int i = 0; i < 6; i++) {
-            if (i == 5)
-                snprintf(mb->name[P_COUNT + i], sizeof mb->name[0], fixed[i], j);
-            else
-                snprintf(mb->name[P_COUNT + i], sizeof mb->name[0], "%s_%d", fixed[i], j);
-            if (fixed_used[i])
-                uniforms[nu++] = (macs_uniform_desc){mb->name[P_COUNT + i], fixed_type[i], 0};
-        }
-        for (int i = 0; i < P_COUNT; i++) {
-            snprintf(mb->name[i], sizeof mb->name[i], "bg_m%d_%s", j, p[i].name);
-            if (p[i].used)
-                uniforms[nu++] = (macs_uniform_desc){mb->name[i], p[i].color ? MACS_UNIFORM_VEC3 : MACS_UNIFORM_FLOAT, 0};
-        }
-    }
+    int uniform_count;
+    macs_output_desc outputs[GPU_SLOT_COUNT];
+    macs_texture *output_tex[GPU_SLOT_COUNT];
+    int output_count;
+    char once_value[128], tangent_value[64];
+} hit_pass_parts;
 
-    /* main: every member's root, the nearest by the depth buffer's own comparison (strict, so the
-     * member drawn first in one-object order wins a tie, as LESS between passes decides), then the
-     * winner's surface in a static branch per member. */
-    gpu_text main;
-    gpu_text_init(&main, &r->allocator);
+/* Describes objects first .. of the batch and gives each sampling parameter its lane. */
+static void describe_members(const bg_renderer *r, const bg_scene_state *state, uint32_t first, hit_pass_parts *hp)
+{
+    hp->lanes = 0;
+    for (int j = 0; j < hp->count; j++) {
+        member *mb = &hp->members[j];
+        member_describe(r, state, first + (uint32_t)j, j, mb);
+        for (int i = 0; i < P_COUNT; i++)
+            if (samples_texture(&mb->p[i], &r->features))
+                mb->p[i].sampler = gpu_hit_texture_lane(hp->lane_texture, &hp->lanes, mb->p[i].texture);
+    }
+}
+
+/* The ray maps (rebound per ray set: GPU_HIT_IN_*), then one sampler per texture lane. */
+static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
+{
+    static const char *const ray_maps[3] = {"bg_ray_origin", "bg_ray_dir", "bg_ray_weight"};
+    hp->input_count = 0;
+    for (int k = 0; k < 3; k++) {
+        hp->inputs[hp->input_count].name = ray_maps[k];
+        hp->input_tex[hp->input_count++] = NULL;
+    }
+    for (int lane = 0; lane < hp->lanes; lane++) {
+        uint32_t texture = hp->lane_texture[lane];
+        snprintf(hp->input_names[lane], sizeof hp->input_names[lane], "bg_tex%d", lane);
+        hp->inputs[hp->input_count].name = hp->input_names[lane];
+        hp->input_tex[hp->input_count++] = texture ? r->textures[texture - 1] : r->white;
+    }
+}
+
+/* The shared uniforms, then each member's as it described them. */
+static void add_uniforms(hit_pass_parts *hp)
+{
+    hp->uniform_count = 0;
+    for (int k = 0; k < SHARED_UNIFORM_COUNT; k++)
+        hp->uniforms[hp->uniform_count++] = shared_uniforms[k];
+    for (int j = 0; j < hp->count; j++)
+        for (int k = 0; k < hp->members[j].uniform_count; k++)
+            hp->uniforms[hp->uniform_count++] = hp->members[j].uniforms[k];
+}
+
+/* The G-buffer slots the features ask for. */
+static void add_outputs(const bg_renderer *r, hit_pass_parts *hp)
+{
+    const gpu_features *f = &r->features;
+    /* ONCE carries the ior lane only with transparency, TANGENT the coat's isotropy only with coats. */
+    snprintf(hp->once_value, sizeof hp->once_value, "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), %s)",
+             f->transparent ? "bg_ior" : "1.0");
+    snprintf(hp->tangent_value, sizeof hp->tangent_value, "vec4(bg_tg, %s)", f->coat ? "bg_coat_p" : "1.0");
+    const char *const slot_value[GPU_SLOT_COUNT] = {
+        "vec4(bg_p, bg_code)",      "vec4(bg_n, bg_base_r)", "vec4(bg_base_c, bg_base_p)",
+        hp->once_value,             "vec4(bg_w.rgb * bg_opaque, bg_transparency)",
+        hp->tangent_value,          "vec4(bg_coat_c, bg_coat_r)",
+    };
+    static const char *const slot_name[GPU_SLOT_COUNT] = {"hit", "normal", "base", "once", "xparent", "tangent", "coat"};
+    hp->output_count = 0;
+    for (int s = 0; s < GPU_SLOT_COUNT; s++) {
+        if (!f->slot[s])
+            continue;
+        hp->outputs[hp->output_count].name = slot_name[s];
+        hp->outputs[hp->output_count].value = slot_value[s];
+        hp->output_tex[hp->output_count++] = r->gbuffer[s];
+    }
+}
+
+/* main, first half: every member's root, the nearest by the depth buffer's own comparison (strict,
+ * so the member drawn first in one-object order wins a tie, as LESS between passes decides). */
+static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state, const hit_pass_parts *hp,
+                              gpu_text *main)
+{
     /* Writing gl_FragDepth makes GL test the stencil after the shader, so a dead ray is also
      * rejected here, before any intersection work (the same pixels as the stencil rejects). */
-    gpu_text_append(&main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n");
+    gpu_text_append(main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n");
     if (!(r->key.disable_skips & BG_SKIP_STENCIL))
-        gpu_text_append(&main, "if (bg_w.a <= 0.0)\n    discard;\n");
-    gpu_text_append(&main,
+        gpu_text_append(main, "if (bg_w.a <= 0.0)\n    discard;\n");
+    gpu_text_append(main,
                     "vec4 bg_ro = texture2D(bg_ray_origin, macs_uv);\n"
                     "vec4 bg_rd = texture2D(bg_ray_dir, macs_uv);\n"
                     "float bg_t = 0.0, bg_z = 1.0, bg_key = 33554432.0, bg_win = -1.0;\n"
                     "vec3 bg_po = vec3(0.0), bg_no = vec3(0.0, 1.0, 0.0);\nbool bg_first = true;\n");
     const char *fixed24 = r->float_depth ? "false" : "true";
-    for (int j = 0; j < count; j++) {
-        const bg_object_data *obj = &state->objects[mbs[j].object];
-        gpu_text_printf(&main,
+    for (int j = 0; j < hp->count; j++) {
+        const bg_object_data *obj = &state->objects[hp->members[j].object];
+        gpu_text_printf(main,
                         "{\n    float bg_tj, bg_zj;\n    vec3 bg_poj, bg_noj;\n    bool bg_fj;\n"
                         "    if (bg_hit_root_%s(bg_ro, bg_rd, bg_index_%d, bg_to_object_%d, bg_tj, bg_poj, bg_noj, bg_fj)) {\n"
                         "        bg_zj = bg_depth(bg_tj, bg_dmax);\n"
@@ -350,72 +416,74 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
                         "            bg_key = bg_kj; bg_win = %d.0; bg_t = bg_tj; bg_z = bg_zj;\n"
                         "            bg_po = bg_poj; bg_no = bg_noj; bg_first = bg_fj;\n"
                         "        }\n    }\n}\n",
-                        shape_name[obj->shape], j, j, fixed24, j);
+                        gpu_shape_suffix(obj->shape), j, j, fixed24, j);
     }
-    gpu_text_append(&main, "if (bg_win < 0.0)\n    discard;\ngl_FragDepth = bg_z;\n"
-                           "vec3 bg_p = bg_ro.xyz + bg_t * bg_rd.xyz;\n"
-                           "bool bg_entering;\nvec3 bg_n;\nfloat bg_code;\n");
+}
+
+/* main, second half: the winner's surface in a static branch per member. */
+static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *state, const hit_pass_parts *hp,
+                                gpu_text *main)
+{
+    const gpu_features *f = &r->features;
+    bool need_tangent = f->slot[GPU_SLOT_TANGENT];
+    gpu_text_append(main, "if (bg_win < 0.0)\n    discard;\ngl_FragDepth = bg_z;\n"
+                          "vec3 bg_p = bg_ro.xyz + bg_t * bg_rd.xyz;\n"
+                          "bool bg_entering;\nvec3 bg_n;\nfloat bg_code;\n");
     if (need_tangent)
-        gpu_text_append(&main, "vec3 bg_tg;\n");
+        gpu_text_append(main, "vec3 bg_tg;\n");
+    const param *p0 = hp->members[0].p; /* which parameters are used depends on the features only */
     for (int i = 0; i < P_COUNT; i++)
-        if (mbs[0].p[i].used) /* which parameters are used depends on the features only */
-            gpu_text_printf(&main, "%s bg_%s;\n", mbs[0].p[i].color ? "vec3" : "float", mbs[0].p[i].name);
+        if (p0[i].used)
+            gpu_text_printf(main, "%s bg_%s;\n", p0[i].color ? "vec3" : "float", p0[i].name);
     if (f->transparent)
-        gpu_text_append(&main, "float bg_ior;\n");
-    for (int j = 0; j < count; j++) {
-        if (count == 1)
-            gpu_text_append(&main, "{\n");
-        else if (j == count - 1)
-            gpu_text_append(&main, "else {\n");
+        gpu_text_append(main, "float bg_ior;\n");
+    for (int j = 0; j < hp->count; j++) {
+        if (hp->count == 1)
+            gpu_text_append(main, "{\n");
+        else if (j == hp->count - 1)
+            gpu_text_append(main, "else {\n");
         else
-            gpu_text_printf(&main, "%sif (bg_win == %d.0) {\n", j ? "else " : "", j);
-        emit_surface(&main, state, &mbs[j], j, need_tangent, f->transparent, f->coat);
-        gpu_text_append(&main, "}\n");
+            gpu_text_printf(main, "%sif (bg_win == %d.0) {\n", j ? "else " : "", j);
+        emit_surface(main, state, &hp->members[j], j, need_tangent, f->transparent, f->coat);
+        gpu_text_append(main, "}\n");
     }
     if (!f->transparent)
-        gpu_text_append(&main, "float bg_transparency = 0.0;\n");
-    gpu_text_append(&main, "float bg_opaque = 1.0 - bg_transparency;\n");
+        gpu_text_append(main, "float bg_transparency = 0.0;\n");
+    gpu_text_append(main, "float bg_opaque = 1.0 - bg_transparency;\n");
+}
 
-    macs_output_desc outputs[GPU_SLOT_COUNT];
-    macs_texture *output_tex[GPU_SLOT_COUNT];
-    int no = 0;
-    /* ONCE carries the ior lane only with transparency, TANGENT the coat's isotropy only with coats. */
-    char once_value[128], tangent_value[64];
-    snprintf(once_value, sizeof once_value, "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), %s)",
-             f->transparent ? "bg_ior" : "1.0");
-    snprintf(tangent_value, sizeof tangent_value, "vec4(bg_tg, %s)", f->coat ? "bg_coat_p" : "1.0");
-    const char *const slot_value[GPU_SLOT_COUNT] = {
-        "vec4(bg_p, bg_code)",      "vec4(bg_n, bg_base_r)", "vec4(bg_base_c, bg_base_p)",
-        once_value,                 "vec4(bg_w.rgb * bg_opaque, bg_transparency)",
-        tangent_value,              "vec4(bg_coat_c, bg_coat_r)",
-    };
-    static const char *const slot_name[GPU_SLOT_COUNT] = {"hit", "normal", "base", "once", "xparent", "tangent", "coat"};
-    for (int s = 0; s < GPU_SLOT_COUNT; s++) {
-        if (!f->slot[s])
-            continue;
-        outputs[no].name = slot_name[s];
-        outputs[no].value = slot_value[s];
-        output_tex[no] = r->gbuffer[s];
-        no++;
-    }
-
+/* Depth LESS as between one-object passes; the stencil keeps live rays and marks their hits. */
+static void set_depth_stencil(const bg_renderer *r, macs_pass_desc *desc)
+{
     bool stencil_skip = !(r->key.disable_skips & BG_SKIP_STENCIL);
-    macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, main.s, inputs, input_tex, input_count, uniforms, nu, outputs, output_tex, no);
-    desc.depth_stencil = r->depth;
-    desc.depth.test = true;
-    desc.depth.write = true;
-    desc.depth.func = MACS_COMPARE_LESS;
-    desc.stencil.test = true;
-    desc.stencil.func = stencil_skip ? MACS_COMPARE_EQUAL : MACS_COMPARE_ALWAYS;
-    desc.stencil.ref = GPU_STENCIL_LIVE | GPU_STENCIL_HIT;
-    desc.stencil.read_mask = GPU_STENCIL_LIVE;
-    desc.stencil.write_mask = GPU_STENCIL_HIT;
-    desc.stencil.pass = MACS_STENCIL_OP_REPLACE;
+    desc->depth_stencil = r->depth;
+    desc->depth.test = true;
+    desc->depth.write = true;
+    desc->depth.func = MACS_COMPARE_LESS;
+    desc->stencil.test = true;
+    desc->stencil.func = stencil_skip ? MACS_COMPARE_EQUAL : MACS_COMPARE_ALWAYS;
+    desc->stencil.ref = GPU_STENCIL_LIVE | GPU_STENCIL_HIT;
+    desc->stencil.read_mask = GPU_STENCIL_LIVE;
+    desc->stencil.write_mask = GPU_STENCIL_HIT;
+    desc->stencil.pass = MACS_STENCIL_OP_REPLACE;
+}
 
-    gpu_text functions;
+/* Assembles the shader and makes the pass (with trial, *out may stay NULL: gpu_pass_try). */
+static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pass_parts *hp, bool trial,
+                             macs_pass **out, bool *rejected)
+{
+    bool need_tangent = r->features.slot[GPU_SLOT_TANGENT];
+    gpu_text main, functions;
+    gpu_text_init(&main, &r->allocator);
     gpu_text_init(&functions, &r->allocator);
-    bool have = hit_functions(&functions, state, mbs, count, need_tangent);
+    emit_nearest_root(r, state, hp, &main);
+    emit_winner_surface(r, state, hp, &main);
+    bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent);
+
+    macs_pass_desc desc;
+    gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,
+                       hp->outputs, hp->output_tex, hp->output_count);
+    set_depth_stencil(r, &desc);
     bg_status st = BG_OK;
     if (main.failed || functions.failed)
         st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the intersection shader");
@@ -425,14 +493,43 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
         st = gpu_pass_try(r, "intersection pass", functions.s, &desc, trial, out, rejected);
     gpu_text_free(&main);
     gpu_text_free(&functions);
-    if (st == BG_OK && *out) {
-        macs_status ms = MACS_OK;
-        for (int j = 0; j < count && !ms; j++)
-            ms = set_member_uniforms(r, *out, state, &mbs[j], need_tangent);
-        if (ms)
-            st = gpu_fail_macs(r, ms, "intersection pass uniforms");
+    return st;
+}
+
+/* Sets every member's constants into the made pass. */
+static bg_status set_members_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state,
+                                      const hit_pass_parts *hp)
+{
+    macs_status ms = MACS_OK;
+    for (int j = 0; j < hp->count && !ms; j++) {
+        ms = set_object_uniforms(pass, state, &hp->members[j]);
+        if (!ms)
+            ms = set_material_uniforms(pass, state, &hp->members[j]);
     }
-    bg_free(&r->allocator, mbs);
+    return ms ? gpu_fail_macs(r, ms, "intersection pass uniforms") : BG_OK;
+}
+
+bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
+                             macs_pass **out, bool *rejected)
+{
+    *out = NULL;
+    if (rejected)
+        *rejected = false;
+    if (count < 1 || count > GPU_BATCH_MAX)
+        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: intersection batch of %d objects", count);
+    hit_pass_parts hp;
+    hp.members = bg_alloc(&r->allocator, (size_t)count * sizeof *hp.members);
+    if (!hp.members)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building an intersection pass");
+    hp.count = count;
+    describe_members(r, state, first, &hp);
+    add_inputs(r, &hp);
+    add_uniforms(&hp);
+    add_outputs(r, &hp);
+    bg_status st = create_pass(r, state, &hp, trial, out, rejected);
+    if (st == BG_OK && *out)
+        st = set_members_uniforms(r, *out, state, &hp);
+    bg_free(&r->allocator, hp.members);
     return st;
 }
 

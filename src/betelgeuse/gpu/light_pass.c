@@ -11,16 +11,16 @@
 
 #define PI 3.14159265358979323846
 
-static const char *const shape_file[BG_SHAPE_COUNT_] = {
-    "bg_shape_sphere.glsl", "bg_shape_plane.glsl", "bg_shape_box.glsl", "bg_shape_cylinder.glsl",
-    "bg_shape_rectangle.glsl"};
-
 static int group_size(const bg_scene_state *state, int group)
 {
     int n = (int)state->light_count - group * GPU_LIGHTS_PER_GROUP;
     return n > GPU_LIGHTS_PER_GROUP ? GPU_LIGHTS_PER_GROUP : (n < 0 ? 0 : n);
 }
 
+/* How many uniforms light_uniforms declares. */
+#define LIGHT_UNIFORM_COUNT 5
+
+/* The uniform arrays of a group of `count` lights, appended to u[*n ..]. */
 static void light_uniforms(macs_uniform_desc *u, int *n, int count)
 {
     u[(*n)++] = (macs_uniform_desc){"bg_lpos", MACS_UNIFORM_VEC4, count};
@@ -80,7 +80,125 @@ static void hit_stencil(const bg_renderer *r, macs_stencil_state *s)
     s->write_mask = 0;
 }
 
-static const char *const shape_name[BG_SHAPE_COUNT_] = {"sphere", "plane", "box", "cylinder", "rectangle"};
+/* The uniforms of one caster of a shadow pass (%d: its place in the pass). */
+typedef enum caster_uniform { C_INDEX, C_TO_OBJECT, C_COUNT } caster_uniform;
+static const struct {
+    const char *format;
+    macs_uniform_type type;
+} caster_uniform_row[C_COUNT] = {
+    [C_INDEX] = {"bg_index_%d", MACS_UNIFORM_FLOAT},
+    [C_TO_OBJECT] = {"bg_to_object_%d", MACS_UNIFORM_MAT4},
+};
+
+typedef char caster_names[C_COUNT][24];
+
+/* Names and declares caster j's uniforms into u[0 .. C_COUNT - 1]. */
+static void caster_uniforms(int j, caster_names names, macs_uniform_desc *u)
+{
+    for (int c = 0; c < C_COUNT; c++) {
+        snprintf(names[c], sizeof names[c], caster_uniform_row[c].format, j);
+        u[c] = (macs_uniform_desc){names[c], caster_uniform_row[c].type, 0};
+    }
+}
+
+int gpu_shadow_object_components(void)
+{
+    caster_names names;
+    macs_uniform_desc u[C_COUNT];
+    caster_uniforms(0, names, u);
+    return gpu_uniform_components(u, C_COUNT);
+}
+
+int gpu_shadow_shared_components(int lights)
+{
+    macs_uniform_desc u[LIGHT_UNIFORM_COUNT];
+    int n = 0;
+    light_uniforms(u, &n, lights);
+    return gpu_uniform_components(u, n);
+}
+
+/* What a shadow pass description points at while the pass is made. */
+typedef struct shadow_pass_parts {
+    const uint32_t *casters;
+    const bool *blocks;
+    int count, group, lights;
+    caster_names names[GPU_BATCH_MAX];
+    macs_uniform_desc uniforms[GPU_BATCH_MAX * C_COUNT + LIGHT_UNIFORM_COUNT];
+    int uniform_count;
+} shadow_pass_parts;
+
+/* Every caster's uniforms, then the group's light arrays. */
+static void add_shadow_uniforms(shadow_pass_parts *sp)
+{
+    sp->uniform_count = 0;
+    for (int j = 0; j < sp->count; j++) {
+        caster_uniforms(j, sp->names[j], &sp->uniforms[sp->uniform_count]);
+        sp->uniform_count += C_COUNT;
+    }
+    light_uniforms(sp->uniforms, &sp->uniform_count, sp->lights);
+}
+
+/* Per light, the segment is found once and tested against every object of the batch; a point
+ * never tests the object it lies on (a convex object cannot shadow its own lit surface). */
+static void emit_shadow_main(const bg_renderer *r, const bg_scene_state *state, const shadow_pass_parts *sp,
+                             gpu_text *main)
+{
+    bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
+    gpu_text_append(main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
+    bool any = false;
+    for (int j = 0; j < sp->count; j++)
+        any = any || sp->blocks[j];
+    /* One that casts nothing blocks nothing. */
+    if (!any)
+        gpu_text_append(main, "if (true)\n    discard;\n");
+    gpu_text_append(main, "float bg_self = bg_hit_index(bg_h.w);\n");
+    if (sp->count == 1)
+        gpu_text_append(main, "if (bg_self == bg_index_0) discard;\n");
+    gpu_text_append(main, "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
+                          "vec4 bg_vis = vec4(1.0);\nvec3 bg_l, bg_e;\nfloat bg_dist;\n");
+    for (int i = 0; i < sp->lights; i++) {
+        gpu_text_printf(main,
+                        "if (bg_light_at(bg_h.xyz, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], bg_lexp[%d], "
+                        "bg_l, bg_dist, bg_e)%s) {\n    if (false",
+                        i, i, i, i, i, skip_facing ? " && !(dot(bg_n, bg_l) <= 0.0)" : "");
+        for (int j = 0; j < sp->count; j++) {
+            if (!sp->blocks[j])
+                continue;
+            const char *shape = gpu_shape_suffix(state->objects[sp->casters[j]].shape);
+            gpu_text_printf(main, "\n        || (bg_self != bg_index_%d && bg_segment_blocked_%s(bg_h.xyz, bg_l, bg_dist, "
+                                  "bg_to_object_%d))", j, shape, j);
+        }
+        gpu_text_printf(main, ")\n        bg_vis.%c = 0.0;\n}\n", "xyzw"[i]);
+    }
+    gpu_text_append(main, "if (min(min(bg_vis.x, bg_vis.y), min(bg_vis.z, bg_vis.w)) > 0.5) discard;\n");
+}
+
+/* The light functions and each caster shape's segment test, renamed so that shapes share the program. */
+static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const shadow_pass_parts *sp)
+{
+    const char *seen[32];
+    int n = 0;
+    static const char *const stage[] = {"bg_segment_blocked", "bg_shadow_visibility", NULL};
+    return gpu_text_snippet(t, "bg_hit_code.glsl", seen, &n, 32) && gpu_text_snippet(t, "bg_light.glsl", seen, &n, 32) &&
+           gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
+}
+
+/* Sets each caster's index and transform, then the group's lights. */
+static bg_status set_shadow_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state,
+                                     const shadow_pass_parts *sp)
+{
+    macs_status ms = MACS_OK;
+    for (int j = 0; j < sp->count && !ms; j++) {
+        float m16[16], fi = (float)sp->casters[j];
+        gpu_origin_to_object(state, sp->casters[j], m16);
+        ms = macs_pass_set_uniform(pass, sp->names[j][C_INDEX], &fi);
+        if (!ms)
+            ms = macs_pass_set_uniform(pass, sp->names[j][C_TO_OBJECT], m16);
+    }
+    if (ms)
+        return gpu_fail_macs(r, ms, "shadow pass uniforms");
+    return gpu_set_light_uniforms(r, pass, state, sp->group * GPU_LIGHTS_PER_GROUP, sp->lights);
+}
 
 bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
                                 const bool *blocks, int count, int group, bool trial, macs_pass **out,
@@ -91,76 +209,26 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, con
         *rejected = false;
     if (count < 1 || count > GPU_BATCH_MAX)
         return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: shadow batch of %d objects", count);
-    int lights = group_size(state, group);
-    bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
+    shadow_pass_parts sp;
+    sp.casters = casters;
+    sp.blocks = blocks;
+    sp.count = count;
+    sp.group = group;
+    sp.lights = group_size(state, group);
+    add_shadow_uniforms(&sp);
+
+    gpu_text main, functions;
+    gpu_text_init(&main, &r->allocator);
+    gpu_text_init(&functions, &r->allocator);
+    emit_shadow_main(r, state, &sp, &main);
+    bool have = shadow_functions(&functions, state, &sp);
+
     macs_input_desc inputs[2] = {{"bg_g_hit"}, {"bg_g_normal"}};
     macs_texture *input_tex[2] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL]};
-    macs_uniform_desc uniforms[5 + 2 * GPU_BATCH_MAX];
-    char names[GPU_BATCH_MAX][2][24];
-    int nu = 0;
-    for (int j = 0; j < count; j++) {
-        snprintf(names[j][0], sizeof names[j][0], "bg_index_%d", j);
-        snprintf(names[j][1], sizeof names[j][1], "bg_to_object_%d", j);
-        uniforms[nu++] = (macs_uniform_desc){names[j][0], MACS_UNIFORM_FLOAT, 0};
-        uniforms[nu++] = (macs_uniform_desc){names[j][1], MACS_UNIFORM_MAT4, 0};
-    }
-    light_uniforms(uniforms, &nu, lights);
-
-    /* Per light, the segment is found once and tested against every object of the batch; a point
-     * never tests the object it lies on (a convex object cannot shadow its own lit surface). */
-    gpu_text main;
-    gpu_text_init(&main, &r->allocator);
-    gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
-    bool any = false;
-    for (int j = 0; j < count; j++)
-        any = any || blocks[j];
-    /* One that casts nothing blocks nothing. */
-    if (!any)
-        gpu_text_append(&main, "if (true)\n    discard;\n");
-    gpu_text_append(&main, "float bg_self = bg_hit_index(bg_h.w);\n");
-    if (count == 1)
-        gpu_text_append(&main, "if (bg_self == bg_index_0) discard;\n");
-    gpu_text_append(&main, "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
-                           "vec4 bg_vis = vec4(1.0);\nvec3 bg_l, bg_e;\nfloat bg_dist;\n");
-    for (int i = 0; i < lights; i++) {
-        gpu_text_printf(&main,
-                        "if (bg_light_at(bg_h.xyz, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], bg_lexp[%d], "
-                        "bg_l, bg_dist, bg_e)%s) {\n    if (false",
-                        i, i, i, i, i, skip_facing ? " && !(dot(bg_n, bg_l) <= 0.0)" : "");
-        for (int j = 0; j < count; j++) {
-            if (!blocks[j])
-                continue;
-            const char *shape = shape_name[state->objects[casters[j]].shape];
-            gpu_text_printf(&main, "\n        || (bg_self != bg_index_%d && bg_segment_blocked_%s(bg_h.xyz, bg_l, bg_dist, "
-                                   "bg_to_object_%d))", j, shape, j);
-        }
-        gpu_text_printf(&main, ")\n        bg_vis.%c = 0.0;\n}\n", "xyzw"[i]);
-    }
-    gpu_text_append(&main, "if (min(min(bg_vis.x, bg_vis.y), min(bg_vis.z, bg_vis.w)) > 0.5) discard;\n");
-
-    /* Each shape's segment test, renamed so that several shapes share the program. */
-    gpu_text functions;
-    gpu_text_init(&functions, &r->allocator);
-    const char *seen[32];
-    int n = 0;
-    bool have = gpu_text_snippet(&functions, "bg_hit_code.glsl", seen, &n, 32) &&
-                gpu_text_snippet(&functions, "bg_light.glsl", seen, &n, 32);
-    static const char *const span[] = {"bg_shape_span", NULL};
-    static const char *const stage[] = {"bg_shape_span", "bg_segment_blocked", "bg_shadow_visibility", NULL};
-    bool done[BG_SHAPE_COUNT_] = {false};
-    for (int j = 0; j < count && have; j++) {
-        bg_shape shape = state->objects[casters[j]].shape;
-        if (done[shape])
-            continue;
-        done[shape] = true;
-        have = gpu_text_snippet_renamed(&functions, shape_file[shape], span, shape_name[shape], seen, &n, 32) &&
-               gpu_text_snippet_renamed(&functions, "bg_stage_shadow.glsl", stage, shape_name[shape], seen, &n, 32);
-    }
-
     macs_output_desc output = {"visibility", "bg_vis"};
     macs_texture *output_tex[1] = {r->vis};
     macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, main.s, inputs, input_tex, 2, uniforms, nu, &output, output_tex, 1);
+    gpu_pass_desc_init(&desc, main.s, inputs, input_tex, 2, sp.uniforms, sp.uniform_count, &output, output_tex, 1);
     desc.depth_stencil = r->depth;
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_MULTIPLY;
@@ -176,17 +244,7 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, con
     gpu_text_free(&functions);
     if (st != BG_OK || !*out)
         return st;
-    macs_status ms = MACS_OK;
-    for (int j = 0; j < count && !ms; j++) {
-        float m16[16], fi = (float)casters[j];
-        gpu_origin_to_object(state, casters[j], m16);
-        ms = macs_pass_set_uniform(*out, names[j][0], &fi);
-        if (!ms)
-            ms = macs_pass_set_uniform(*out, names[j][1], m16);
-    }
-    if (ms)
-        return gpu_fail_macs(r, ms, "shadow pass uniforms");
-    return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, lights);
+    return set_shadow_uniforms(r, *out, state, &sp);
 }
 
 bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out)
@@ -228,7 +286,7 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
     if (vis)
         INPUT("bg_vis", r->vis);
 #undef INPUT
-    macs_uniform_desc uniforms[8];
+    macs_uniform_desc uniforms[LIGHT_UNIFORM_COUNT];
     int nu = 0;
     if (count > 0)
         light_uniforms(uniforms, &nu, count);

@@ -8,43 +8,75 @@
 #include <string.h>
 
 #include "../common/affine.h"
+#include "../common/shapes.h"
 #include "scene_private.h"
 
 static const char where_commit[] = "bg_scene_commit";
 
+/* The mapping BG_UV_DEFAULT resolves to, from each shape's row of common/shapes.h. */
 static bg_uv_mapping default_uv(bg_shape shape)
 {
-    switch (shape) {
-    case BG_SHAPE_SPHERE: return BG_UV_SPHERICAL;
-    case BG_SHAPE_PLANE: return BG_UV_PLANAR;
-    case BG_SHAPE_BOX: return BG_UV_BOX;
-    case BG_SHAPE_CYLINDER: return BG_UV_CYLINDRICAL;
-    case BG_SHAPE_RECTANGLE: return BG_UV_PLANAR;
-    case BG_SHAPE_COUNT_: break;
-    }
-    return BG_UV_PLANAR;
+#define DEFAULT_UV_OF(shape, name, glsl, thin, default_uv, cpu_span, half_extent) [shape] = default_uv,
+    static const bg_uv_mapping uv[BG_SHAPE_COUNT_] = {BG_SHAPES(DEFAULT_UV_OF)};
+#undef DEFAULT_UV_OF
+    return uv[shape];
 }
 
+/* Half extents along one world axis of the transformed prototype, from that axis's row (a b c)
+ * of the linear part. For the box and rectangle this equals transforming their corners; for the
+ * sphere and cylinder it is the exact (tighter) extent of the transformed surface. */
+static double sphere_extent(double a, double b, double c)
+{
+    return sqrt(a * a + b * b + c * c);
+}
+
+static double box_extent(double a, double b, double c)
+{
+    return fabs(a) + fabs(b) + fabs(c);
+}
+
+static double cylinder_extent(double a, double b, double c)
+{
+    return fabs(b) + sqrt(a * a + c * c);
+}
+
+static double rectangle_extent(double a, double b, double c)
+{
+    (void)b; /* the prototype is flat in y */
+    return fabs(a) + fabs(c);
+}
+
+typedef double (*half_extent_fn)(double a, double b, double c);
+#define HALF_EXTENT_OF(shape, name, glsl, thin, default_uv, cpu_span, half_extent) [shape] = half_extent,
+static const half_extent_fn shape_half_extent[BG_SHAPE_COUNT_] = {BG_SHAPES(HALF_EXTENT_OF)};
+#undef HALF_EXTENT_OF
+
 /* World box of a bounded prototype under the affine m: centre m's translation, half extent per
- * axis in closed form. For the box and rectangle this equals transforming their corners; for the
- * sphere and cylinder it is the exact (tighter) extent of the transformed surface, padded by a
- * few ulps so rounding never cuts the object. */
-static void object_bounds(bg_shape shape, const bg_mat4 *transform, double lo[3], double hi[3])
+ * axis from the shape, padded by a few ulps so rounding never cuts the object. */
+static void object_bounds(half_extent_fn half_extent, const bg_mat4 *transform, double lo[3], double hi[3])
 {
     const double (*m)[4] = transform->m;
     for (int i = 0; i < 3; i++) {
-        double a = m[i][0], b = m[i][1], c = m[i][2], e;
-        switch (shape) {
-        case BG_SHAPE_SPHERE: e = sqrt(a * a + b * b + c * c); break;
-        case BG_SHAPE_CYLINDER: e = fabs(b) + sqrt(a * a + c * c); break;
-        case BG_SHAPE_RECTANGLE: e = fabs(a) + fabs(c); break;
-        default: e = fabs(a) + fabs(b) + fabs(c); break;
-        }
+        double e = half_extent(m[i][0], m[i][1], m[i][2]);
         double t = m[i][3];
         e += 8.0 * DBL_EPSILON * (fabs(t) + e);
         lo[i] = t - e;
         hi[i] = t + e;
     }
+}
+
+bool bg_object_world_box(const bg_object_desc *desc, double lo[3], double hi[3])
+{
+    half_extent_fn half_extent = shape_half_extent[desc->shape];
+    if (half_extent) {
+        object_bounds(half_extent, &desc->transform, lo, hi);
+        return true;
+    }
+    for (int i = 0; i < 3; i++) {
+        lo[i] = -DBL_MAX;
+        hi[i] = DBL_MAX;
+    }
+    return false;
 }
 
 static void normalize3(double v[3])
@@ -148,15 +180,7 @@ static void commit_object(const bg_object_desc *d, bg_object_data *o)
     o->uv_scale[0] = d->uv_scale[0];
     o->uv_scale[1] = d->uv_scale[1];
     o->casts_shadows = d->casts_shadows;
-    o->bounded = d->shape != BG_SHAPE_PLANE;
-    if (o->bounded) {
-        object_bounds(d->shape, &d->transform, o->bounds_min, o->bounds_max);
-    } else {
-        for (int i = 0; i < 3; i++) {
-            o->bounds_min[i] = -DBL_MAX;
-            o->bounds_max[i] = DBL_MAX;
-        }
-    }
+    o->bounded = bg_object_world_box(d, o->bounds_min, o->bounds_max);
 }
 
 static void commit_light(const bg_light *in, bg_light *out)
@@ -178,6 +202,8 @@ bg_status bg_scene_commit(bg_scene *scene)
     bg_status st = validate_all(scene);
     if (st == BG_OK)
         st = reserve_all(scene);
+    if (st == BG_OK)
+        st = bg_scene_tree_prepare(scene);
     if (st != BG_OK)
         return st;
 
@@ -219,6 +245,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->materials = scene->c_materials.data;
     state->textures = scene->c_textures.data;
     state->lights = scene->c_lights.data;
+    bg_scene_tree_install(scene);
     state->commit_count++;
     scene->committed = true;
     return BG_OK;

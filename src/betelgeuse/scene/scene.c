@@ -6,26 +6,29 @@
 #include "../common/alloc.h"
 #include "scene_private.h"
 
+/* Before the scene exists its failures can only go to the desc's logger. */
+static bg_status create_fail(const bg_scene_desc *d, bg_status status, const char *message)
+{
+    if (d->log)
+        d->log(BG_LOG_ERROR, message, d->log_user);
+    return status;
+}
+
 bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
 {
-    if (!out_scene)
-        return BG_ERR_INVALID_ARGUMENT;
-    *out_scene = NULL;
     bg_scene_desc d;
     memset(&d, 0, sizeof d);
     if (desc)
         d = *desc;
-    if (!bg_allocator_valid(&d.allocator)) {
-        if (d.log)
-            d.log(BG_LOG_ERROR, "bg_scene_create: allocator must set alloc and free together (realloc is optional), or nothing", d.log_user);
-        return BG_ERR_INVALID_ARGUMENT;
-    }
+    if (!out_scene)
+        return create_fail(&d, BG_ERR_INVALID_ARGUMENT, "bg_scene_create: out_scene is NULL");
+    *out_scene = NULL;
+    if (!bg_allocator_valid(&d.allocator))
+        return create_fail(&d, BG_ERR_INVALID_ARGUMENT, "bg_scene_create: allocator must set alloc and free "
+                                                        "together (realloc is optional), or nothing");
     bg_scene *s = bg_alloc(&d.allocator, sizeof *s);
-    if (!s) {
-        if (d.log)
-            d.log(BG_LOG_ERROR, "bg_scene_create: out of memory", d.log_user);
-        return BG_ERR_OUT_OF_MEMORY;
-    }
+    if (!s)
+        return create_fail(&d, BG_ERR_OUT_OF_MEMORY, "bg_scene_create: out of memory");
     memset(s, 0, sizeof *s);
     s->allocator = d.allocator;
     s->log = d.log;
@@ -47,26 +50,26 @@ void bg_scene_destroy(bg_scene *scene)
                           &scene->c_objects, &scene->c_materials, &scene->c_lights, &scene->c_textures};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         bg_array_release(scene, arrays[i]);
+    bg_scene_tree_release(scene);
     bg_allocator a = scene->allocator;
     bg_free(&a, scene);
 }
 
 bg_status bg_scene_error(const bg_scene *scene)
 {
-    return scene ? scene->error : BG_ERR_INVALID_ARGUMENT;
+    return scene ? (bg_status)scene->error.status : BG_ERR_INVALID_ARGUMENT;
 }
 
 const char *bg_scene_error_message(const bg_scene *scene)
 {
-    return scene ? scene->message : "scene is NULL";
+    return scene ? scene->error.message : "scene is NULL";
 }
 
 void bg_scene_clear_error(bg_scene *scene)
 {
     if (!scene)
         return;
-    scene->error = BG_OK;
-    scene->message[0] = '\0';
+    macs_first_error_clear(&scene->error);
 }
 
 bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, ...)
@@ -76,14 +79,10 @@ bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, .
     char buffer[BG_MESSAGE_SIZE];
     va_list args;
     va_start(args, format);
-    vsnprintf(buffer, sizeof buffer, format, args);
+    const char *message = macs_first_error_vrecord(&scene->error, status, buffer, NULL, format, args);
     va_end(args);
-    if (scene->error == BG_OK && status != BG_OK) {
-        scene->error = status;
-        memcpy(scene->message, buffer, sizeof buffer);
-    }
     if (scene->log)
-        scene->log(BG_LOG_ERROR, buffer, scene->log_user);
+        scene->log(BG_LOG_ERROR, message, scene->log_user);
     return status;
 }
 

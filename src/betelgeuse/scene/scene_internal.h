@@ -4,6 +4,7 @@
 #define BG_SCENE_INTERNAL_H
 
 #include "betelgeuse.h"
+#include "../common/bvh.h"
 
 /* A texture as stored in the scene: linear float RGBA, rows in GL order (row 0 is v = 0, the
  * bottom of the source image; PNG and bg_image rows are flipped on add). */
@@ -45,6 +46,14 @@ typedef struct bg_scene_state {
     const bg_light *lights;
     bool has_bounded_objects;
     double bounds_min[3], bounds_max[3]; /* union of the bounded objects' boxes */
+    /* The object tree (common/bvh.h) over every object whose world box fits the float range: the
+     * tree's primitive i is object tree_objects[i]. Every other object (the unbounded ones, and
+     * any whose box no float box can hold) is in always_objects, for every ray to test. Both lists
+     * ascend, so a renderer that applies "equal distance: lower index wins" stays exact. */
+    const bg_bvh *tree;
+    const uint32_t *tree_objects, *always_objects;
+    uint32_t tree_count, always_count;
+    uint64_t tree_builds, tree_refits; /* commits that rebuilt or refitted the tree */
     uint64_t commit_count;
 } bg_scene_state;
 

@@ -1,14 +1,15 @@
 /* The scene object: pending state (what the API calls fill) and committed state (what the
- * renderers read, through scene_internal.h). Only the scene_*.c, object.c, material.c, light.c,
- * texture.c and png_io.c files see this. */
+ * renderers read, through scene_internal.h). Only the files of scene/ and io/png.c see this. */
 #ifndef BG_SCENE_PRIVATE_H
 #define BG_SCENE_PRIVATE_H
 
+#include "../../macs/first_error.h"
 #include "scene_internal.h"
 
 /* Handles fit comfortably in 32 bits and array sizes in size_t. */
 #define BG_MAX_ITEMS (1u << 24)
-#define BG_MESSAGE_SIZE 512
+/* Every message Betelgeuse formats fits the size of the one the scene keeps. */
+#define BG_MESSAGE_SIZE MACS_MESSAGE_SIZE
 
 /* A growable array of elem-sized items; storage is kept across commits for reuse. */
 typedef struct bg_array {
@@ -20,8 +21,7 @@ struct bg_scene {
     bg_allocator allocator;
     bg_log_fn log;
     void *log_user;
-    bg_status error;
-    char message[BG_MESSAGE_SIZE];
+    macs_first_error error; /* status is a bg_status */
 
     /* Pending state. Textures are immutable once added, so the committed state shares their
      * texels; the pending texture array owns them. */
@@ -39,6 +39,15 @@ struct bg_scene {
     bg_array c_materials; /* bg_material */
     bg_array c_lights;    /* bg_light */
     bg_array c_textures;  /* bg_texture_data (texels shared with the pending array) */
+
+    /* The object tree: the committed one, the lists behind the committed state's tree fields
+     * (c_), and the commit in progress's boxes and lists (p_), swapped in when it succeeds. */
+    bg_bvh tree;
+    bg_bvh rebuilt;        /* a tree built aside by bg_scene_tree_prepare, empty otherwise */
+    int tree_action;       /* what bg_scene_tree_install does (tree.c) */
+    bg_array c_boxes, p_boxes;               /* bg_bvh_box, one per tree primitive */
+    bg_array c_tree_objects, p_tree_objects; /* uint32_t */
+    bg_array c_always, p_always;             /* uint32_t */
 };
 
 /* Makes room for need items (keeping the contents); BG_ERR_LIMIT past BG_MAX_ITEMS, and
@@ -63,6 +72,19 @@ bg_status bg_validate_light(bg_scene *scene, const char *where, const bg_light *
 bg_status bg_validate_object(bg_scene *scene, const char *where, const bg_object_desc *desc,
                              uint32_t material_count);
 bg_status bg_validate_transform(bg_scene *scene, const char *where, const bg_mat4 *transform);
+
+/* The world box of an object about to be committed; false for an unbounded shape (tree.c reads
+ * it through commit.c, which owns the shapes' extents). */
+bool bg_object_world_box(const bg_object_desc *desc, double lo[3], double hi[3]);
+
+/* Plans the committed object tree for the pending objects (boxes from bg_object_world_box): kept
+ * when no tree box changed, refitted when only boxes changed, rebuilt aside otherwise. Allocates
+ * everything it needs, so a failure leaves the committed state as it was. */
+bg_status bg_scene_tree_prepare(bg_scene *scene);
+/* Puts the prepared tree into the committed state; cannot fail. */
+void bg_scene_tree_install(bg_scene *scene);
+/* Frees the trees and their lists. */
+void bg_scene_tree_release(bg_scene *scene);
 
 /* Adds an RGBA8 or RGBA32F image as a texture (texture.c); where names the API call. */
 bg_status bg_texture_add(bg_scene *scene, const char *where, const bg_image *image,

@@ -1,0 +1,463 @@
+/* Writing the node array: the binned SAH build, the refit and the stats (bvh.h states the
+ * invariant both writers keep).
+ *
+ * The build splits ranges of a working copy of the primitives (each box with its index), top-down.
+ * The boxes travel with their indices so that every pass reads memory in order rather than the
+ * caller's array at random (twice as fast at a million boxes). Partitions are stable and the copy
+ * starts in index order, so every range lists its primitives in ascending index order: "split by
+ * index median" is then just the middle of the range, and nothing depends on a sort's tie order.
+ * A node over k primitives has 2k - 1 nodes in its subtree, so its children's indices and its miss
+ * link follow from the counts alone, whatever order the ranges are worked in. */
+#include "bvh.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "alloc.h"
+
+/* Bins per axis; 16 is the usual point past which a finer grid no longer pays for its sweep. */
+#define BINS 16
+/* An axis whose centroids spread less than this is flat: BINS / extent must stay finite. */
+#define MIN_EXTENT 0x1p-1000
+/* Pending ranges: the build always continues with the smaller child and keeps the larger one, so
+ * each kept range is at most half the one before it and 2^23 primitives need at most 23. */
+#define MAX_PENDING 64
+
+/* ---- checks and outward rounding ----------------------------------------------------------- */
+
+static bg_status check_box(const bg_bvh_box *box)
+{
+    for (int a = 0; a < 3; a++) {
+        double lo = box->min[a], hi = box->max[a];
+        if (!isfinite(lo) || !isfinite(hi) || lo > hi)
+            return BG_ERR_INVALID_ARGUMENT;
+        if (fabs(lo) > FLT_MAX || fabs(hi) > FLT_MAX)
+            return BG_ERR_LIMIT;
+    }
+    return BG_OK;
+}
+
+bg_status bg_bvh_check_boxes(const bg_bvh_box *boxes, uint32_t count, uint32_t *out_first_bad)
+{
+    if (count > 0 && !boxes)
+        return BG_ERR_INVALID_ARGUMENT;
+    for (uint32_t i = 0; i < count; i++) {
+        bg_status st = check_box(&boxes[i]);
+        if (st != BG_OK) {
+            if (out_first_bad)
+                *out_first_bad = i;
+            return st;
+        }
+    }
+    return BG_OK;
+}
+
+/* The largest normal float or zero <= x (|x| <= FLT_MAX). Rounding to a fixed set of values is
+ * monotone, so the rounded union of two boxes is the union of the rounded boxes: refit may combine
+ * children's floats and still get what the build computed from doubles. Zero is always +0 so that
+ * equal boxes have equal bits. */
+static float float_down(double x)
+{
+    float f = (float)x;
+    if ((double)f > x)
+        f = nextafterf(f, -FLT_MAX);
+    if (fabsf(f) < FLT_MIN)
+        f = f < 0.0f ? -FLT_MIN : 0.0f;
+    return f;
+}
+
+/* The smallest normal float or zero >= x (|x| <= FLT_MAX). */
+static float float_up(double x)
+{
+    float f = (float)x;
+    if ((double)f < x)
+        f = nextafterf(f, FLT_MAX);
+    if (fabsf(f) < FLT_MIN)
+        f = f > 0.0f ? FLT_MIN : 0.0f;
+    return f;
+}
+
+static void write_box(float *node, const bg_bvh_box *box)
+{
+    for (int a = 0; a < 3; a++) {
+        node[BG_BVH_NODE_MIN + a] = float_down(box->min[a]);
+        node[BG_BVH_NODE_MAX + a] = float_up(box->max[a]);
+    }
+}
+
+/* ---- boxes in double ----------------------------------------------------------------------- */
+
+static const bg_bvh_box EMPTY_BOX = {{DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
+
+static void grow_box(bg_bvh_box *box, const bg_bvh_box *by)
+{
+    for (int a = 0; a < 3; a++) {
+        if (by->min[a] < box->min[a])
+            box->min[a] = by->min[a];
+        if (by->max[a] > box->max[a])
+            box->max[a] = by->max[a];
+    }
+}
+
+/* The one centroid formula: binning and partitioning must agree on every primitive's bin. */
+static double centroid(const bg_bvh_box *box, int axis)
+{
+    return 0.5 * (box->min[axis] + box->max[axis]);
+}
+
+static void grow_centroids(bg_bvh_box *bounds, const bg_bvh_box *box)
+{
+    for (int a = 0; a < 3; a++) {
+        double c = centroid(box, a);
+        if (c < bounds->min[a])
+            bounds->min[a] = c;
+        if (c > bounds->max[a])
+            bounds->max[a] = c;
+    }
+}
+
+/* Half the surface area; the factor 2 drops out of every comparison. */
+static double half_area(const bg_bvh_box *box)
+{
+    double dx = box->max[0] - box->min[0], dy = box->max[1] - box->min[1], dz = box->max[2] - box->min[2];
+    return dx * dy + dy * dz + dz * dx;
+}
+
+/* ---- the build ----------------------------------------------------------------------------- */
+
+/* A range items[begin .. begin + count - 1] that becomes node `node` at depth `depth` (root 1). */
+typedef struct range {
+    uint32_t begin, count, node, depth;
+    bg_bvh_box bounds;    /* union of the range's boxes */
+    bg_bvh_box centroids; /* bounds of their centroids */
+} range;
+
+/* A primitive in the build's working copy. */
+typedef struct item {
+    bg_bvh_box box;
+    uint32_t prim;
+} item;
+
+typedef struct builder {
+    item *items;   /* every range in ascending primitive order */
+    item *scratch; /* the right side of a partition in progress */
+    float *nodes;
+    uint32_t depth;
+} builder;
+
+/* A split of a range: primitives whose bin on axis is below bin go left. axis -1 is the index
+ * median: the lower-indexed half goes left. */
+typedef struct split {
+    int axis, bin;
+} split;
+
+/* Maps a centroid to its bin; the scale is BINS / extent of the range's centroids on that axis. */
+static int bin_of(double c, double lo, double scale)
+{
+    int b = (int)((c - lo) * scale);
+    return b < BINS ? b : BINS - 1;
+}
+
+static double bin_scale(const range *r, int axis)
+{
+    double extent = r->centroids.max[axis] - r->centroids.min[axis];
+    return extent >= MIN_EXTENT ? BINS / extent : 0.0;
+}
+
+typedef struct bins {
+    uint32_t count[BINS];
+    bg_bvh_box box[BINS];
+} bins;
+
+static void fill_bins(const builder *b, const range *r, const double scale[3], bins per_axis[3])
+{
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < BINS; k++) {
+            per_axis[a].count[k] = 0;
+            per_axis[a].box[k] = EMPTY_BOX;
+        }
+    for (uint32_t i = r->begin; i < r->begin + r->count; i++) {
+        const bg_bvh_box *box = &b->items[i].box;
+        for (int a = 0; a < 3; a++) {
+            if (scale[a] == 0.0)
+                continue;
+            int k = bin_of(centroid(box, a), r->centroids.min[a], scale[a]);
+            per_axis[a].count[k]++;
+            grow_box(&per_axis[a].box[k], box);
+        }
+    }
+}
+
+/* The cheapest plane of one axis: cost = traversal + A(left) n(left) + A(right) n(right), over
+ * the parent's area. Every split of a range has the same traversal term and the same parent (a
+ * leaf holds one primitive, so "no split" is never an option), which leaves the area-weighted
+ * counts to compare. Planes are tried left to right and only a strictly lower cost replaces the
+ * best, so ties go to the lowest plane. */
+static void best_plane(const bins *bn, int axis, split *best, double *best_cost)
+{
+    double right_area[BINS];
+    uint32_t right_count[BINS];
+    bg_bvh_box acc = EMPTY_BOX;
+    uint32_t n = 0;
+    for (int k = BINS - 1; k > 0; k--) {
+        grow_box(&acc, &bn->box[k]);
+        n += bn->count[k];
+        right_area[k] = n ? half_area(&acc) : 0.0;
+        right_count[k] = n;
+    }
+    acc = EMPTY_BOX;
+    n = 0;
+    for (int k = 1; k < BINS; k++) {
+        grow_box(&acc, &bn->box[k - 1]);
+        n += bn->count[k - 1];
+        if (n == 0 || right_count[k] == 0)
+            continue;
+        double cost = half_area(&acc) * n + right_area[k] * right_count[k];
+        if (best->axis < 0 || cost < *best_cost) {
+            best->axis = axis;
+            best->bin = k;
+            *best_cost = cost;
+        }
+    }
+}
+
+/* The SAH split of a range, or the index median when binning cannot separate its centroids (all
+ * equal, or too close for BINS bins). Axes are tried x, y, z: ties go to the lowest axis. */
+static split choose_split(const builder *b, const range *r, double scale[3])
+{
+    bins per_axis[3];
+    split best = {-1, 0};
+    double best_cost = 0.0;
+    for (int a = 0; a < 3; a++)
+        scale[a] = bin_scale(r, a);
+    if (scale[0] == 0.0 && scale[1] == 0.0 && scale[2] == 0.0)
+        return best;
+    fill_bins(b, r, scale, per_axis);
+    for (int a = 0; a < 3; a++)
+        if (scale[a] != 0.0)
+            best_plane(&per_axis[a], a, &best, &best_cost);
+    return best;
+}
+
+static bool goes_left(const builder *b, const range *r, const split *s, const double scale[3], uint32_t i)
+{
+    if (s->axis < 0)
+        return i - r->begin < r->count / 2;
+    double c = centroid(&b->items[i].box, s->axis);
+    return bin_of(c, r->centroids.min[s->axis], scale[s->axis]) < s->bin;
+}
+
+static void start_range(range *child, uint32_t begin, uint32_t node, uint32_t depth)
+{
+    child->begin = begin;
+    child->count = 0;
+    child->node = node;
+    child->depth = depth;
+    child->bounds = EMPTY_BOX;
+    child->centroids = EMPTY_BOX;
+}
+
+static void add_to_range(range *child, const bg_bvh_box *box)
+{
+    child->count++;
+    grow_box(&child->bounds, box);
+    grow_centroids(&child->centroids, box);
+}
+
+/* Stable partition of the range into its two children, which get their exact double bounds on
+ * the way. Left primitives are compacted in place (the write position never passes the read
+ * position), right ones wait in scratch and are copied in behind. */
+static void partition(builder *b, const range *r, const split *s, const double scale[3], range *left,
+                      range *right)
+{
+    uint32_t w = r->begin, nr = 0;
+    start_range(left, r->begin, r->node + 1, r->depth + 1);
+    start_range(right, 0, 0, r->depth + 1);
+    for (uint32_t i = r->begin; i < r->begin + r->count; i++) {
+        const item it = b->items[i];
+        if (goes_left(b, r, s, scale, i)) {
+            b->items[w++] = it;
+            add_to_range(left, &it.box);
+        } else {
+            b->scratch[nr++] = it;
+            add_to_range(right, &it.box);
+        }
+    }
+    memcpy(b->items + w, b->scratch, nr * sizeof *b->scratch);
+    right->begin = w;
+    right->node = r->node + 2 * left->count; /* after the left subtree's 2 n - 1 nodes */
+}
+
+static void write_node(builder *b, const range *r)
+{
+    float *node = b->nodes + (size_t)r->node * BG_BVH_NODE_FLOATS;
+    write_box(node, &r->bounds);
+    node[BG_BVH_NODE_PRIM] = r->count == 1 ? (float)b->items[r->begin].prim : -1.0f;
+    node[BG_BVH_NODE_MISS] = (float)(r->node + 2 * r->count - 1);
+    if (r->count == 1 && r->depth > b->depth)
+        b->depth = r->depth;
+}
+
+static void root_range(builder *b, const bg_bvh_box *boxes, uint32_t count, range *root)
+{
+    start_range(root, 0, 0, 1);
+    for (uint32_t i = 0; i < count; i++) {
+        b->items[i].box = boxes[i];
+        b->items[i].prim = i;
+        add_to_range(root, &boxes[i]);
+    }
+}
+
+/* Writes every node: each range is written, then split; the smaller child is worked on next and
+ * the larger one kept, which bounds the pending list (MAX_PENDING). */
+static void build_nodes(builder *b, const bg_bvh_box *boxes, uint32_t count)
+{
+    range pending[MAX_PENDING], current;
+    int pending_count = 0;
+    root_range(b, boxes, count, &current);
+    for (;;) {
+        write_node(b, &current);
+        if (current.count > 1) {
+            double scale[3];
+            split s = choose_split(b, &current, scale);
+            range left, right;
+            partition(b, &current, &s, scale, &left, &right);
+            bool left_smaller = left.count <= right.count;
+            pending[pending_count++] = left_smaller ? right : left;
+            current = left_smaller ? left : right;
+            continue;
+        }
+        if (pending_count == 0)
+            return;
+        current = pending[--pending_count];
+    }
+}
+
+static void empty_tree(bg_bvh *bvh, const bg_allocator *allocator)
+{
+    memset(bvh, 0, sizeof *bvh);
+    if (allocator)
+        bvh->allocator = *allocator;
+}
+
+/* The node array and the build's working copy and scratch, all or nothing. */
+static bg_status allocate(const bg_allocator *a, uint32_t count, builder *b)
+{
+    size_t node_bytes, item_bytes;
+    size_t node_floats = (size_t)(2 * count - 1) * BG_BVH_NODE_FLOATS;
+    if (!bg_size_mul(node_floats, sizeof(float), &node_bytes) || !bg_size_mul(count, sizeof(item), &item_bytes))
+        return BG_ERR_OUT_OF_MEMORY;
+    b->nodes = bg_alloc(a, node_bytes);
+    b->items = bg_alloc(a, item_bytes);
+    b->scratch = bg_alloc(a, item_bytes);
+    if (b->nodes && b->items && b->scratch)
+        return BG_OK;
+    bg_free(a, b->nodes);
+    bg_free(a, b->items);
+    bg_free(a, b->scratch);
+    return BG_ERR_OUT_OF_MEMORY;
+}
+
+bg_status bg_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, uint32_t count, bg_bvh *out)
+{
+    static const bg_allocator default_allocator = {NULL, NULL, NULL, NULL};
+    if (!out)
+        return BG_ERR_INVALID_ARGUMENT;
+    const bg_allocator *a = allocator ? allocator : &default_allocator;
+    empty_tree(out, a);
+    if (!bg_allocator_valid(a))
+        return BG_ERR_INVALID_ARGUMENT;
+    if (count > BG_BVH_MAX_PRIMS)
+        return BG_ERR_LIMIT;
+    bg_status st = bg_bvh_check_boxes(boxes, count, NULL);
+    if (st != BG_OK || count == 0)
+        return st;
+
+    builder b = {NULL, NULL, NULL, 0};
+    st = allocate(a, count, &b);
+    if (st != BG_OK)
+        return st;
+    build_nodes(&b, boxes, count);
+    bg_free(a, b.items);
+    bg_free(a, b.scratch);
+
+    out->nodes = b.nodes;
+    out->node_count = 2 * count - 1;
+    out->prim_count = count;
+    out->depth = b.depth;
+    return BG_OK;
+}
+
+void bg_bvh_destroy(bg_bvh *bvh)
+{
+    if (!bvh)
+        return;
+    bg_free(&bvh->allocator, bvh->nodes);
+    bg_allocator a = bvh->allocator;
+    empty_tree(bvh, &a);
+}
+
+/* ---- refit --------------------------------------------------------------------------------- */
+
+static uint32_t node_index(const float *node, int field)
+{
+    return (uint32_t)node[field];
+}
+
+/* An interior node's box is the union of its children's floats, which by the monotone rounding
+ * equals the rounded union of their doubles (float_down). Children follow their parent in
+ * pre-order, so a backward sweep meets them first. */
+bg_status bg_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count)
+{
+    if (!bvh || count != bvh->prim_count)
+        return BG_ERR_INVALID_ARGUMENT;
+    bg_status st = bg_bvh_check_boxes(boxes, count, NULL);
+    if (st != BG_OK)
+        return st;
+    for (uint32_t i = bvh->node_count; i-- > 0;) {
+        float *node = bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
+        if (node[BG_BVH_NODE_PRIM] >= 0.0f) {
+            write_box(node, &boxes[node_index(node, BG_BVH_NODE_PRIM)]);
+            continue;
+        }
+        const float *first = node + BG_BVH_NODE_FLOATS;
+        const float *second = bvh->nodes + (size_t)node_index(first, BG_BVH_NODE_MISS) * BG_BVH_NODE_FLOATS;
+        for (int a = 0; a < 3; a++) {
+            float lo0 = first[BG_BVH_NODE_MIN + a], lo1 = second[BG_BVH_NODE_MIN + a];
+            float hi0 = first[BG_BVH_NODE_MAX + a], hi1 = second[BG_BVH_NODE_MAX + a];
+            node[BG_BVH_NODE_MIN + a] = lo1 < lo0 ? lo1 : lo0;
+            node[BG_BVH_NODE_MAX + a] = hi1 > hi0 ? hi1 : hi0;
+        }
+    }
+    return BG_OK;
+}
+
+/* ---- stats --------------------------------------------------------------------------------- */
+
+static double node_half_area(const float *node)
+{
+    bg_bvh_box box;
+    for (int a = 0; a < 3; a++) {
+        box.min[a] = node[BG_BVH_NODE_MIN + a];
+        box.max[a] = node[BG_BVH_NODE_MAX + a];
+    }
+    return half_area(&box);
+}
+
+void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats)
+{
+    memset(stats, 0, sizeof *stats);
+    stats->node_count = bvh->node_count;
+    stats->prim_count = bvh->prim_count;
+    stats->depth = bvh->depth;
+    if (bvh->node_count == 0)
+        return;
+    double root = node_half_area(bvh->nodes);
+    if (!(root > 0.0))
+        return;
+    double sum = 0.0;
+    for (uint32_t i = 0; i < bvh->node_count; i++)
+        sum += node_half_area(bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS);
+    stats->sah_cost = sum / root;
+}

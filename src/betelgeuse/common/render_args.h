@@ -1,0 +1,12 @@
+/* The caller's arguments both renderers check alike, so that a bad call reads the same on either. */
+#ifndef BG_RENDER_ARGS_H
+#define BG_RENDER_ARGS_H
+
+#include "betelgeuse.h"
+
+/* Checks settings, then image (bg_render_settings_check, bg_image_check) and writes the image's row
+ * stride in bytes. On failure writes "<where>: <what is wrong>" into message and returns the status. */
+bg_status bg_render_args_check(const char *where, const bg_render_settings *settings, const bg_image *image,
+                               size_t *out_stride, char *message, size_t size);
+
+#endif

@@ -1,0 +1,75 @@
+/* Making one MACS pass for the renderer: the description every pass starts from, the shader text
+ * assembled from glsl110/ files, and the trial creation that lets a batch fall back to smaller
+ * passes. A leaf of gpu/ below every pass builder: it calls only shader_source.c and fail.c. */
+#include <string.h>
+
+#include "gpu_internal.h"
+
+void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
+                        macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,
+                        int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
+                        int output_count)
+{
+    memset(d, 0, sizeof *d);
+    d->main = main;
+    d->inputs = inputs;
+    d->input_count = input_count;
+    d->input_textures = input_tex;
+    d->uniforms = uniforms;
+    d->uniform_count = uniform_count;
+    d->outputs = outputs;
+    d->output_count = output_count;
+    d->output_textures = output_tex;
+}
+
+bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
+                          macs_pass_desc *desc, macs_pass **out)
+{
+    gpu_text t;
+    gpu_text_init(&t, &r->allocator);
+    const char *seen[32];
+    int n = 0;
+    for (int i = 0; files && files[i]; i++) {
+        if (!gpu_text_snippet(&t, files[i], seen, &n, 32)) {
+            gpu_text_free(&t);
+            return gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: shader file %s (or one it requires) is missing", what,
+                            files[i]);
+        }
+    }
+    gpu_text_append(&t, extra);
+    if (t.failed) {
+        gpu_text_free(&t);
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory assembling the %s", what);
+    }
+    desc->functions = t.s;
+    macs_status ms = macs_pass_create(r->ctx, desc, out);
+    gpu_text_free(&t);
+    if (ms != MACS_OK) {
+        *out = NULL;
+        return gpu_fail_macs(r, ms, what);
+    }
+    return BG_OK;
+}
+
+bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+                       macs_pass **out, bool *rejected)
+{
+    desc->functions = functions;
+    /* A batch's failure is forgotten only if nothing was wrong before it. */
+    bool clean = macs_context_error(r->ctx) == MACS_OK;
+    macs_status ms = macs_pass_create(r->ctx, desc, out);
+    if (ms == MACS_OK)
+        return BG_OK;
+    *out = NULL;
+    if (trial && clean && (ms == MACS_ERR_SHADER_COMPILE || ms == MACS_ERR_SHADER_LINK)) {
+        /* The longer shader of a batch is beyond this GL: the caller falls back to smaller passes. */
+        gpu_log(r, BG_LOG_WARNING,
+                "bg_render_gpu: %s: the batched shader was refused (%s), falling back to one object per pass: %s",
+                what, macs_status_string(ms), macs_context_error_message(r->ctx));
+        macs_context_clear_error(r->ctx);
+        if (rejected)
+            *rejected = true;
+        return BG_OK;
+    }
+    return gpu_fail_macs(r, ms, what);
+}

@@ -1,0 +1,251 @@
+/* The passes of a frame that make, count, end and spawn rays (docs/gpu_pipeline.md): camera rays,
+ * live-ray marking, the background where rays missed, reflected and refracted children, and the
+ * resolve to the output encoding. What they are (background or not, bounces or not, encoding, minimum
+ * weight) is read from the renderer's cache key, where frame.c decides it once from the settings:
+ * the passes built and the key that keeps them cannot disagree.
+ * Ray-map inputs are bound per ray set by frame.c at the fixed input positions of gpu_internal.h. */
+#include <string.h>
+
+#include "gpu_internal.h"
+
+/* A pass over the live (and, with hit_bits, hit or missed) pixels with one or two ray-map inputs. */
+static bg_status simple_pass(bg_renderer *r, const char *what, const char *const *files, const char *main,
+                             const macs_input_desc *inputs, int input_count, macs_texture *const *input_tex,
+                             const macs_uniform_desc *uniforms, int uniform_count, const char *value,
+                             macs_texture *const *outputs, int output_count, macs_blend blend,
+                             const macs_stencil_state *stencil, macs_pass **out)
+{
+    macs_output_desc out_desc[3] = {{"out0", value}, {"out1", NULL}, {"out2", NULL}};
+    macs_pass_desc desc;
+    gpu_pass_desc_init(&desc, main, inputs, input_tex, input_count, uniforms, uniform_count, out_desc, outputs,
+                       output_count);
+    desc.blend = blend;
+    if (stencil) {
+        desc.depth_stencil = r->depth;
+        desc.stencil = *stencil;
+    }
+    if (output_count == 3) {
+        /* Ray-map writers name their three outputs o0..o2 in main. */
+        out_desc[0].value = "bg_o0";
+        out_desc[1].value = "bg_o1";
+        out_desc[2].value = "bg_o2";
+        out_desc[1].name = "out1";
+        out_desc[2].name = "out2";
+    }
+    return gpu_pass_create(r, what, files, NULL, &desc, out);
+}
+
+static macs_stencil_state stencil_equal(unsigned ref, unsigned mask)
+{
+    macs_stencil_state s;
+    memset(&s, 0, sizeof s);
+    s.test = true;
+    s.func = MACS_COMPARE_EQUAL;
+    s.ref = ref;
+    s.read_mask = mask;
+    s.write_mask = 0;
+    return s;
+}
+
+static bool stencil_skip(const bg_renderer *r)
+{
+    return !(r->key.disable_skips & BG_SKIP_STENCIL);
+}
+
+/* The camera's frame as uniforms, relative to the camera (its eye is the frame's origin). */
+static bg_status set_camera_uniforms(bg_renderer *r, const bg_scene_state *state, macs_pass *pass)
+{
+    const bg_camera_data *c = &state->camera;
+    float size[2] = {(float)r->width, (float)r->height};
+    float eye[3];
+    gpu_origin_point(state, &c->camera.position, eye); /* (0, 0, 0): the frame's origin */
+    float fw[3], rt[3], up[3];
+    for (int i = 0; i < 3; i++) {
+        fw[i] = (float)c->forward[i];
+        rt[i] = (float)c->right[i];
+        up[i] = (float)c->up[i];
+    }
+    double aspect = (double)r->width / (double)r->height;
+    float th[2] = {(float)(aspect * c->tan_half_fov_y), (float)c->tan_half_fov_y};
+    macs_status ms = macs_pass_set_uniform(pass, "bg_size", size);
+    if (!ms) ms = macs_pass_set_uniform(pass, "bg_eye", eye);
+    if (!ms) ms = macs_pass_set_uniform(pass, "bg_forward", fw);
+    if (!ms) ms = macs_pass_set_uniform(pass, "bg_right", rt);
+    if (!ms) ms = macs_pass_set_uniform(pass, "bg_up", up);
+    if (!ms) ms = macs_pass_set_uniform(pass, "bg_tan_half", th);
+    return ms ? gpu_fail_macs(r, ms, "camera pass uniforms") : BG_OK;
+}
+
+/* Camera rays: one per pixel centre into ray set 0. */
+static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, const gpu_ray_set *set0)
+{
+    macs_uniform_desc u[6] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
+                              {"bg_forward", MACS_UNIFORM_VEC3, 0}, {"bg_right", MACS_UNIFORM_VEC3, 0},
+                              {"bg_up", MACS_UNIFORM_VEC3, 0},      {"bg_tan_half", MACS_UNIFORM_VEC2, 0}};
+    macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
+    const char *files[] = {"bg_stage_camera.glsl", NULL};
+    bg_status st = simple_pass(r, "camera pass", files,
+                               "vec4 bg_o0, bg_o1, bg_o2;\n"
+                               "bg_camera_ray(gl_FragCoord.xy, bg_size, bg_eye, bg_forward, bg_right, bg_up, "
+                               "bg_tan_half, bg_o0, bg_o1, bg_o2);\n",
+                               NULL, 0, NULL, u, 6, NULL, outs, 3, MACS_BLEND_NONE, NULL, &r->passes.camera);
+    return st == BG_OK ? set_camera_uniforms(r, state, r->passes.camera) : st;
+}
+
+/* Marking: counts a set's live rays (occlusion query) and, with the stencil skip on, sets their
+ * live bit so that every later pass of the set rejects dead pixels before shading them. */
+static bg_status build_mark_pass(bg_renderer *r)
+{
+    macs_input_desc in[1] = {{"bg_ray_weight"}};
+    macs_texture *in_tex[1] = {NULL};
+    macs_texture *outs[1] = {r->accum};
+    macs_stencil_state s;
+    memset(&s, 0, sizeof s);
+    if (stencil_skip(r)) {
+        s.test = true;
+        s.func = MACS_COMPARE_ALWAYS;
+        s.ref = GPU_STENCIL_LIVE;
+        s.write_mask = GPU_STENCIL_LIVE;
+        s.pass = MACS_STENCIL_OP_REPLACE;
+    }
+    macs_pass_desc desc;
+    macs_output_desc od = {"none", "vec4(0.0)"};
+    gpu_pass_desc_init(&desc, "if (texture2D(bg_ray_weight, macs_uv).a <= 0.0) discard;\n", in, in_tex, 1, NULL, 0,
+                       &od, outs, 1);
+    desc.depth_stencil = r->depth;
+    desc.stencil = s;
+    desc.color_mask = MACS_COLOR_MASK_NONE;
+    return gpu_pass_create(r, "mark pass", NULL, NULL, &desc, &r->passes.mark);
+}
+
+/* Background where a live ray missed every object: the hit bit is clear. Its colour is a plain
+ * uniform, set again by frame.c whenever the cached passes are reused. */
+static bg_status build_background_pass(bg_renderer *r, const double background[3])
+{
+    macs_input_desc in[1] = {{"bg_ray_weight"}};
+    macs_texture *in_tex[1] = {NULL};
+    macs_uniform_desc u[1] = {{"bg_background", MACS_UNIFORM_VEC3, 0}};
+    macs_texture *outs[1] = {r->accum};
+    macs_stencil_state s = stencil_skip(r) ? stencil_equal(GPU_STENCIL_LIVE, GPU_STENCIL_LIVE | GPU_STENCIL_HIT)
+                                           : stencil_equal(0, GPU_STENCIL_HIT);
+    bg_status st = simple_pass(r, "background pass", NULL, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n", in, 1,
+                               in_tex, u, 1, "vec4(bg_w.rgb * bg_background, 0.0)", outs, 1, MACS_BLEND_ADD, &s,
+                               &r->passes.background);
+    if (st != BG_OK)
+        return st;
+    float bgc[3] = {(float)background[0], (float)background[1], (float)background[2]};
+    macs_status ms = macs_pass_set_uniform(r->passes.background, "bg_background", bgc);
+    return ms ? gpu_fail_macs(r, ms, "background uniforms") : BG_OK;
+}
+
+/* Whether children are spawned at all: the settings ask for bounces (the key's choice) and some
+ * material may bounce, unless the bounce cull is switched off. */
+static bool spawn_passes_wanted(const bg_renderer *r)
+{
+    return r->key.bounces && (r->features.bounce || (r->key.disable_skips & BG_SKIP_BOUNCE_CULL));
+}
+
+enum { SPAWN_REFLECT = 0, SPAWN_REFRACT = 1, SPAWN_MAX_INPUTS = 8 };
+
+/* The G-buffer slots a spawn pass reads, after the parent's direction and weight (at
+ * GPU_SPAWN_IN_DIR and GPU_SPAWN_IN_WEIGHT, bound per ray set); returns how many inputs. */
+static int spawn_inputs(const bg_renderer *r, int kind, macs_input_desc in[SPAWN_MAX_INPUTS],
+                        macs_texture *in_tex[SPAWN_MAX_INPUTS])
+{
+    const gpu_features *f = &r->features;
+    int ni = 0;
+    in[ni].name = "bg_ray_dir", in_tex[ni++] = NULL;    /* GPU_SPAWN_IN_DIR */
+    in[ni].name = "bg_ray_weight", in_tex[ni++] = NULL; /* GPU_SPAWN_IN_WEIGHT */
+    in[ni].name = "bg_g_hit", in_tex[ni++] = r->gbuffer[GPU_SLOT_HIT];
+    in[ni].name = "bg_g_normal", in_tex[ni++] = r->gbuffer[GPU_SLOT_NORMAL];
+    if (kind == SPAWN_REFLECT)
+        in[ni].name = "bg_g_base", in_tex[ni++] = r->gbuffer[GPU_SLOT_BASE];
+    if (kind == SPAWN_REFLECT && f->slot[GPU_SLOT_COAT])
+        in[ni].name = "bg_g_coat", in_tex[ni++] = r->gbuffer[GPU_SLOT_COAT];
+    if (f->transparent) {
+        in[ni].name = "bg_g_xparent", in_tex[ni++] = r->gbuffer[GPU_SLOT_XPARENT];
+        in[ni].name = "bg_g_once", in_tex[ni++] = r->gbuffer[GPU_SLOT_ONCE];
+    }
+    return ni;
+}
+
+/* The spawn call of a pass's main, with the lanes a missing slot would have filled as constants. */
+static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
+{
+    const gpu_features *f = &r->features;
+    bool reflect = kind == SPAWN_REFLECT;
+    gpu_text_append(main, "vec4 bg_o0, bg_o1, bg_o2;\n");
+    gpu_text_printf(main,
+                    "bg_spawn(%s, texture2D(bg_g_hit, macs_uv), texture2D(bg_g_normal, macs_uv), %s, %s, %s, %s, "
+                    "texture2D(bg_ray_dir, macs_uv), texture2D(bg_ray_weight, macs_uv), bg_min_weight, "
+                    "bg_o0, bg_o1, bg_o2);\n",
+                    reflect ? "false" : "true", reflect ? "texture2D(bg_g_base, macs_uv)" : "vec4(0.0)",
+                    reflect && f->slot[GPU_SLOT_COAT] ? "texture2D(bg_g_coat, macs_uv)" : "vec4(0.0, 0.0, 0.0, -1.0)",
+                    f->transparent ? "texture2D(bg_g_xparent, macs_uv).a" : "0.0",
+                    f->transparent ? "texture2D(bg_g_once, macs_uv).a" : "1.0");
+}
+
+/* Secondary rays of one kind: every live hit pixel writes its child into ray set 0's maps, which
+ * frame.c rebinds to the child set; the child set's mark pass counts them. */
+static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *set0)
+{
+    macs_pass **out = kind == SPAWN_REFRACT ? &r->passes.refract : &r->passes.reflect;
+    macs_input_desc in[SPAWN_MAX_INPUTS];
+    macs_texture *in_tex[SPAWN_MAX_INPUTS];
+    int ni = spawn_inputs(r, kind, in, in_tex);
+    macs_uniform_desc u[1] = {{"bg_min_weight", MACS_UNIFORM_FLOAT, 0}};
+    macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
+    macs_stencil_state s = stencil_skip(r) ? stencil_equal(GPU_STENCIL_LIVE | GPU_STENCIL_HIT,
+                                                           GPU_STENCIL_LIVE | GPU_STENCIL_HIT)
+                                           : stencil_equal(GPU_STENCIL_HIT, GPU_STENCIL_HIT);
+    const char *files[] = {"bg_stage_spawn.glsl", NULL};
+    gpu_text main;
+    gpu_text_init(&main, &r->allocator);
+    spawn_main(r, kind, &main);
+    bg_status st;
+    if (main.failed)
+        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the spawn shader");
+    else
+        st = simple_pass(r, kind == SPAWN_REFRACT ? "refraction pass" : "reflection pass", files, main.s, in, ni,
+                         in_tex, u, 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);
+    gpu_text_free(&main);
+    if (st != BG_OK)
+        return st;
+    float mw = (float)r->key.min_weight;
+    macs_status ms = macs_pass_set_uniform(*out, "bg_min_weight", &mw);
+    return ms ? gpu_fail_macs(r, ms, "spawn uniforms") : BG_OK;
+}
+
+/* Resolve to the output encoding, into an RGBA8 target read back by frame.c. */
+static bg_status build_resolve_pass(bg_renderer *r)
+{
+    macs_input_desc in[1] = {{"bg_accum"}};
+    macs_texture *in_tex[1] = {r->accum};
+    macs_texture *outs[1] = {r->encoded};
+    const char *files[] = {"bg_stage_resolve.glsl", NULL};
+    return simple_pass(r, "resolve pass", files, "vec3 bg_l = texture2D(bg_accum, macs_uv).rgb;\n", in, 1, in_tex,
+                       NULL, 0,
+                       r->key.encoding == BG_ENCODING_LINEAR ? "vec4(bg_encode(bg_l, false), 1.0)"
+                                                             : "vec4(bg_encode(bg_l, true), 1.0)",
+                       outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve);
+}
+
+bg_status gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
+{
+    gpu_ray_set *set0 = NULL;
+    bg_status st = gpu_ray_set_get(r, 0, &set0);
+    if (st == BG_OK)
+        st = build_camera_pass(r, state, set0);
+    if (st == BG_OK)
+        st = build_mark_pass(r);
+    if (st == BG_OK && r->key.background_on)
+        st = build_background_pass(r, settings->background);
+    if (st == BG_OK && spawn_passes_wanted(r)) {
+        st = build_spawn_pass(r, SPAWN_REFLECT, set0);
+        if (st == BG_OK && r->features.transparent)
+            st = build_spawn_pass(r, SPAWN_REFRACT, set0);
+    }
+    if (st == BG_OK)
+        st = build_resolve_pass(r);
+    return st;
+}
