@@ -59,9 +59,17 @@ EXAMPLE_SRC := $(sort $(wildcard examples/*.c))
 EXAMPLE_BIN := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/examples/%)
 
 # Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export).
-BENCH_SRC := $(sort $(wildcard bench/*.c))
+# The Embree peer (bench_embree with bench/lib/embree_*.c) is built only where Embree 3 is installed
+# (Debian's libembree-dev has no pkg-config file, hence the header test) and linked into no other program.
+EMBREE_LIBS := $(shell pkg-config --libs embree3 2>/dev/null || \
+                 { test -f /usr/include/embree3/rtcore.h && echo -lembree3; })
+EMBREE_CFLAGS := $(if $(EMBREE_LIBS),$(shell pkg-config --cflags embree3 2>/dev/null))
+EMBREE_PEER_SRC := $(sort $(wildcard bench/lib/embree_*.c))
+EMBREE_PEER_OBJ := $(EMBREE_PEER_SRC:%.c=$(BUILD)/%.o)
+EMBREE_SRC := bench/bench_embree.c $(EMBREE_PEER_SRC)
+BENCH_SRC := $(sort $(filter-out $(EMBREE_SRC),$(wildcard bench/*.c)) $(if $(EMBREE_LIBS),bench/bench_embree.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
-BENCH_LIB_SRC := $(sort $(wildcard bench/lib/*.c))
+BENCH_LIB_SRC := $(sort $(filter-out $(EMBREE_SRC),$(wildcard bench/lib/*.c)))
 BENCH_LIB_OBJ := $(BENCH_LIB_SRC:%.c=$(BUILD)/%.o)
 
 MACS_A  := $(BUILD)/libmacs.a
@@ -140,6 +148,12 @@ $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
+$(EMBREE_PEER_OBJ): ALL_CFLAGS += $(EMBREE_CFLAGS)
+$(BUILD)/bench/bench_embree: bench/bench_embree.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(EMBREE_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) \
+	  $(SCENES_OBJ) $(STATIC_LINK) $(EMBREE_LIBS)
+
 examples: all $(EXAMPLE_BIN)
 
 # Every shader must compile as GLSL 1.10; library files are checked with the files they require.
@@ -171,12 +185,13 @@ valgrind: $(VALGRIND_TESTS)
 # on stderr.
 BENCH_OUT ?= bench/out
 BENCH_ENV := $(TEST_ENV) QUICK=$(QUICK)
-BENCH_PROGRAMS := bench_paper bench_scaling bench_tradeoffs bench_phases
+BENCH_PROGRAMS := bench_paper bench_scaling bench_tradeoffs bench_phases $(if $(EMBREE_LIBS),bench_embree)
 # The benchmark programs built but not run: CI checks that they still compile.
 bench-programs: all $(BENCH_BIN)
 
 bench: all $(BENCH_BIN)
 	@mkdir -p $(BENCH_OUT)
+	@$(if $(EMBREE_LIBS),:,echo "Embree 3 (libembree-dev) is not installed: no bench_embree")
 	@for b in $(BENCH_PROGRAMS); do \
 	  { env $(BENCH_ENV) $(BUILD)/bench/$$b $(BENCH_OUT); echo $$? > $(BENCH_OUT)/$$b.status; } | tee $(BENCH_OUT)/$$b.txt; \
 	  [ "$$(cat $(BENCH_OUT)/$$b.status)" = 0 ] || exit 1; echo; done

@@ -165,6 +165,12 @@ double bg_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t);
 bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
                         uint32_t inside, bg_cpu_hit *hit);
 
+/* The radiance arriving at p from a light (0 outside a spot cone), its unit direction l and the
+ * shadow segment's length; false when the light cannot contribute (docs/shading.md 7). */
+bool bg_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3]);
+/* Whether a secondary ray of path weight w is followed: some channel positive and >= min_weight. */
+bool bg_cpu_worth_following(const double w[3], double min_weight);
+
 /* Adds weight x the radiance along a ray at bounce level `level` into out. */
 void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
                   const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,

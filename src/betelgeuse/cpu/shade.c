@@ -103,9 +103,7 @@ static bool shadowed(const bg_scene_state *state, const double p[3], const doubl
     return s.blocked;
 }
 
-/* Radiance arriving from a light at p (0 outside a spot cone), its unit direction and the shadow
- * segment length; false when the light cannot contribute. */
-static bool light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3])
+bool bg_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3])
 {
     double scale = light->intensity;
     if (light->type == BG_LIGHT_DIRECTIONAL) {
@@ -140,7 +138,7 @@ static bool light_arrival(const bg_light *light, const double p[3], double l[3],
     return scale > 0.0;
 }
 
-static bool worth_following(const double w[3], double min_weight)
+bool bg_cpu_worth_following(const double w[3], double min_weight)
 {
     double m = w[0] > w[1] ? w[0] : w[1];
     m = m > w[2] ? m : w[2];
@@ -175,7 +173,7 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     if (opaque > 0.0 && v > 0.0 && (thin || hit.entering)) {
         for (uint32_t k = 0; k < state->light_count; k++) {
             double l[3], radiance[3], t_max;
-            if (!light_arrival(&state->lights[k], hit.position, l, &t_max, radiance))
+            if (!bg_cpu_light_arrival(&state->lights[k], hit.position, l, &t_max, radiance))
                 continue;
             double vl = bg_v3_dot(n, l);
             if (!(vl > 0.0))
@@ -211,14 +209,14 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     /* A ray leaving a closed object's inside stays inside after reflection (far root); any other
      * secondary ray leaves the object it starts on and skips it. */
     bool stays_inside = !thin && !hit.entering;
-    if (worth_following(w_refl, settings->min_weight)) {
+    if (bg_cpu_worth_following(w_refl, settings->min_weight)) {
         double dn = bg_v3_dot(d, n);
         double r[3] = {d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]};
         if (bg_v3_normalize(r))
             bg_cpu_trace(state, settings, hit.position, r, level + 1, w_refl, stays_inside ? BG_CPU_NONE : hit.object,
                          stays_inside ? hit.object : BG_CPU_NONE, out);
     }
-    if (worth_following(w_refr, settings->min_weight)) {
+    if (bg_cpu_worth_following(w_refr, settings->min_weight)) {
         double t[3] = {d[0], d[1], d[2]};
         if (!thin) {
             double k = eta * cos_i - cos_t;

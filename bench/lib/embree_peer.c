@@ -1,0 +1,447 @@
+/* The Embree side of the benchmark peer (embree_peer.h): the device, the BVH over the committed
+ * scene's bounded objects as one user geometry, its callbacks, and the packet queries. */
+#include "embree_internal.h" /* same directory: bench/lib objects are built without -Ibench */
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#define MAX_PACKET 16
+
+/* Object boxes are widened by this share of the scene's magnitude. Embree traverses with a float copy
+ * of each double ray, whose origin and direction are off by up to 2^-24 of their magnitude, so along
+ * the ray the float line can stray by about 2^-24 (|o| + t) from the double one. Rays start at the
+ * camera or on objects, so 2^-16 of the largest coordinate in the scene covers that with a margin of
+ * 2^8 (also for rays starting on a plane up to 2^8 times farther out); a box that is too wide only
+ * costs a callback that the double test then rejects. */
+#define BOX_PAD_REL 0x1p-16
+
+/* A packet and its valid mask. Embree loads the mask with aligned vector loads, so it gets the
+ * packet's own alignment (64 bytes): it follows a packet whose size is a multiple of that. */
+typedef struct hit_packet {
+    struct RTCRayHit16 rays;
+    int valid[MAX_PACKET];
+} hit_packet;
+
+typedef struct shadow_packet {
+    struct RTCRay16 rays;
+    int valid[MAX_PACKET];
+} shadow_packet;
+
+/* What Embree hands back to the callbacks: the context comes first so a pointer to it is one to this. */
+typedef struct query_context {
+    struct RTCIntersectContext base;
+    const embree_peer *peer;
+    const peer_ray *rays;       /* nearest-hit queries, indexed by the Embree ray's id */
+    peer_hit *hits;
+    const shadow_ray *shadows;  /* occlusion queries */
+} query_context;
+
+bool embree_fail(char *message, size_t size, const char *format, ...)
+{
+    if (message && size > 0) {
+        va_list args;
+        va_start(args, format);
+        vsnprintf(message, size, format, args);
+        va_end(args);
+    }
+    return false;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* The smallest float >= x (+inf past the float range): a tfar that never cuts the double hit off. */
+static float float_at_or_above(double x)
+{
+    if (!(x < FLT_MAX))
+        return INFINITY;
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* The largest float <= x. */
+static float float_at_or_below(double x)
+{
+    return -float_at_or_above(-x);
+}
+
+/* ---- Embree's SOA packets, addressed as in rtcore_ray.h's C++ helpers (a packet of N rays holds
+ * field k of lane i at float k N + i; the hit follows the 12 ray fields) ---------------------- */
+
+enum { RAY_ORG_X, RAY_ORG_Y, RAY_ORG_Z, RAY_TNEAR, RAY_DIR_X, RAY_DIR_Y, RAY_DIR_Z, RAY_TIME, RAY_TFAR, RAY_MASK,
+       RAY_ID, RAY_FLAGS, RAY_FIELDS };
+enum { HIT_NG_X, HIT_NG_Y, HIT_NG_Z, HIT_U, HIT_V, HIT_PRIM_ID, HIT_GEOM_ID, HIT_INST_ID };
+
+static float *lane_float(void *soa, unsigned n, unsigned field, unsigned i)
+{
+    return (float *)soa + field * n + i;
+}
+
+static unsigned *lane_uint(void *soa, unsigned n, unsigned field, unsigned i)
+{
+    return (unsigned *)soa + field * n + i;
+}
+
+static void *hit_part(void *rayhit, unsigned n)
+{
+    return (float *)rayhit + RAY_FIELDS * n;
+}
+
+/* Writes a double ray into lane i as Embree's float ray over (0, tfar]; id names its record. */
+static void fill_lane(void *ray, unsigned n, unsigned i, const double o[3], const double d[3], float tfar,
+                      unsigned id)
+{
+    for (unsigned k = 0; k < 3; k++) {
+        *lane_float(ray, n, RAY_ORG_X + k, i) = (float)o[k];
+        *lane_float(ray, n, RAY_DIR_X + k, i) = (float)d[k];
+    }
+    *lane_float(ray, n, RAY_TNEAR, i) = 0.0f;
+    *lane_float(ray, n, RAY_TIME, i) = 0.0f;
+    *lane_float(ray, n, RAY_TFAR, i) = tfar;
+    *lane_uint(ray, n, RAY_MASK, i) = ~0u;
+    *lane_uint(ray, n, RAY_ID, i) = id;
+    *lane_uint(ray, n, RAY_FLAGS, i) = 0;
+}
+
+/* ---- the user geometry: one primitive per bounded object ----------------------------------- */
+
+static void object_bounds(const struct RTCBoundsFunctionArguments *args)
+{
+    const embree_peer *peer = args->geometryUserPtr;
+    const bg_object_data *object = &peer->state->objects[peer->prim_object[args->primID]];
+    struct RTCBounds *b = args->bounds_o;
+    b->lower_x = float_at_or_below(object->bounds_min[0]) - peer->box_pad;
+    b->lower_y = float_at_or_below(object->bounds_min[1]) - peer->box_pad;
+    b->lower_z = float_at_or_below(object->bounds_min[2]) - peer->box_pad;
+    b->upper_x = float_at_or_above(object->bounds_max[0]) + peer->box_pad;
+    b->upper_y = float_at_or_above(object->bounds_max[1]) + peer->box_pad;
+    b->upper_z = float_at_or_above(object->bounds_max[2]) + peer->box_pad;
+}
+
+/* Keeps a candidate when it is nearer than the ray's best, or as near and added earlier (the
+ * reference's tie rule); the nearest root, or the far root for the object the ray travels inside. */
+static bool offer_object(const bg_scene_state *state, uint32_t index, const peer_ray *ray, peer_hit *best)
+{
+    if (index == ray->skip)
+        return false;
+    bg_cpu_candidate c;
+    if (!bg_cpu_intersect_object(&state->objects[index], ray->o, ray->d, index == ray->inside, best->t, &c))
+        return false;
+    if (c.t == best->t && index > best->object)
+        return false;
+    best->t = c.t;
+    best->object = index;
+    best->candidate = c;
+    return true;
+}
+
+static void object_intersect(const struct RTCIntersectFunctionNArguments *args)
+{
+    const embree_peer *peer = args->geometryUserPtr;
+    const query_context *q = (const query_context *)args->context;
+    uint32_t index = peer->prim_object[args->primID];
+    unsigned n = args->N;
+    void *hit = hit_part(args->rayhit, n);
+    for (unsigned i = 0; i < n; i++) {
+        if (!args->valid[i])
+            continue;
+        unsigned id = *lane_uint(args->rayhit, n, RAY_ID, i);
+        if (!offer_object(peer->state, index, &q->rays[id], &q->hits[id]))
+            continue;
+        *lane_float(args->rayhit, n, RAY_TFAR, i) = float_at_or_above(q->hits[id].t);
+        *lane_uint(hit, n, HIT_PRIM_ID, i) = args->primID;
+        *lane_uint(hit, n, HIT_GEOM_ID, i) = args->geomID;
+        *lane_uint(hit, n, HIT_INST_ID, i) = args->context->instID[0];
+    }
+}
+
+/* The reference's shadow rule: shadow casters only, never the object the segment starts on. */
+static bool blocks(const bg_scene_state *state, uint32_t index, const shadow_ray *s)
+{
+    const bg_object_data *object = &state->objects[index];
+    return index != s->self && object->casts_shadows && bg_cpu_segment_blocked(object, s->o, s->l, s->t_max);
+}
+
+static void object_occluded(const struct RTCOccludedFunctionNArguments *args)
+{
+    const embree_peer *peer = args->geometryUserPtr;
+    const query_context *q = (const query_context *)args->context;
+    uint32_t index = peer->prim_object[args->primID];
+    unsigned n = args->N;
+    for (unsigned i = 0; i < n; i++) {
+        if (!args->valid[i])
+            continue;
+        unsigned id = *lane_uint(args->ray, n, RAY_ID, i);
+        if (blocks(peer->state, index, &q->shadows[id]))
+            *lane_float(args->ray, n, RAY_TFAR, i) = -INFINITY; /* Embree's mark for "occluded" */
+    }
+}
+
+/* ---- building the BVH ------------------------------------------------------------------------ */
+
+static void device_error(void *user, enum RTCError code, const char *text)
+{
+    embree_peer *peer = user;
+    if (!peer->device_error[0])
+        snprintf(peer->device_error, sizeof peer->device_error, "Embree error %d: %s", (int)code, text ? text : "");
+}
+
+static void release_bvh(embree_peer *peer)
+{
+    if (peer->bvh)
+        rtcReleaseScene(peer->bvh);
+    free(peer->prim_object);
+    free(peer->planes);
+    peer->bvh = NULL;
+    peer->prim_object = peer->planes = NULL;
+    peer->prim_count = peer->plane_count = 0;
+    peer->state = NULL;
+}
+
+/* Splits the objects into Embree primitives (bounded) and planes (unbounded), and sizes the box padding. */
+static bool sort_objects(embree_peer *peer, const bg_scene_state *state)
+{
+    size_t n = state->object_count ? state->object_count : 1;
+    peer->prim_object = malloc(n * sizeof *peer->prim_object);
+    peer->planes = malloc(n * sizeof *peer->planes);
+    if (!peer->prim_object || !peer->planes)
+        return false;
+    const bg_vec3 e = state->camera.camera.position;
+    double magnitude = fmax(fabs(e.x), fmax(fabs(e.y), fabs(e.z)));
+    for (uint32_t j = 0; j < state->object_count; j++) {
+        const bg_object_data *object = &state->objects[j];
+        if (!object->bounded) {
+            peer->planes[peer->plane_count++] = j;
+            continue;
+        }
+        peer->prim_object[peer->prim_count++] = j;
+        for (int k = 0; k < 3; k++)
+            magnitude = fmax(magnitude, fmax(fabs(object->bounds_min[k]), fabs(object->bounds_max[k])));
+    }
+    peer->box_pad = float_at_or_above(fmax(magnitude * BOX_PAD_REL, FLT_MIN));
+    return true;
+}
+
+static bool build_bvh(embree_peer *peer, const bg_scene_state *state, char *message, size_t size)
+{
+    double t0 = now_ms();
+    release_bvh(peer);
+    peer->device_error[0] = '\0';
+    if (!sort_objects(peer, state)) {
+        release_bvh(peer);
+        return embree_fail(message, size, "embree peer: out of memory");
+    }
+    peer->state = state;
+    peer->commit_count = state->commit_count;
+    peer->bvh = rtcNewScene(peer->device);
+    if (peer->bvh && peer->prim_count > 0) {
+        /* Robust: Embree's float traversal must not lose a box a grazing double ray meets. */
+        rtcSetSceneFlags(peer->bvh, RTC_SCENE_FLAG_ROBUST);
+        RTCGeometry g = rtcNewGeometry(peer->device, RTC_GEOMETRY_TYPE_USER);
+        if (g) {
+            rtcSetGeometryUserPrimitiveCount(g, peer->prim_count);
+            rtcSetGeometryUserData(g, peer);
+            rtcSetGeometryBoundsFunction(g, object_bounds, NULL);
+            rtcSetGeometryIntersectFunction(g, object_intersect);
+            rtcSetGeometryOccludedFunction(g, object_occluded);
+            rtcCommitGeometry(g);
+            rtcAttachGeometry(peer->bvh, g);
+            rtcReleaseGeometry(g);
+        }
+    }
+    if (peer->bvh)
+        rtcCommitScene(peer->bvh);
+    if (!peer->bvh || peer->device_error[0]) {
+        const char *why = peer->device_error[0] ? peer->device_error : "rtcNewScene failed";
+        embree_fail(message, size, "embree peer: %s", why);
+        release_bvh(peer);
+        return false;
+    }
+    peer->build_ms = now_ms() - t0;
+    return true;
+}
+
+/* ---- ray queries ------------------------------------------------------------------------------ */
+
+static void init_context(query_context *q, const embree_peer *peer, bool coherent)
+{
+    memset(q, 0, sizeof *q);
+    rtcInitIntersectContext(&q->base);
+    q->base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    q->peer = peer;
+}
+
+static void intersect_packet(const embree_peer *peer, query_context *q, hit_packet *p)
+{
+    switch (peer->packet_width) {
+    case 1: rtcIntersect1(peer->bvh, &q->base, (struct RTCRayHit *)&p->rays); break;
+    case 4: rtcIntersect4(p->valid, peer->bvh, &q->base, (struct RTCRayHit4 *)&p->rays); break;
+    case 8: rtcIntersect8(p->valid, peer->bvh, &q->base, (struct RTCRayHit8 *)&p->rays); break;
+    default: rtcIntersect16(p->valid, peer->bvh, &q->base, &p->rays); break;
+    }
+}
+
+static void occluded_packet(const embree_peer *peer, query_context *q, shadow_packet *p)
+{
+    switch (peer->packet_width) {
+    case 1: rtcOccluded1(peer->bvh, &q->base, (struct RTCRay *)&p->rays); break;
+    case 4: rtcOccluded4(p->valid, peer->bvh, &q->base, (struct RTCRay4 *)&p->rays); break;
+    case 8: rtcOccluded8(p->valid, peer->bvh, &q->base, (struct RTCRay8 *)&p->rays); break;
+    default: rtcOccluded16(p->valid, peer->bvh, &q->base, &p->rays); break;
+    }
+}
+
+/* The nearest hit of every ray: planes first (outside Embree), then the BVH with tfar at that hit. */
+void embree_nearest_hits(const embree_peer *peer, const peer_ray *rays, peer_hit *hits, int count, bool coherent)
+{
+    for (int k = 0; k < count; k++) {
+        hits[k].t = DBL_MAX;
+        hits[k].object = BG_CPU_NONE;
+        for (uint32_t j = 0; j < peer->plane_count; j++)
+            offer_object(peer->state, peer->planes[j], &rays[k], &hits[k]);
+    }
+    if (peer->prim_count == 0)
+        return;
+    query_context q;
+    init_context(&q, peer, coherent);
+    q.rays = rays;
+    q.hits = hits;
+    const unsigned n = (unsigned)peer->packet_width;
+    hit_packet packet;
+    for (int base = 0; base < count; base += (int)n) {
+        for (unsigned i = 0; i < n; i++) {
+            int k = base + (int)i;
+            packet.valid[i] = k < count ? -1 : 0;
+            if (k >= count)
+                continue;
+            fill_lane(&packet.rays, n, i, rays[k].o, rays[k].d, float_at_or_above(hits[k].t), (unsigned)k);
+            *lane_uint(hit_part(&packet.rays, n), n, HIT_GEOM_ID, i) = RTC_INVALID_GEOMETRY_ID;
+        }
+        intersect_packet(peer, &q, &packet);
+    }
+}
+
+/* Marks each shadow segment blocked or not: planes first, the rest through Embree. */
+void embree_trace_shadows(const embree_peer *peer, const shadow_ray *shadows, bool *blocked, int count)
+{
+    int pending[EMBREE_WAVE_MAX], pending_count = 0;
+    for (int k = 0; k < count; k++) {
+        blocked[k] = false;
+        for (uint32_t j = 0; j < peer->plane_count && !blocked[k]; j++)
+            blocked[k] = blocks(peer->state, peer->planes[j], &shadows[k]);
+        if (!blocked[k] && peer->prim_count > 0)
+            pending[pending_count++] = k;
+    }
+    query_context q;
+    init_context(&q, peer, false);
+    q.shadows = shadows;
+    const unsigned n = (unsigned)peer->packet_width;
+    shadow_packet packet;
+    for (int base = 0; base < pending_count; base += (int)n) {
+        for (unsigned i = 0; i < n; i++) {
+            int p = base + (int)i;
+            packet.valid[i] = p < pending_count ? -1 : 0;
+            if (p >= pending_count)
+                continue;
+            const shadow_ray *s = &shadows[pending[p]];
+            fill_lane(&packet.rays, n, i, s->o, s->l, float_at_or_above(s->t_max * (1.0 - BG_SHADOW_END_REL)),
+                      (unsigned)pending[p]);
+        }
+        occluded_packet(peer, &q, &packet);
+        for (unsigned i = 0; i < n && base + (int)i < pending_count; i++)
+            blocked[pending[base + (int)i]] = *lane_float(&packet.rays, n, RAY_TFAR, i) < 0.0f;
+    }
+}
+
+/* ---- the public calls ------------------------------------------------------------------------- */
+
+embree_peer *embree_peer_create(const embree_peer_desc *desc, char *message, size_t message_size)
+{
+    embree_peer_desc d = desc ? *desc : (embree_peer_desc){0, 0};
+    if (d.threads == 0) {
+        long online = sysconf(_SC_NPROCESSORS_ONLN);
+        d.threads = online < 1 ? 1 : (online > EMBREE_MAX_THREADS ? EMBREE_MAX_THREADS : (int)online);
+    }
+    if (d.packet_width == 0)
+        d.packet_width = 4;
+    if (d.threads < 1 || d.threads > EMBREE_MAX_THREADS) {
+        embree_fail(message, message_size, "embree peer: threads %d is not in 0..%d", d.threads, EMBREE_MAX_THREADS);
+        return NULL;
+    }
+    if (d.packet_width != 1 && d.packet_width != 4 && d.packet_width != 8 && d.packet_width != 16) {
+        embree_fail(message, message_size, "embree peer: packet_width %d is not 0, 1, 4, 8 or 16", d.packet_width);
+        return NULL;
+    }
+    embree_peer *peer = calloc(1, sizeof *peer);
+    if (!peer) {
+        embree_fail(message, message_size, "embree peer: out of memory");
+        return NULL;
+    }
+    peer->threads = d.threads;
+    peer->packet_width = d.packet_width;
+    char config[64];
+    snprintf(config, sizeof config, "threads=%d", d.threads);
+    peer->device = rtcNewDevice(config);
+    if (!peer->device) {
+        embree_fail(message, message_size, "embree peer: rtcNewDevice(\"%s\") failed (error %d)", config,
+                    (int)rtcGetDeviceError(NULL));
+        free(peer);
+        return NULL;
+    }
+    rtcSetDeviceErrorFunction(peer->device, device_error, peer);
+    for (int i = 0; i < d.threads; i++) {
+        peer->workers[i] = embree_worker_create();
+        if (!peer->workers[i]) {
+            embree_peer_destroy(peer);
+            embree_fail(message, message_size, "embree peer: out of memory");
+            return NULL;
+        }
+    }
+    return peer;
+}
+
+void embree_peer_destroy(embree_peer *peer)
+{
+    if (!peer)
+        return;
+    release_bvh(peer);
+    for (int i = 0; i < peer->threads; i++)
+        embree_worker_destroy(peer->workers[i]);
+    rtcReleaseDevice(peer->device);
+    free(peer);
+}
+
+bool embree_peer_build(embree_peer *peer, const bg_scene *scene, char *message, size_t message_size)
+{
+    if (!peer || !scene)
+        return embree_fail(message, message_size, "embree peer: a NULL argument");
+    const bg_scene_state *state = bg_scene_committed(scene);
+    if (!state)
+        return embree_fail(message, message_size, "embree peer: the scene was never committed");
+    return build_bvh(peer, state, message, message_size);
+}
+
+const char *embree_peer_describe(const embree_peer *peer, char *buffer, size_t size)
+{
+    if (peer->packet_width == 1)
+        snprintf(buffer, size, "rtcIntersect1/rtcOccluded1 single rays, %d threads", peer->threads);
+    else
+        snprintf(buffer, size, "rtcIntersect%d/rtcOccluded%d packets, %d threads", peer->packet_width,
+                 peer->packet_width, peer->threads);
+    return buffer;
+}
+
+double embree_peer_build_ms(const embree_peer *peer)
+{
+    return peer ? peer->build_ms : 0.0;
+}
