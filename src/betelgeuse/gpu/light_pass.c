@@ -90,7 +90,8 @@ static const struct {
     [C_TO_OBJECT] = {"bg_to_object_%d", MACS_UNIFORM_MAT4},
 };
 
-typedef char caster_names[C_COUNT][24];
+/* Room for the longest name with any int (the compiler checks formats against INT_MIN). */
+typedef char caster_names[C_COUNT][32];
 
 /* Names and declares caster j's uniforms into u[0 .. C_COUNT - 1]. */
 static void caster_uniforms(int j, caster_names names, macs_uniform_desc *u)
