@@ -334,9 +334,21 @@ enum {
     BG_SKIP_ALL = (1u << 8) - 1u   /* every bit above: all skips off, the most literal frame */
 };
 
+/* How the GPU renderer lays out a frame (docs/gpu_pipeline.md). The plans render the same shading
+ * model within the same accuracy against the CPU reference, but not bit for bit alike. */
+typedef enum bg_gpu_plan {
+    BG_PLAN_AUTO = 0,  /* fused where the scene and the GL limits allow it, else multipass (the reason
+                          is logged at BG_LOG_INFO); multipass whenever an option only it has is
+                          asked for: gpu_disable_skips, dmax, half_gbuffer or float_depth */
+    BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image;
+                          bg_render_gpu fails (BG_ERR_LIMIT, or BG_ERR_GL when GL refuses the program)
+                          where it cannot run */
+    BG_PLAN_MULTIPASS  /* ray maps, G-buffer, shadow, light and spawn passes level by level */
+} bg_gpu_plan;
+
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
  * min_weight 1/512, sRGB encoding, threads 0 (the online cores), dmax 0 (automatic), no phase
- * timing, every skip on. */
+ * timing, every skip on, GPU plan automatic. */
 typedef struct bg_render_settings {
     double background[3];
     int max_depth;      /* bounce levels after the primary hit, 0 .. 64 */
@@ -349,6 +361,7 @@ typedef struct bg_render_settings {
     bool gpu_timing;    /* GPU renderer only: measure wall time per phase and count shaded fragments
                            (waits for the GPU between phases, so it slows the frame down) */
     unsigned gpu_disable_skips; /* GPU renderer only: BG_SKIP_* bits to switch off (testing) */
+    bg_gpu_plan gpu_plan; /* GPU renderer only: the frame's plan; 0 = BG_PLAN_AUTO */
 } bg_render_settings;
 
 /* The default settings described above. */
@@ -446,6 +459,13 @@ typedef struct bg_render_stats {
     int intersect_objects;           /* objects tested by intersection passes, summed over the passes
                                         (over passes[BG_PASS_INTERSECT]: objects per pass) */
     int shadow_objects;              /* the same for shadow passes */
+    bg_gpu_plan plan;                /* the plan that ran: BG_PLAN_FUSED or BG_PLAN_MULTIPASS. The fused
+                                        plan draws one pass, counted as BG_PASS_INTERSECT (or as
+                                        BG_PASS_BACKGROUND for a scene without objects); it keeps no
+                                        ray sets, levels, dmax, G-buffer or depth buffer, so those
+                                        fields stay 0 */
+    int programs_compiled;           /* shader programs this render built (0 when every pass it needed
+                                        was cached); counted by the fused plan only so far */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

@@ -110,6 +110,8 @@ typedef struct macs_limits {
     int max_color_attachments; /* GL_MAX_COLOR_ATTACHMENTS */
     int max_texture_units;     /* GL_MAX_TEXTURE_IMAGE_UNITS: inputs of one pass */
     int max_texture_size;      /* GL_MAX_TEXTURE_SIZE (and GL_MAX_RENDERBUFFER_SIZE) */
+    int max_uniform_components; /* GL_MAX_FRAGMENT_UNIFORM_COMPONENTS: floats of uniforms one fragment
+                                   shader may declare (at least 64, as GL 2.0 promises) */
 } macs_limits;
 
 /* Defaults: get_proc_address is required; no logger; libc allocator; caps all 0 (no override; a cap
@@ -166,8 +168,8 @@ void macs_context_clear_error(macs_context *ctx);
 /* Copies the limits GL reports (real) and the ones passes obey after caps (effective); either may be NULL. */
 void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
 
-/* GL_MAX_FRAGMENT_UNIFORM_COMPONENTS: the floats of uniforms one fragment shader may declare, for
- * callers that size generated shaders by it (0 for a NULL context). */
+/* The effective max_uniform_components (after caps), for callers that size generated shaders by it
+ * (0 for a NULL context). */
 int macs_context_max_uniform_components(const macs_context *ctx);
 
 /* Copies the GL strings read at creation. */

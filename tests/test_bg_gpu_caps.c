@@ -35,7 +35,7 @@ static float *render(macs_headless *h, const macs_limits *caps, scene_id id, bg_
     bg_scene *s = util_scene(id);
     float *px = malloc((size_t)W * H * 4 * sizeof(float));
     assert_non_null(px);
-    bg_render_settings set = bg_render_settings_init();
+    bg_render_settings set = util_multipass_settings();
     bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, px};
     bg_status st = bg_render_gpu(r, s, &set, &img);
     if (st != BG_OK)
@@ -106,7 +106,9 @@ static void check_caps(macs_headless *h, scene_id id)
         free(px);
     }
     /* Everything capped at once: the smallest hardware of the matrix. */
-    macs_limits all = {1, 1, 8, 0};
+    macs_limits all = {0};
+    all.max_draw_buffers = all.max_color_attachments = 1;
+    all.max_texture_units = 8;
     bg_render_stats st;
     float *px = render(h, &all, id, &st);
     snprintf(what, sizeof what, "%s with 1 draw buffer and 8 texture units", name);

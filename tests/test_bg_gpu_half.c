@@ -113,7 +113,7 @@ static void check_scene(scene_id id)
     bg_image ci = {W, H, BG_PIXEL_RGBA8, 0, cpu}, fi8 = {W, H, BG_PIXEL_RGBA8, 0, full8};
     bg_image hi8 = {W, H, BG_PIXEL_RGBA8, 0, half8};
     bg_image fif = {W, H, BG_PIXEL_RGBA32F, 0, fullf}, hif = {W, H, BG_PIXEL_RGBA32F, 0, halff};
-    bg_render_settings set = bg_render_settings_init();
+    bg_render_settings set = util_multipass_settings();
     assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
 
     util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &fi8, name);
@@ -186,7 +186,7 @@ static void split_passes_give_the_same_bits(void **state)
     assert_true(a && b);
     bg_image ai = {W, H, BG_PIXEL_RGBA32F, 0, a}, bi = {W, H, BG_PIXEL_RGBA32F, 0, b};
     bg_scene *s = util_scene(SCENE_TEXTURED_ANISO); /* every slot: transparency, tangents and coats */
-    bg_render_settings set = bg_render_settings_init();
+    bg_render_settings set = util_multipass_settings();
     util_render_gpu(half, util_fx.ctx, s, &set, &ai, "uncapped");
     util_render_gpu(r, ctx, s, &set, &bi, "one draw buffer");
     bg_render_stats stats;
@@ -285,7 +285,7 @@ static void fallback_without_rgba16f(void **state)
     assert_true(a && b);
     bg_image ai = {W, H, BG_PIXEL_RGBA32F, 0, a}, bi = {W, H, BG_PIXEL_RGBA32F, 0, b};
     bg_scene *s = util_scene(SCENE_GLASS);
-    bg_render_settings set = bg_render_settings_init();
+    bg_render_settings set = util_multipass_settings();
     util_render_gpu(r, ctx, s, &set, &ai, "fallback");
     util_render_gpu(full, ctx, s, &set, &bi, "default");
     bg_render_stats stats;

@@ -1,4 +1,5 @@
-/* The GPU renderer against the CPU reference on every shared scene: image metrics within the
+/* The GPU renderer's multipass plan (forced: test_bg_gpu_plans covers the fused one) against the
+ * CPU reference on every shared scene: image metrics within the
  * thresholds of gpu_thresholds.h (printed per scene), no NaN or Inf in the float output, the RGBA8
  * output the encoding of the float one, and statistics that match the scene.
  *
@@ -92,7 +93,7 @@ static void check_scene(scene_id id)
     assert_non_null(cpu);
     assert_non_null(gpu);
     assert_non_null(gpuf);
-    bg_render_settings set = bg_render_settings_init();
+    bg_render_settings set = util_multipass_settings();
     bg_image ci = {W, H, BG_PIXEL_RGBA8, 0, cpu}, gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
     bg_image fi = {W, H, BG_PIXEL_RGBA32F, 0, gpuf};
     assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
@@ -185,7 +186,7 @@ static void float_depth(void **state)
     assert_non_null(gpu);
     for (int k = 0; k < 2; k++) {
         bg_scene *s = util_scene(ids[k]);
-        bg_render_settings set = bg_render_settings_init();
+        bg_render_settings set = util_multipass_settings();
         bg_image ci = {W, H, BG_PIXEL_RGBA8, 0, cpu}, gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
         assert_int_equal(bg_render_cpu(s, &set, &ci), BG_OK);
         if (bg_render_gpu(r, s, &set, &gi) != BG_OK)

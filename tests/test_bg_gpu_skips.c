@@ -29,7 +29,7 @@ static run render(bg_scene *s, unsigned disable, bool timing, int max_depth)
     run r;
     r.px = malloc((size_t)W * H * 4 * sizeof(float));
     assert_non_null(r.px);
-    bg_render_settings set = bg_render_settings_init();
+    bg_render_settings set = util_multipass_settings();
     set.gpu_disable_skips = disable;
     set.gpu_timing = timing;
     if (max_depth >= 0)

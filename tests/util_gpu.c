@@ -75,3 +75,10 @@ int util_gpu_group_teardown(void **state)
     util_gpu_close(&util_fx);
     return 0;
 }
+
+bg_render_settings util_multipass_settings(void)
+{
+    bg_render_settings s = bg_render_settings_init();
+    s.gpu_plan = BG_PLAN_MULTIPASS;
+    return s;
+}

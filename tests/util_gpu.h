@@ -21,6 +21,10 @@ void util_gpu_close(util_gpu *g);
 /* A new scene built as the shared scene id and committed; fails the test on error. */
 bg_scene *util_scene(scene_id id);
 
+/* The default settings with the paper's multipass plan forced: for the suites that check that
+ * plan's passes, G-buffer, splits and skips (BG_PLAN_AUTO picks the fused plan where it can). */
+bg_render_settings util_multipass_settings(void);
+
 /* Renders s with bg_render_gpu; on failure fails the test with label, the status, the renderer's
  * message and the message of ctx (the MACS context r renders with). */
 void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_render_settings *set, bg_image *img,

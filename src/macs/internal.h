@@ -96,7 +96,6 @@ struct macs_context {
     macs_log_fn logger;
     void *logger_user;
     macs_limits real, effective;
-    int max_fragment_uniform_components; /* outside macs_limits: callers initialise that by position */
     macs_features features;
     char *gl_strings[4];
     bool allow_float_depth;

@@ -19,7 +19,7 @@ void macs_limits_query(macs_context *ctx)
     v = 0; ctx->gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &v); r->max_texture_size = v;
     /* GL 2.0 promises 64; a driver reporting less is taken at that word rather than at zero. */
     v = 0; ctx->gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &v);
-    ctx->max_fragment_uniform_components = v < 64 ? 64 : v;
+    r->max_uniform_components = v < 64 ? 64 : v;
     /* Depth/stencil objects are renderbuffers of the output size, so the smaller limit rules both. */
     GLint rb = 0;
     ctx->gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
@@ -33,7 +33,7 @@ void macs_limits_query(macs_context *ctx)
 macs_status macs_limits_check_caps(const macs_limits *caps, char *message, size_t size)
 {
     if (caps->max_draw_buffers < 0 || caps->max_color_attachments < 0 || caps->max_texture_units < 0 ||
-        caps->max_texture_size < 0) {
+        caps->max_texture_size < 0 || caps->max_uniform_components < 0) {
         snprintf(message, size, "caps must be 0 (no override) or positive");
         return MACS_ERR_INVALID_ARGUMENT;
     }
@@ -46,6 +46,7 @@ void macs_apply_caps(macs_context *ctx, const macs_limits *caps)
     ctx->effective.max_color_attachments = capped(ctx->real.max_color_attachments, caps->max_color_attachments);
     ctx->effective.max_texture_units = capped(ctx->real.max_texture_units, caps->max_texture_units);
     ctx->effective.max_texture_size = capped(ctx->real.max_texture_size, caps->max_texture_size);
+    ctx->effective.max_uniform_components = capped(ctx->real.max_uniform_components, caps->max_uniform_components);
 }
 
 int macs_outputs_per_chunk(const macs_context *ctx)
@@ -69,5 +70,5 @@ void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits
 
 int macs_context_max_uniform_components(const macs_context *ctx)
 {
-    return ctx ? ctx->max_fragment_uniform_components : 0;
+    return ctx ? ctx->effective.max_uniform_components : 0;
 }

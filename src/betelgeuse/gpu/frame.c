@@ -346,39 +346,10 @@ static bg_status trace(frame *f)
 static bg_status read_back(frame *f, bg_image *image, size_t stride)
 {
     bg_renderer *r = f->r;
-    size_t w = (size_t)r->width, h = (size_t)r->height;
-    bool as_float = image->format == BG_PIXEL_RGBA32F;
-    size_t row = w * (as_float ? 16 : 4);
-    if (r->readback_size < row * h) {
-        bg_free(&r->allocator, r->readback);
-        r->readback = bg_alloc(&r->allocator, row * h);
-        r->readback_size = r->readback ? row * h : 0;
-        if (!r->readback)
-            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the read-back buffer");
-    }
-    macs_status ms;
-    if (as_float) {
-        ms = macs_texture_read(r->accum, r->readback, 0);
-    } else {
-        bg_status st = run(f, r->passes.resolve, BG_PASS_RESOLVE, NULL);
-        if (st != BG_OK)
-            return st;
-        ms = macs_texture_read(r->encoded, r->readback, 0);
-    }
-    if (ms)
-        return gpu_fail_macs(r, ms, "reading the image back");
-    /* GL rows run bottom-up, the caller's top-down. */
-    unsigned char *src = (unsigned char *)r->readback;
-    for (size_t y = 0; y < h; y++) {
-        unsigned char *dst = (unsigned char *)image->pixels + y * stride;
-        memcpy(dst, src + (h - 1 - y) * row, row);
-        if (as_float) {
-            float one = 1.0f;
-            for (size_t x = 0; x < w; x++)
-                memcpy(dst + x * 16 + 12, &one, sizeof one);
-        }
-    }
-    return BG_OK;
+    if (image->format == BG_PIXEL_RGBA32F)
+        return gpu_read_back(r, r->accum, image, stride);
+    bg_status st = run(f, r->passes.resolve, BG_PASS_RESOLVE, NULL);
+    return st != BG_OK ? st : gpu_read_back(r, r->encoded, image, stride);
 }
 
 static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
@@ -457,6 +428,11 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
         return gpu_fail(r, BG_ERR_NOT_COMMITTED, "bg_render_gpu: the scene was never committed");
 
     memset(&r->stats, 0, sizeof r->stats);
+    /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
+    bool fused = false;
+    st = gpu_fused_render(r, state, settings, image, stride, &fused);
+    if (st != BG_OK || fused)
+        return st;
     frame f;
     memset(&f, 0, sizeof f);
     f.r = r;

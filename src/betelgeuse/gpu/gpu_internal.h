@@ -116,6 +116,7 @@ struct bg_renderer {
     uint32_t texture_count;
     macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
     gpu_passes passes;
+    struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
 };
 
 #if defined(__GNUC__)
@@ -204,6 +205,8 @@ bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out);
 bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
 void gpu_targets_release(bg_renderer *r);
 void gpu_scene_textures_release(bg_renderer *r);
+/* Uploads one scene texture as the samplers read it (RGBA32F, GL_LINEAR, its wrap). */
+bg_status gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
 
 /* ---- pass_create.c: making one pass; calls only shader_source.c and fail.c ---- */
 /* Fills the parts of a pass description every pass sets; depth, stencil, blend and colour mask stay
@@ -219,6 +222,10 @@ bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *f
  * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
 bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
                        macs_pass **out, bool *rejected);
+/* gpu_pass_try over assembled texts (desc->main already points into main): fails with a message
+ * when a text ran out of memory or a glsl110 file was missing (files_found false); frees both. */
+bg_status gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
+                              macs_pass_desc *desc, bool trial, macs_pass **out, bool *rejected);
 
 /* ---- ray_passes.c: the passes that make, count, end and spawn rays ---- */
 /* The camera, mark, background, reflection, refraction and resolve passes, as the renderer's key
@@ -287,6 +294,11 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
 #define GPU_MARK_IN_WEIGHT 0
 #define GPU_BACKGROUND_IN_WEIGHT 0
 
+/* ---- read_back.c ---- */
+/* Copies a finished RGBA8 or RGBA32F texture of the image's size into the caller's image, rows
+ * flipped to top-down, alpha 1 for float images. */
+bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride);
+
 /* ---- rect.c ---- */
 /* Grows a to the smallest rectangle holding a and b ({x, y, width, height}; empty ones add nothing). */
 void gpu_rect_union(int a[4], const int b[4]);
@@ -295,5 +307,172 @@ void gpu_rect_union(int a[4], const int b[4]);
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
 #define GPU_STENCIL_LIVE 0x1u
 #define GPU_STENCIL_HIT 0x2u
+
+/* ---- fused.c ---- (with fused_layout.c, fused_uniforms.c, fused_source.c) */
+/* The fused plan (BG_PLAN_FUSED): one fragment pass per frame computes the whole image. Its program
+ * is a function of the scene's structure alone (gpu_fused_layout), so every value the scene or the
+ * settings give lives in a uniform of the list below and a value-only re-commit compiles nothing. */
+
+/* Material parameters the fused shader evaluates at a hit (docs/shading.md 5): id, the GLSL local
+ * and uniform suffix, vec3 (true) or float, whether the value is clamped to [0, 1] (true) or to
+ * >= 0 after texturing, and which materials have it (a gpu_fused_need). */
+#define GPU_FUSED_PARAMS(X)                                   \
+    X(BASE_C, "base_c", true, true, USED)                     \
+    X(BASE_R, "base_r", false, true, USED)                    \
+    X(BASE_P, "base_p", false, true, ANISO)                   \
+    X(AMBIENT, "ambient", true, false, USED)                  \
+    X(EMISSION, "emission", true, false, USED)                \
+    X(TRANSPARENCY, "transparency", false, true, TRANSPARENT) \
+    X(COAT_C, "coat_c", true, true, COAT)                     \
+    X(COAT_R, "coat_r", false, true, COAT)                    \
+    X(COAT_P, "coat_p", false, true, COAT_ANISO)
+
+typedef enum gpu_fused_param {
+#define GPU_FUSED_PARAM_ENUM_(id, local, color, unit, need) GPU_FUSED_P_##id,
+    GPU_FUSED_PARAMS(GPU_FUSED_PARAM_ENUM_)
+#undef GPU_FUSED_PARAM_ENUM_
+    GPU_FUSED_P_COUNT_
+} gpu_fused_param;
+
+/* When a uniform (or parameter) exists: for every frame, with bounces, with lights; per object
+ * always, with a tangent, with UVs; per material used, anisotropic, transparent, coated, both. */
+typedef enum gpu_fused_need {
+    GPU_FUSED_NEED_ALWAYS = 0, GPU_FUSED_NEED_BOUNCE, GPU_FUSED_NEED_LIGHTS, GPU_FUSED_NEED_TANGENT,
+    GPU_FUSED_NEED_UV, GPU_FUSED_NEED_USED, GPU_FUSED_NEED_ANISO, GPU_FUSED_NEED_TRANSPARENT,
+    GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO
+} gpu_fused_need;
+
+/* Who a uniform belongs to: the frame, the light arrays (one element per light), an object, a material. */
+typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_OBJECT, GPU_FUSED_MATERIAL } gpu_fused_scope;
+
+/* Every uniform of the fused shader besides the material parameters (which follow as rows
+ * "bg_m<k>_<local>", one per GPU_FUSED_PARAMS entry): id, scope, GLSL name (%u: the object or
+ * material index), type, when it exists, the fused_uniforms.c function that computes its value. The
+ * declarations, the uniform budget, the values and the names the generated source uses all come
+ * from this list and GPU_FUSED_PARAMS. */
+#define GPU_FUSED_UNIFORMS(X)                                                   \
+    X(SIZE, FRAME, "bg_size", VEC2, ALWAYS, image_size)                         \
+    X(FORWARD, FRAME, "bg_forward", VEC3, ALWAYS, camera_forward)               \
+    X(RIGHT, FRAME, "bg_right", VEC3, ALWAYS, camera_right)                     \
+    X(UP, FRAME, "bg_up", VEC3, ALWAYS, camera_up)                              \
+    X(TAN_HALF, FRAME, "bg_tan_half", VEC2, ALWAYS, camera_tan_half)            \
+    X(BACKGROUND, FRAME, "bg_background", VEC3, ALWAYS, background)             \
+    X(OUTPUT, FRAME, "bg_output", VEC2, ALWAYS, output_encoding)                \
+    X(MIN_WEIGHT, FRAME, "bg_min_weight", FLOAT, BOUNCE, min_weight)            \
+    X(LIGHT_POS, LIGHTS, "bg_lpos", VEC4, LIGHTS, light_position)               \
+    X(LIGHT_RAD, LIGHTS, "bg_lrad", VEC3, LIGHTS, light_radiance)               \
+    X(LIGHT_ATT, LIGHTS, "bg_latt", VEC3, LIGHTS, light_attenuation)            \
+    X(LIGHT_SPOT, LIGHTS, "bg_lspot", VEC4, LIGHTS, light_spot)                 \
+    X(LIGHT_EXP, LIGHTS, "bg_lexp", FLOAT, LIGHTS, light_exponent)              \
+    X(TO_OBJECT, OBJECT, "bg_o%u_to_object", MAT4, ALWAYS, object_to_object)    \
+    X(NORMAL, OBJECT, "bg_o%u_normal", MAT3, ALWAYS, object_normal)             \
+    X(TO_WORLD3, OBJECT, "bg_o%u_to_world3", MAT3, TANGENT, object_to_world3)   \
+    X(UV_SCALE, OBJECT, "bg_o%u_uv_scale", VEC2, UV, object_uv_scale)           \
+    X(IOR, MATERIAL, "bg_m%u_ior", FLOAT, TRANSPARENT, material_ior)
+
+typedef enum gpu_fused_uniform {
+#define GPU_FUSED_UNIFORM_ENUM_(id, scope, name, type, need, value) GPU_FUSED_U_##id,
+    GPU_FUSED_UNIFORMS(GPU_FUSED_UNIFORM_ENUM_)
+#undef GPU_FUSED_UNIFORM_ENUM_
+    GPU_FUSED_U_COUNT_
+} gpu_fused_uniform;
+
+/* The row of material parameter p in the uniform list (after the GPU_FUSED_UNIFORMS rows). */
+#define GPU_FUSED_PARAM_ROW(p) (GPU_FUSED_U_COUNT_ + (int)(p))
+#define GPU_FUSED_ROW_COUNT (GPU_FUSED_U_COUNT_ + GPU_FUSED_P_COUNT_)
+
+/* A material as the fused shader specialises it; only used materials get code and uniforms. */
+typedef struct gpu_fused_material {
+    bool used, aniso, coat, transparent;
+    bool bounce;                          /* may spawn a secondary ray (gpu_material_may_bounce) */
+    bool textured;                        /* some parameter samples a texture: its objects need UVs */
+    uint32_t texture[GPU_FUSED_P_COUNT_]; /* scene texture (1-based) of each parameter, 0 none */
+    int channel[GPU_FUSED_P_COUNT_];      /* the texel channel of a textured scalar */
+    int sampler[GPU_FUSED_P_COUNT_];      /* the shader's sampler of that texture, -1 none */
+} gpu_fused_material;
+
+typedef struct gpu_fused_object {
+    bg_shape shape;
+    uint32_t material;
+    bg_uv_mapping uv_mapping;
+    bool casts_shadows;
+} gpu_fused_object;
+
+/* Everything the fused program depends on: the scene's structure and the bounce depth. Values
+ * never enter the program; rays_needed, the one field a value (min_weight) sets, only decides
+ * whether the program may run. */
+typedef struct gpu_fused_layout {
+    uint32_t object_count, material_count, light_count;
+    gpu_fused_object *objects;
+    gpu_fused_material *materials;
+    uint32_t *samplers;  /* scene textures (1-based) in sampler order */
+    int sampler_count;
+    bool transparent, aniso, coat, shadows; /* some used material is / some caster can shadow another */
+    int max_depth;       /* bounce levels traced: settings.max_depth, 0 when no material bounces */
+    int stack;           /* pending rays the shader holds: max_depth with transparency, else 0 */
+    bool light_loop;     /* lights in a loop rather than unrolled (GPU_FUSED_UNROLLED_SHADOW_TESTS) */
+    int loop_rays;       /* the trace loop's bound: every ray of the full tree, within GPU_FUSED_MAX_LOOP */
+    double rays_needed;  /* the most rays a pixel can follow, min_weight's pruning counted */
+} gpu_fused_layout;
+
+/* llvmpipe ends a shader invocation silently after 65535 loop iterations in all, so the trace loop
+ * never runs longer: a pixel that could need more rays renders with the multipass. */
+#define GPU_FUSED_MAX_LOOP 65535
+/* Shadow tests (lights x casters) up to which lights are unrolled. Each unrolled light inlines its
+ * own copy of every caster's test: at 2 lights x 17 casters (many_spheres) the program took 14 s
+ * to compile on a loaded llvmpipe, 5.6 s with a loop over the lights, which renders 15-35 % slower
+ * (many_spheres, many_lights, glass at 256x256). */
+#define GPU_FUSED_UNROLLED_SHADOW_TESTS 16
+
+/* The values of one render, for the uniforms. */
+typedef struct gpu_fused_values {
+    const bg_scene_state *state;
+    const bg_render_settings *settings;
+    int width, height;
+    bool float_output;
+} gpu_fused_values;
+
+/* Renders the frame with the fused plan when settings (and, for BG_PLAN_AUTO, the scene and the GL
+ * limits) choose it: *done true. Otherwise *done is false with BG_OK and the caller runs the
+ * multipass (stats.plan says so). stride is the image's checked row stride. */
+bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+                           bg_image *image, size_t stride, bool *done);
+/* Frees the fused plan's program, textures and cache. */
+void gpu_fused_release(bg_renderer *r);
+
+/* ---- fused_layout.c ---- */
+/* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator);
+ * false when out of memory. */
+bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
+                            gpu_fused_layout *out);
+void gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
+/* The constant and texture of material parameter p of m (rgb for colours; value in v[0] for scalars). */
+void gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel);
+/* Whether a material has what a per-material uniform or parameter needs (the "need" columns). */
+bool gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);
+/* Whether an object of the layout's material samples textures / needs a shading tangent. */
+bool gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
+bool gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object);
+
+/* ---- fused_uniforms.c ---- */
+/* The GLSL name of row `row` (a gpu_fused_uniform or GPU_FUSED_PARAM_ROW) for object or material i. */
+void gpu_fused_uniform_name(int row, uint32_t i, char *name, size_t size);
+/* Whether row exists for object or material i (frame and light rows: i is ignored). */
+bool gpu_fused_uniform_present(const gpu_fused_layout *l, int row, uint32_t i);
+/* Uniform components the layout declares, counted in whole vec4s as old hardware allocates them. */
+int gpu_fused_uniform_components(const gpu_fused_layout *l);
+/* The uniform declarations of the layout into a new array (names kept in *names, both freed with
+ * gpu_fused_uniforms_free); false when out of memory. */
+bool gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l, macs_uniform_desc **out,
+                                int *count, char **names);
+void gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names);
+/* Sets every uniform of the layout in the pass from the render's values; reports errors. */
+bg_status gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v);
+
+/* ---- fused_source.c ---- */
+/* The fused shader of a layout: its functions (the glsl110/ library and the generated scene code)
+ * into functions, its main into main, and the expression written to the output. False when a
+ * library file is missing or memory ran out. */
+bool gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output);
 
 #endif

@@ -484,16 +484,7 @@ static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pa
     gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,
                        hp->outputs, hp->output_tex, hp->output_count);
     set_depth_stencil(r, &desc);
-    bg_status st = BG_OK;
-    if (main.failed || functions.failed)
-        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the intersection shader");
-    else if (!have)
-        st = gpu_fail(r, BG_ERR_GL, "bg_render_gpu: intersection pass: a shape or UV mapping shader file is missing");
-    else
-        st = gpu_pass_try(r, "intersection pass", functions.s, &desc, trial, out, rejected);
-    gpu_text_free(&main);
-    gpu_text_free(&functions);
-    return st;
+    return gpu_pass_from_texts(r, "intersection pass", &main, &functions, have, &desc, trial, out, rejected);
 }
 
 /* Sets every member's constants into the made pass. */

@@ -234,15 +234,7 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, con
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_MULTIPLY;
 
-    bg_status st;
-    if (main.failed || functions.failed)
-        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a shadow shader");
-    else if (!have)
-        st = gpu_fail(r, BG_ERR_GL, "bg_render_gpu: shadow pass: a shape shader file is missing");
-    else
-        st = gpu_pass_try(r, "shadow pass", functions.s, &desc, trial, out, rejected);
-    gpu_text_free(&main);
-    gpu_text_free(&functions);
+    bg_status st = gpu_pass_from_texts(r, "shadow pass", &main, &functions, have, &desc, trial, out, rejected);
     if (st != BG_OK || !*out)
         return st;
     return set_shadow_uniforms(r, *out, state, &sp);

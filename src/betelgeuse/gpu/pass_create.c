@@ -73,3 +73,18 @@ bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, 
     }
     return gpu_fail_macs(r, ms, what);
 }
+
+bg_status gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
+                              macs_pass_desc *desc, bool trial, macs_pass **out, bool *rejected)
+{
+    bg_status st;
+    if (main->failed || functions->failed)
+        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the %s shader", what);
+    else if (!files_found)
+        st = gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: a glsl110 file its shader needs is missing", what);
+    else
+        st = gpu_pass_try(r, what, functions->s, desc, trial, out, rejected);
+    gpu_text_free(main);
+    gpu_text_free(functions);
+    return st;
+}

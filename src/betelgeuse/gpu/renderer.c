@@ -73,6 +73,7 @@ void gpu_release_all(bg_renderer *r)
     gpu_passes_release(r);
     gpu_targets_release(r);
     gpu_scene_textures_release(r);
+    gpu_fused_release(r);
     memset(&r->key, 0, sizeof r->key);
 }
 

@@ -204,17 +204,23 @@ bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state
     memset(r->textures, 0, state->texture_count * sizeof *r->textures);
     r->texture_count = state->texture_count;
     for (uint32_t i = 0; i < state->texture_count; i++) {
-        const bg_texture_data *t = &state->textures[i];
-        memset(&d, 0, sizeof d);
-        d.width = t->width;
-        d.height = t->height;
-        d.format = MACS_FORMAT_RGBA32F;
-        d.filter = MACS_FILTER_LINEAR;
-        d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
-        d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
-        ms = macs_texture_create(r->ctx, &d, &r->textures[i]);
-        if (ms)
-            return gpu_fail_macs(r, ms, "scene texture");
+        bg_status st = gpu_scene_texture_upload(r, &state->textures[i], &r->textures[i]);
+        if (st != BG_OK)
+            return st;
     }
     return BG_OK;
+}
+
+bg_status gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
+{
+    macs_texture_desc d;
+    memset(&d, 0, sizeof d);
+    d.width = t->width;
+    d.height = t->height;
+    d.format = MACS_FORMAT_RGBA32F;
+    d.filter = MACS_FILTER_LINEAR; /* no mipmaps: docs/shading.md 5 */
+    d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
+    d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
+    macs_status ms = macs_texture_create(r->ctx, &d, out);
+    return ms ? gpu_fail_macs(r, ms, "scene texture") : BG_OK;
 }

@@ -1,0 +1,481 @@
+/* The fused plan (BG_PLAN_FUSED): one fragment pass per frame computes the whole image, from the
+ * camera ray of each pixel through every bounce to the output encoding (fused_source.c generates
+ * it), where the multipass writes ray maps and a G-buffer and runs shadow, light and spawn passes
+ * level by level. On llvmpipe the one pass saves what each of those passes costs whatever it
+ * computes, and every G-buffer write and read: at 512x512 (medians of 7, interleaved with the
+ * multipass, 2 cores shared with other work) paper_earth took 15.5 ms against 37.0, paper_earth_shadow
+ * 20.7 against 49.7 and glass (max_depth 5) 74 against 1065.
+ *
+ * Invariant: the program depends on the scene's structure alone (gpu_fused_layout), and its full
+ * source is the cache key; values reach it as uniforms, so a re-commit that moves the camera or
+ * changes a material's colour compiles nothing. BG_PLAN_AUTO takes the fused plan only within the
+ * bounds below, where it was measured against the CPU reference (test_bg_gpu_plans) and against the
+ * multipass; outside them, or when GL refuses the program, it renders with the multipass and says
+ * why at BG_LOG_INFO. */
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "../common/alloc.h"
+#include "gpu_internal.h"
+
+/* Bounds of BG_PLAN_AUTO, as measured on llvmpipe (2 cores shared, 512x512, medians): objects are
+ * unrolled into the shader, so its compile time grows faster than their number: many_spheres with
+ * 16, 32 and 64 spheres rendered in 0.46, 0.94 and 2.0 s where the multipass took 10, 13 and 45 s,
+ * but its first frame, compile included, took 5.6, 19.5 and 71 s against the multipass's 13, 13
+ * and 45 s. Lights beyond GPU_FUSED_UNROLLED_SHADOW_TESTS go in a loop: many_lights with 16 and 64
+ * lights took 191 and 659 ms against 253 and 885 ms. A pixel's rays are bounded by what the tests
+ * check: the glass tree of max_depth 5 (63 rays) by default, forced at max_depth 12 (5119 rays with
+ * the default min_weight), both within the glass scene's thresholds. */
+#define AUTO_MAX_OBJECTS 32
+#define AUTO_MAX_LIGHTS 64
+#define AUTO_MAX_RAYS 1023.0
+
+struct gpu_fused {
+    char *key;     /* the cached program's source and declarations: its structure */
+    char *refused; /* the last key GL refused; BG_PLAN_AUTO does not try it again */
+    macs_pass *pass;
+    gpu_fused_layout layout; /* of the cached pass */
+    int width, height;       /* of the pass and its outputs */
+    macs_texture *out_bytes, *out_float;
+    macs_texture **textures; /* per scene texture (handle - 1), those some sampler reads */
+    uint32_t texture_count;
+    uint64_t texture_hash;   /* of what textures hold */
+};
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static char *copy_string(const bg_allocator *a, const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = bg_alloc(a, n);
+    if (c)
+        memcpy(c, s, n);
+    return c;
+}
+
+/* BG_PLAN_AUTO goes to the multipass: says why at BG_LOG_INFO. */
+static bg_status decline(bg_renderer *r, const char *why)
+{
+    if (r->log) {
+        char message[MACS_MESSAGE_SIZE];
+        snprintf(message, sizeof message, "bg_render_gpu: rendering with the multipass plan: %s", why);
+        r->log(BG_LOG_INFO, message, r->log_user);
+    }
+    return BG_OK;
+}
+
+/* ---- what the fused plan can render ---- */
+
+/* A setting or renderer option that only the multipass has, which BG_PLAN_AUTO honours by choosing
+ * it (a forced fused plan has none of them and ignores them); NULL when none is asked for. */
+static const char *multipass_option(const bg_renderer *r, const bg_render_settings *settings)
+{
+    if (settings->gpu_disable_skips)
+        return "settings.gpu_disable_skips switches off work of the multipass plan";
+    if (settings->dmax > 0.0)
+        return "settings.dmax sets the multipass plan's depth scale";
+    if (r->half_gbuffer)
+        return "the renderer was created for a half-float G-buffer, which only the multipass plan has";
+    if (r->float_depth)
+        return "the renderer was created for a float depth buffer, which only the multipass plan has";
+    return NULL;
+}
+
+/* False with the reason when the layout is beyond the GL limits or, for BG_PLAN_AUTO, beyond the
+ * bounds the fused plan was measured within. */
+static bool fits(const bg_renderer *r, const gpu_fused_layout *l, bool forced, char *why, size_t size)
+{
+    int comps = gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
+    if (l->rays_needed > l->loop_rays)
+        snprintf(why, size, "a pixel may follow up to %.0f rays at max_depth %d (min_weight counted), more than "
+                 "the %d the fused shader's loop may run", l->rays_needed, l->max_depth, l->loop_rays);
+    else if (comps > budget)
+        snprintf(why, size, "the fused shader needs %d uniform components, GL allows %d", comps, budget);
+    else if (l->sampler_count > r->limits.max_texture_units)
+        snprintf(why, size, "the fused shader samples %d textures, GL has %d texture units", l->sampler_count,
+                 r->limits.max_texture_units);
+    else if (!forced && l->object_count > AUTO_MAX_OBJECTS)
+        snprintf(why, size, "%u objects, more than the %d the fused plan unrolls", l->object_count, AUTO_MAX_OBJECTS);
+    else if (!forced && l->light_count > AUTO_MAX_LIGHTS)
+        snprintf(why, size, "%u lights, more than the %d the fused plan was measured with", l->light_count,
+                 AUTO_MAX_LIGHTS);
+    else if (!forced && l->rays_needed > AUTO_MAX_RAYS)
+        snprintf(why, size, "a pixel may follow up to %.0f rays, more than the %.0f the fused plan was measured with",
+                 l->rays_needed, AUTO_MAX_RAYS);
+    else
+        return true;
+    return false;
+}
+
+/* ---- textures ---- */
+
+/* Mixes n bytes into h eight at a time (splitmix64's finaliser per word): a frame hashes every
+ * sampled texel, so this runs at memory speed rather than a byte at a time. */
+static uint64_t hash_bytes(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i += 8) {
+        uint64_t w = 0;
+        memcpy(&w, b + i, n - i < 8 ? n - i : 8);
+        uint64_t z = h ^ (w + 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        h = z ^ (z >> 31);
+    }
+    return h;
+}
+
+/* What the sampled textures hold. The scene and commit count cannot say it: a scene freed and
+ * another made can land at one address with one count (fingerprint.c hashes texels for the same
+ * reason). */
+static uint64_t texture_hash(const bg_scene_state *state, const gpu_fused_layout *l)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (int k = 0; k < l->sampler_count; k++) {
+        const bg_texture_data *t = &state->textures[l->samplers[k] - 1];
+        int head[3] = {t->width, t->height, (int)t->wrap};
+        h = hash_bytes(h, &l->samplers[k], sizeof l->samplers[k]);
+        h = hash_bytes(h, head, sizeof head);
+        h = hash_bytes(h, t->texels, (size_t)t->width * (size_t)t->height * 4 * sizeof(float));
+    }
+    return h;
+}
+
+static void textures_release(bg_renderer *r, struct gpu_fused *f)
+{
+    for (uint32_t i = 0; i < f->texture_count; i++)
+        macs_texture_destroy(f->textures[i]);
+    bg_free(&r->allocator, f->textures);
+    f->textures = NULL;
+    f->texture_count = 0;
+    f->texture_hash = 0;
+}
+
+/* Uploads the textures the samplers read, unless they already hold the same texels. */
+static bg_status textures_prepare(bg_renderer *r, struct gpu_fused *f, const bg_scene_state *state,
+                                  const gpu_fused_layout *l)
+{
+    uint64_t h = texture_hash(state, l);
+    if (f->textures && f->texture_count == state->texture_count && f->texture_hash == h)
+        return BG_OK;
+    textures_release(r, f);
+    if (state->texture_count == 0)
+        return BG_OK;
+    f->textures = bg_alloc(&r->allocator, state->texture_count * sizeof *f->textures);
+    if (!f->textures)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
+    memset(f->textures, 0, state->texture_count * sizeof *f->textures);
+    f->texture_count = state->texture_count;
+    for (int k = 0; k < l->sampler_count; k++) {
+        uint32_t i = l->samplers[k] - 1;
+        bg_status st = gpu_scene_texture_upload(r, &state->textures[i], &f->textures[i]);
+        if (st != BG_OK)
+            return st;
+    }
+    f->texture_hash = h;
+    return BG_OK;
+}
+
+/* ---- the pass ---- */
+
+static void outputs_release(struct gpu_fused *f)
+{
+    macs_texture_destroy(f->out_bytes);
+    macs_texture_destroy(f->out_float);
+    f->out_bytes = f->out_float = NULL;
+}
+
+/* The output texture of the image's format at its size (the pass writes either). */
+static bg_status output_for(bg_renderer *r, struct gpu_fused *f, int w, int h, bool as_float, macs_texture **out)
+{
+    macs_texture **slot = as_float ? &f->out_float : &f->out_bytes;
+    if (!*slot) {
+        macs_texture_desc d;
+        memset(&d, 0, sizeof d);
+        d.width = w;
+        d.height = h;
+        d.format = as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8;
+        macs_status ms = macs_texture_create(r->ctx, &d, slot);
+        if (ms)
+            return gpu_fail_macs(r, ms, "fused plan: output texture");
+    }
+    *out = *slot;
+    return BG_OK;
+}
+
+/* The source text, with the uniforms and samplers it is declared with: the key of the program. */
+typedef struct program_text {
+    gpu_text functions, main, key;
+    const char *output;
+    macs_uniform_desc *uniforms;
+    char *uniform_names;
+    int uniform_count;
+} program_text;
+
+static void program_text_free(bg_renderer *r, program_text *p)
+{
+    gpu_text_free(&p->functions);
+    gpu_text_free(&p->main);
+    gpu_text_free(&p->key);
+    gpu_fused_uniforms_free(&r->allocator, p->uniforms, p->uniform_names);
+    p->uniforms = NULL;
+    p->uniform_names = NULL;
+}
+
+static bg_status program_text_make(bg_renderer *r, const gpu_fused_layout *l, program_text *p)
+{
+    memset(p, 0, sizeof *p);
+    gpu_text_init(&p->functions, &r->allocator);
+    gpu_text_init(&p->main, &r->allocator);
+    gpu_text_init(&p->key, &r->allocator);
+    if (!gpu_fused_source(l, &p->functions, &p->main, &p->output))
+        return p->functions.failed || p->main.failed
+                   ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader")
+                   : gpu_fail(r, BG_ERR_GL, "bg_render_gpu: fused shader: a glsl110/ file is missing");
+    if (!gpu_fused_uniforms_declare(&r->allocator, l, &p->uniforms, &p->uniform_count, &p->uniform_names))
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory declaring the fused uniforms");
+    gpu_text_append(&p->key, p->functions.s);
+    gpu_text_append(&p->key, p->main.s);
+    gpu_text_printf(&p->key, "// out %s, samplers %d\n", p->output, l->sampler_count);
+    for (int i = 0; i < p->uniform_count; i++)
+        gpu_text_printf(&p->key, "// uniform %s %d %d\n", p->uniforms[i].name, (int)p->uniforms[i].type,
+                        p->uniforms[i].count);
+    if (p->key.failed)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader");
+    return BG_OK;
+}
+
+/* Creates the pass of the program text for outputs of out's size. With trial (BG_PLAN_AUTO), a
+ * program GL refuses is not an error: *refused gets the reason and the MACS error is forgotten. */
+static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_text *p, macs_texture *out, bool trial,
+                             macs_pass **pass, char *refused, size_t refused_size)
+{
+    enum { NAME = 16 };
+    int n = l->sampler_count;
+    macs_input_desc *inputs = bg_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
+    if (!inputs)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
+    char *names = (char *)(inputs + (n ? n : 1));
+    for (int k = 0; k < n; k++) {
+        snprintf(names + k * NAME, NAME, "bg_tex%d", k);
+        inputs[k].name = names + k * NAME;
+    }
+    macs_output_desc output = {"radiance", p->output};
+    macs_texture *outs[1] = {out};
+    macs_pass_desc desc;
+    gpu_pass_desc_init(&desc, p->main.s, inputs, NULL, n, p->uniforms, p->uniform_count, &output, outs, 1);
+    desc.functions = p->functions.s;
+    bool clean = macs_context_error(r->ctx) == MACS_OK;
+    macs_status ms = macs_pass_create(r->ctx, &desc, pass);
+    bg_free(&r->allocator, inputs);
+    if (ms == MACS_OK)
+        return BG_OK;
+    *pass = NULL;
+    if (trial && clean && (ms == MACS_ERR_SHADER_COMPILE || ms == MACS_ERR_SHADER_LINK)) {
+        snprintf(refused, refused_size, "GL refused the fused program (%s): %s", macs_status_string(ms),
+                 macs_context_error_message(r->ctx));
+        macs_context_clear_error(r->ctx);
+        return BG_OK;
+    }
+    return gpu_fail_macs(r, ms, trial ? "fused pass" : "fused pass (BG_PLAN_FUSED)");
+}
+
+/* Makes f->pass the program of p at w x h, reusing the cached one when its key is the same. A size
+ * change alone makes a pass of the same program, which MACS's program cache hands over while the
+ * old pass still holds it: nothing is compiled. *declined is set when GL refused the program under
+ * BG_PLAN_AUTO (the reason logged). */
+static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *l, program_text *p, int w, int h,
+                              bool as_float, bool forced, bool *declined)
+{
+    *declined = false;
+    bool same = f->pass && f->key && strcmp(f->key, p->key.s) == 0;
+    if (same && f->width == w && f->height == h)
+        return BG_OK;
+    if (!forced && f->refused && strcmp(f->refused, p->key.s) == 0) {
+        *declined = true;
+        return decline(r, "GL refused the fused program for this scene before");
+    }
+    if (f->width != w || f->height != h)
+        outputs_release(f);
+    macs_texture *out = NULL;
+    bg_status st = output_for(r, f, w, h, as_float, &out);
+    if (st != BG_OK)
+        return st;
+    macs_pass *pass = NULL;
+    char refused[MACS_MESSAGE_SIZE] = "";
+    st = pass_create(r, l, p, out, !forced, &pass, refused, sizeof refused);
+    if (st != BG_OK)
+        return st;
+    if (!pass) {
+        bg_free(&r->allocator, f->refused);
+        f->refused = copy_string(&r->allocator, p->key.s);
+        *declined = true;
+        return decline(r, refused);
+    }
+    if (!same)
+        r->stats.programs_compiled += macs_pass_chunk_count(pass);
+    macs_pass_destroy(f->pass);
+    f->pass = pass;
+    f->width = w;
+    f->height = h;
+    if (!same) {
+        char *key = copy_string(&r->allocator, p->key.s);
+        if (!key)
+            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory caching the fused program");
+        bg_free(&r->allocator, f->key);
+        f->key = key;
+        gpu_fused_layout_free(&r->allocator, &f->layout);
+        f->layout = *l;
+        memset(l, 0, sizeof *l); /* the cache owns its arrays now */
+    }
+    return BG_OK;
+}
+
+/* ---- one frame ---- */
+
+static void phase_mark(bg_renderer *r, bool timing, double *clock, bg_phase phase)
+{
+    if (!timing)
+        return;
+    macs_context_finish(r->ctx);
+    double t = now_ms();
+    r->stats.phase_ms[phase] += t - *clock;
+    *clock = t;
+}
+
+/* Binds the frame's textures and output to the cached pass and sets every uniform; *out gets the
+ * output texture. */
+static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+                            const bg_image *image, macs_texture **out)
+{
+    struct gpu_fused *f = r->fused;
+    const gpu_fused_layout *l = &f->layout;
+    bool as_float = image->format == BG_PIXEL_RGBA32F;
+    bg_status st = textures_prepare(r, f, state, l);
+    if (st == BG_OK)
+        st = output_for(r, f, image->width, image->height, as_float, out);
+    if (st != BG_OK)
+        return st;
+    macs_status ms = MACS_OK;
+    for (int k = 0; k < l->sampler_count && !ms; k++)
+        ms = macs_pass_set_input(f->pass, k, f->textures[l->samplers[k] - 1]);
+    if (!ms)
+        ms = macs_pass_set_output(f->pass, 0, *out);
+    if (ms)
+        return gpu_fail_macs(r, ms, "binding the fused pass");
+    gpu_fused_values v = {state, settings, image->width, image->height, as_float};
+    return gpu_fused_uniforms_set(r, f->pass, l, &v);
+}
+
+/* One pass did everything; it counts as the intersection pass it starts with. */
+static void frame_stats(bg_renderer *r, const bg_scene_state *state, const bg_image *image)
+{
+    r->stats.passes[state->object_count ? BG_PASS_INTERSECT : BG_PASS_BACKGROUND] = 1;
+    r->stats.chunks = macs_pass_chunk_count(r->fused->pass);
+    r->stats.intersect_objects = (int)state->object_count;
+    r->stats.intersect_pixels = (uint64_t)image->width * (uint64_t)image->height;
+}
+
+/* Everything after the choice: the program, the frame's inputs, the pass, the read-back. */
+static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings, bg_image *image,
+                        size_t stride, gpu_fused_layout *l, bool forced, bool *declined)
+{
+    bool timing = settings->gpu_timing;
+    double start = 0.0, clock = 0.0;
+    if (timing) {
+        macs_context_finish(r->ctx);
+        start = clock = now_ms();
+    }
+    program_text p;
+    bg_status st = program_text_make(r, l, &p);
+    if (st == BG_OK)
+        st = pass_prepare(r, r->fused, l, &p, image->width, image->height, image->format == BG_PIXEL_RGBA32F, forced,
+                          declined);
+    program_text_free(r, &p);
+    if (st != BG_OK || *declined)
+        return st;
+    macs_texture *out = NULL;
+    st = bind_frame(r, state, settings, image, &out);
+    phase_mark(r, timing, &clock, BG_PHASE_SETUP);
+    if (st == BG_OK) {
+        macs_status ms = macs_pass_run(r->fused->pass, NULL);
+        if (ms)
+            st = gpu_fail_macs(r, ms, "running the fused pass");
+    }
+    phase_mark(r, timing, &clock, BG_PHASE_INTERSECT);
+    if (st == BG_OK)
+        st = gpu_read_back(r, out, image, stride);
+    phase_mark(r, timing, &clock, BG_PHASE_RESOLVE);
+    if (st != BG_OK)
+        return st;
+    frame_stats(r, state, image);
+    if (timing) {
+        r->stats.timed = true;
+        r->stats.total_ms = now_ms() - start;
+    }
+    return BG_OK;
+}
+
+bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+                           bg_image *image, size_t stride, bool *done)
+{
+    *done = false;
+    r->stats.plan = BG_PLAN_MULTIPASS;
+    if (settings->gpu_plan == BG_PLAN_MULTIPASS)
+        return BG_OK;
+    bool forced = settings->gpu_plan == BG_PLAN_FUSED;
+    const char *option = multipass_option(r, settings);
+    if (!forced && option)
+        return decline(r, option);
+    if (!r->fused) {
+        r->fused = bg_alloc(&r->allocator, sizeof *r->fused);
+        if (!r->fused)
+            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan");
+        memset(r->fused, 0, sizeof *r->fused);
+    }
+    gpu_fused_layout l;
+    if (!gpu_fused_layout_build(&r->allocator, state, settings, &l))
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan's layout");
+    char why[256];
+    if (!fits(r, &l, forced, why, sizeof why)) {
+        gpu_fused_layout_free(&r->allocator, &l);
+        if (forced)
+            return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED cannot render this frame: %s", why);
+        return decline(r, why);
+    }
+    bool declined = false;
+    bg_status st = render(r, state, settings, image, stride, &l, forced, &declined);
+    gpu_fused_layout_free(&r->allocator, &l);
+    if (st != BG_OK) {
+        /* Start the next render from nothing: a failure may have left any object half made. */
+        gpu_fused_release(r);
+        *done = true;
+        return st;
+    }
+    if (!declined) {
+        r->stats.plan = BG_PLAN_FUSED;
+        *done = true;
+    }
+    return BG_OK;
+}
+
+void gpu_fused_release(bg_renderer *r)
+{
+    struct gpu_fused *f = r->fused;
+    if (!f)
+        return;
+    macs_pass_destroy(f->pass);
+    outputs_release(f);
+    textures_release(r, f);
+    gpu_fused_layout_free(&r->allocator, &f->layout);
+    bg_free(&r->allocator, f->key);
+    bg_free(&r->allocator, f->refused);
+    bg_free(&r->allocator, f);
+    r->fused = NULL;
+}

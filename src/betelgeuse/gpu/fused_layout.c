@@ -1,0 +1,207 @@
+/* The structure of a committed scene as the fused plan's program sees it (gpu_internal.h,
+ * gpu_fused_layout). Invariant: nothing here depends on a value the scene may change without a new
+ * structure, except through the material feature classes the multipass specialises on too
+ * (features.c): transparency > 0, isotropy < 1, roughness < 1/2, a coat, a texture handle. A value
+ * that moves a material across one of them changes the program; any other value only a uniform. */
+#include <math.h>
+#include <string.h>
+
+#include "../common/alloc.h"
+#include "gpu_internal.h"
+
+static const bool param_is_color[GPU_FUSED_P_COUNT_] = {
+#define COLOR_(id, local, color, unit, need) color,
+    GPU_FUSED_PARAMS(COLOR_)
+#undef COLOR_
+};
+
+void gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel)
+{
+    const bg_color_param *c = NULL;
+    const bg_scalar_param *s = NULL;
+    switch (p) {
+    case GPU_FUSED_P_BASE_C: c = &m->base.reflectance; break;
+    case GPU_FUSED_P_BASE_R: s = &m->base.roughness; break;
+    case GPU_FUSED_P_BASE_P: s = &m->base.isotropy; break;
+    case GPU_FUSED_P_AMBIENT: c = &m->ambient; break;
+    case GPU_FUSED_P_EMISSION: c = &m->emission; break;
+    case GPU_FUSED_P_TRANSPARENCY: s = &m->transparency; break;
+    case GPU_FUSED_P_COAT_C: c = &m->coat.reflectance; break;
+    case GPU_FUSED_P_COAT_R: s = &m->coat.roughness; break;
+    case GPU_FUSED_P_COAT_P: s = &m->coat.isotropy; break;
+    default: break;
+    }
+    v[0] = v[1] = v[2] = 0.0;
+    *texture = 0;
+    *channel = 0;
+    if (c) {
+        v[0] = c->r;
+        v[1] = c->g;
+        v[2] = c->b;
+        *texture = c->texture;
+    } else if (s) {
+        v[0] = s->value;
+        *texture = s->texture;
+        *channel = s->channel & 3;
+    }
+}
+
+static bool layer_aniso(const bg_schlick_layer *l)
+{
+    return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
+}
+
+bool gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need)
+{
+    switch (need) {
+    case GPU_FUSED_NEED_USED: return m->used;
+    case GPU_FUSED_NEED_ANISO: return m->used && m->aniso;
+    case GPU_FUSED_NEED_TRANSPARENT: return m->used && m->transparent;
+    case GPU_FUSED_NEED_COAT: return m->used && m->coat;
+    case GPU_FUSED_NEED_COAT_ANISO: return m->used && m->coat && m->aniso;
+    default: return false;
+    }
+}
+
+static const gpu_fused_need param_need[GPU_FUSED_P_COUNT_] = {
+#define NEED_(id, local, color, unit, need) GPU_FUSED_NEED_##need,
+    GPU_FUSED_PARAMS(NEED_)
+#undef NEED_
+};
+
+/* The material's classes and texture lanes; samplers are numbered in order of first use. */
+static void describe_material(const bg_material *src, gpu_fused_material *m, gpu_fused_layout *l)
+{
+    m->transparent = src->transparency.value > 0.0;
+    m->coat = src->has_coat;
+    m->aniso = layer_aniso(&src->base) || (src->has_coat && layer_aniso(&src->coat));
+    m->bounce = gpu_material_may_bounce(src);
+    for (int p = 0; p < GPU_FUSED_P_COUNT_; p++) {
+        double v[3];
+        m->sampler[p] = -1;
+        m->texture[p] = 0;
+        m->channel[p] = 0;
+        if (!gpu_fused_material_has(m, param_need[p]))
+            continue;
+        gpu_fused_param_of(src, (gpu_fused_param)p, v, &m->texture[p], &m->channel[p]);
+        if (param_is_color[p])
+            m->channel[p] = 0;
+        if (!m->texture[p])
+            continue;
+        int lane = -1;
+        for (int k = 0; k < l->sampler_count; k++)
+            if (l->samplers[k] == m->texture[p])
+                lane = k;
+        if (lane < 0) {
+            lane = l->sampler_count++;
+            l->samplers[lane] = m->texture[p];
+        }
+        m->sampler[p] = lane;
+        m->textured = true;
+    }
+}
+
+/* Whether some caster can shadow another object: a lone object only ever meets its own surface,
+ * which is never tested (docs/shading.md 2.8). */
+static bool any_shadow(const gpu_fused_layout *l)
+{
+    if (l->object_count < 2)
+        return false;
+    for (uint32_t j = 0; j < l->object_count; j++)
+        if (l->objects[j].casts_shadows)
+            return true;
+    return false;
+}
+
+/* Objects whose shadow a point may have to test: none where no caster can shadow another. */
+static uint32_t casters(const gpu_fused_layout *l)
+{
+    uint32_t n = 0;
+    for (uint32_t j = 0; j < l->object_count && l->shadows; j++)
+        n += l->objects[j].casts_shadows ? 1 : 0;
+    return n;
+}
+
+/* The most rays one pixel can follow down to `depth` levels: a chain without transparency, else
+ * the binary tree, pruned by min_weight when given (> 0). The children's weights never sum to more
+ * than their parent's in any channel (opaque m + T F + T (1 - F) <= opaque + T = 1, as m <= 1), so
+ * the rays of one level weigh at most 3 summed over their channels, and each ray followed has a
+ * channel of at least min_weight: at most 3 / min_weight rays per level. Saturates at 2^40. */
+static double rays_bound(int depth, bool tree, double min_weight)
+{
+    if (!tree)
+        return depth + 1.0;
+    double per_level = min_weight > 0.0 ? floor(3.0 / min_weight) : 1e300;
+    double total = 1.0, level = 1.0;
+    for (int k = 1; k <= depth && total < 0x1p40; k++) {
+        level *= 2.0;
+        total += level < per_level ? level : per_level;
+    }
+    return total < 0x1p40 ? total : 0x1p40;
+}
+
+bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
+                            gpu_fused_layout *out)
+{
+    gpu_fused_layout l;
+    memset(&l, 0, sizeof l);
+    l.object_count = state->object_count;
+    l.material_count = state->material_count;
+    l.light_count = state->light_count;
+    l.objects = bg_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.objects);
+    l.materials = bg_alloc(a, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
+    l.samplers = bg_alloc(a, (state->texture_count ? state->texture_count : 1) * sizeof *l.samplers);
+    if (!l.objects || !l.materials || !l.samplers) {
+        gpu_fused_layout_free(a, &l);
+        return false;
+    }
+    memset(l.materials, 0, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
+    for (uint32_t j = 0; j < l.object_count; j++) {
+        const bg_object_data *o = &state->objects[j];
+        l.objects[j] = (gpu_fused_object){o->shape, o->material, o->uv_mapping, o->casts_shadows};
+        l.materials[o->material].used = true;
+    }
+    bool bounce = false;
+    for (uint32_t k = 0; k < l.material_count; k++) {
+        gpu_fused_material *m = &l.materials[k];
+        if (!m->used)
+            continue;
+        describe_material(&state->materials[k], m, &l);
+        l.transparent |= m->transparent;
+        l.aniso |= m->aniso;
+        l.coat |= m->coat;
+        bounce |= m->bounce;
+    }
+    l.shadows = any_shadow(&l) && l.light_count > 0;
+    l.max_depth = bounce ? settings->max_depth : 0;
+    l.stack = l.transparent ? l.max_depth : 0;
+    uint32_t tests = l.light_count * (casters(&l) ? casters(&l) : 1);
+    l.light_loop = l.light_count > 1 && tests > GPU_FUSED_UNROLLED_SHADOW_TESTS;
+    /* The loop bound is a constant of the program, so it cannot depend on min_weight; the pruned
+     * bound only tells whether that constant is enough (gpu_fused_render). Each ray runs the light
+     * loop too, where there is one, and every iteration counts against llvmpipe's limit. */
+    double full = rays_bound(l.max_depth, l.transparent, 0.0);
+    int most = GPU_FUSED_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
+    l.loop_rays = full < most ? (int)full : most;
+    l.rays_needed = rays_bound(l.max_depth, l.transparent, settings->min_weight);
+    *out = l;
+    return true;
+}
+
+void gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *l)
+{
+    bg_free(a, l->objects);
+    bg_free(a, l->materials);
+    bg_free(a, l->samplers);
+    memset(l, 0, sizeof *l);
+}
+
+bool gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object)
+{
+    return l->materials[l->objects[object].material].textured;
+}
+
+bool gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
+{
+    return l->materials[l->objects[object].material].aniso;
+}

@@ -1,0 +1,358 @@
+/* The fused plan's shader, generated from a layout (gpu_fused_layout) and nothing else: the same
+ * structure always gives the same text, which is therefore the key of the cached program (fused.c).
+ *
+ * On llvmpipe, code inside a branch no pixel takes costs nothing but the branch, while every loop
+ * iteration costs (a body run twice costs 3x a straight copy), so the scene is specialised rather
+ * than branched on: only the shapes present, texture lookups only for textured parameters, a
+ * tangent only for anisotropic materials, refraction and its ray stack only with transparency, no
+ * loop at all without bounces, and every object and caster unrolled with its own uniforms (no
+ * dynamic indexing, which old hardware lacks), and the lights too unless that would inline too many
+ * shadow tests (GPU_FUSED_UNROLLED_SHADOW_TESTS). The functions come from the glsl110/ library
+ * (bg_shape_*, bg_hit_root, bg_stage_shadow, bg_uv_*, bg_tangent, bg_stage_spawn, ...), each shape's
+ * and mapping's copy renamed by #define as the multipass does (hit_pass.c, light_pass.c). */
+#include <stdio.h>
+#include <string.h>
+
+#include "../common/shapes.h"
+#include "gpu_internal.h"
+
+#define FILE_OF_(shape, name, glsl, thin, default_uv, cpu_span, half_extent) [shape] = glsl,
+static const char *const shape_file[BG_SHAPE_COUNT_] = {BG_SHAPES(FILE_OF_)};
+#undef FILE_OF_
+
+/* The library's files per UV mapping and their suffixes (the same table as hit_pass.c's). */
+static const char *const uv_file[BG_UV_COUNT_] = {NULL, "bg_uv_spherical.glsl", "bg_uv_planar.glsl",
+                                                  "bg_uv_box.glsl", "bg_uv_cylindrical.glsl"};
+static const char *const uv_name[BG_UV_COUNT_] = {"none", "spherical", "planar", "box", "cylindrical"};
+
+#define SEEN_CAP 64
+
+static const char *const param_local[GPU_FUSED_P_COUNT_] = {
+#define LOCAL_(id, local, color, unit, need) local,
+    GPU_FUSED_PARAMS(LOCAL_)
+#undef LOCAL_
+};
+static const bool param_color[GPU_FUSED_P_COUNT_] = {
+#define COLOR_(id, local, color, unit, need) color,
+    GPU_FUSED_PARAMS(COLOR_)
+#undef COLOR_
+};
+static const bool param_unit[GPU_FUSED_P_COUNT_] = {
+#define UNIT_(id, local, color, unit, need) unit,
+    GPU_FUSED_PARAMS(UNIT_)
+#undef UNIT_
+};
+
+/* The name of a uniform row for object or material i, in a buffer of the caller's. */
+typedef struct name {
+    char s[48];
+} name;
+
+static name uniform(int row, uint32_t i)
+{
+    name n;
+    gpu_fused_uniform_name(row, i, n.s, sizeof n.s);
+    return n;
+}
+
+/* ---- library ---- */
+
+static bool library(const gpu_fused_layout *l, gpu_text *t)
+{
+    const char *seen[SEEN_CAP];
+    int n = 0;
+    bool ok = gpu_text_snippet(t, "bg_stage_camera.glsl", seen, &n, SEEN_CAP) &&
+              gpu_text_snippet(t, "bg_stage_resolve.glsl", seen, &n, SEEN_CAP) &&
+              gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, SEEN_CAP);
+    static const char *const span[] = {"bg_shape_span", NULL};
+    static const char *const root[] = {"bg_shape_span", "bg_hit_root", NULL};
+    static const char *const shadow[] = {"bg_shape_span", "bg_segment_blocked", "bg_shadow_visibility", NULL};
+    static const char *const uv[] = {"bg_uv_map", NULL};
+    bool shape_done[BG_SHAPE_COUNT_] = {false}, caster_done[BG_SHAPE_COUNT_] = {false};
+    bool uv_done[BG_UV_COUNT_] = {false};
+    for (uint32_t j = 0; j < l->object_count && ok; j++) {
+        const gpu_fused_object *o = &l->objects[j];
+        if (!shape_done[o->shape]) {
+            shape_done[o->shape] = true;
+            ok = gpu_text_snippet_renamed(t, shape_file[o->shape], span, gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP) &&
+                 gpu_text_snippet_renamed(t, "bg_hit_root.glsl", root, gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP);
+        }
+        if (ok && l->shadows && o->casts_shadows && !caster_done[o->shape]) {
+            caster_done[o->shape] = true;
+            ok = gpu_text_snippet_renamed(t, "bg_stage_shadow.glsl", shadow, gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP);
+        }
+        bool mapped = gpu_fused_object_uv(l, j) || gpu_fused_object_tangent(l, j);
+        if (ok && mapped && !uv_done[o->uv_mapping]) {
+            uv_done[o->uv_mapping] = true;
+            ok = uv_file[o->uv_mapping] &&
+                 gpu_text_snippet_renamed(t, uv_file[o->uv_mapping], uv, uv_name[o->uv_mapping], seen, &n, SEEN_CAP);
+        }
+    }
+    if (ok && l->aniso)
+        ok = gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->light_count > 0)
+        ok = gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->max_depth > 0)
+        ok = gpu_text_snippet(t, "bg_stage_spawn.glsl", seen, &n, SEEN_CAP);
+    return ok && gpu_text_snippet(t, "bg_fused_trace.glsl", seen, &n, SEEN_CAP);
+}
+
+/* ---- generated functions ---- */
+
+/* The nearest root: a strict < keeps the object added first on a tie (docs/shading.md 2.7). */
+static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
+{
+    gpu_text_append(t, "// ---- generated: nearest hit over the scene's objects\n"
+                       "bool bg_fused_nearest(vec4 ro, vec4 rd, out float t, out float win, out vec3 p_obj, "
+                       "out vec3 n_obj, out bool first_root)\n{\n"
+                       "    t = 0.0;\n    win = -1.0;\n    p_obj = vec3(0.0);\n    n_obj = vec3(0.0, 1.0, 0.0);\n"
+                       "    first_root = true;\n");
+    if (l->object_count > 0)
+        gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
+    for (uint32_t j = 0; j < l->object_count; j++)
+        gpu_text_printf(t,
+                        "    if (bg_hit_root_%s(ro, rd, %u.0, %s, tj, pj, nj, fj)%s) {\n"
+                        "        t = tj;\n        win = %u.0;\n        p_obj = pj;\n        n_obj = nj;\n"
+                        "        first_root = fj;\n    }\n",
+                        gpu_shape_suffix(l->objects[j].shape), (unsigned)j, uniform(GPU_FUSED_U_TO_OBJECT, j).s,
+                        j ? " && (win < 0.0 || tj < t)" : "", (unsigned)j);
+    gpu_text_append(t, "    return win >= 0.0;\n}\n");
+}
+
+/* Shadow segments against every caster but the object the point lies on (docs/shading.md 2.8). */
+static void emit_blocked(const gpu_fused_layout *l, gpu_text *t)
+{
+    if (l->light_count == 0)
+        return;
+    gpu_text_append(t, "// ---- generated: shadow casters\n"
+                       "bool bg_fused_blocked(vec3 p, vec3 l, float dist, float self)\n{\n");
+    for (uint32_t j = 0; j < l->object_count && l->shadows; j++) {
+        if (!l->objects[j].casts_shadows)
+            continue;
+        gpu_text_printf(t, "    if (self != %u.0 && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
+                        (unsigned)j, gpu_shape_suffix(l->objects[j].shape), uniform(GPU_FUSED_U_TO_OBJECT, j).s);
+    }
+    gpu_text_append(t, "    return false;\n}\n");
+}
+
+/* One branch of an if-chain over `count` cases, the last one the plain else. */
+static void branch(gpu_text *t, const char *var, uint32_t value, int position, int count)
+{
+    if (count == 1)
+        gpu_text_append(t, "    {\n");
+    else if (position == count - 1)
+        gpu_text_append(t, "    else {\n");
+    else
+        gpu_text_printf(t, "    %sif (%s == %u.0) {\n", position ? "else " : "", var, (unsigned)value);
+}
+
+/* The hit attributes of object j (docs/shading.md 3): normal facing the ray, hit code, UV, tangent. */
+static void emit_object_attributes(const gpu_fused_layout *l, gpu_text *t, uint32_t j)
+{
+    const gpu_fused_object *o = &l->objects[j];
+    const char *thin = bg_shape_thin(o->shape) ? "true" : "false";
+    gpu_text_printf(t, "        n = bg_hit_normal(%s, n_obj, d, %s, first_root, entering);\n",
+                    uniform(GPU_FUSED_U_NORMAL, j).s, thin);
+    gpu_text_printf(t, "        code = bg_hit_code(%u.0, %s, entering);\n        mat = %u.0;\n", (unsigned)j, thin,
+                    (unsigned)o->material);
+    bool want_uv = gpu_fused_object_uv(l, j), want_tangent = gpu_fused_object_tangent(l, j);
+    if (want_uv || want_tangent)
+        gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[o->uv_mapping]);
+    if (want_uv)
+        gpu_text_printf(t, "        uv *= %s;\n", uniform(GPU_FUSED_U_UV_SCALE, j).s);
+    /* An isotropic layer's azimuth factor is exactly 1 whatever the tangent (bg_brdf.glsl). */
+    if (want_tangent)
+        gpu_text_printf(t, "        tg = bg_tangent(%s * dpdu, n);\n", uniform(GPU_FUSED_U_TO_WORLD3, j).s);
+    else
+        gpu_text_append(t, "        tg = n;\n");
+}
+
+static const char *const channel_lane[4] = {"r", "g", "b", "a"};
+
+/* Material k's parameters at the hit (docs/shading.md 5): constant x texel, clamped to its range. */
+static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
+{
+    const gpu_fused_material *m = &l->materials[k];
+    for (int p = 0; p < GPU_FUSED_P_COUNT_; p++) {
+        if (!gpu_fused_uniform_present(l, GPU_FUSED_PARAM_ROW(p), k))
+            continue;
+        char value[160];
+        name u = uniform(GPU_FUSED_PARAM_ROW(p), k);
+        if (m->sampler[p] >= 0)
+            snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, uv).%s", u.s, m->sampler[p],
+                     param_color[p] ? "rgb" : channel_lane[m->channel[p] & 3]);
+        else
+            snprintf(value, sizeof value, "%s", u.s);
+        if (param_unit[p])
+            gpu_text_printf(t, "        %s = clamp(%s, 0.0, 1.0);\n", param_local[p], value);
+        else
+            gpu_text_printf(t, "        %s = max(%s, vec3(0.0));\n", param_local[p], value);
+    }
+    if (gpu_fused_uniform_present(l, GPU_FUSED_U_IOR, k))
+        gpu_text_printf(t, "        ior = %s;\n", uniform(GPU_FUSED_U_IOR, k).s);
+}
+
+/* The winner's attributes by object, then its material by material: objects of one material share
+ * the material's code. */
+static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
+{
+    gpu_text_append(t, "// ---- generated: hit attributes and materials\n"
+                       "void bg_fused_surface(float win, vec3 p_obj, vec3 n_obj, bool first_root, vec3 d, out float code, "
+                       "out vec4 nrm, out vec4 base, out vec4 coat, out vec4 tangent, out vec3 once, out vec2 xparent)\n{\n"
+                       "    bool entering = true;\n    vec3 n = -d;\n    float mat = 0.0;\n    vec2 uv = vec2(0.0);\n"
+                       "    vec3 dpdu = vec3(0.0);\n    vec3 tg = -d;\n    code = 0.0;\n");
+    for (uint32_t j = 0; j < l->object_count; j++) {
+        branch(t, "win", j, (int)j, (int)l->object_count);
+        emit_object_attributes(l, t, j);
+        gpu_text_append(t, "    }\n");
+    }
+    /* Parameters a material lacks keep the values that make them vanish: isotropic, opaque, no coat. */
+    gpu_text_append(t, "    vec3 base_c = vec3(0.0), ambient = vec3(0.0), emission = vec3(0.0), coat_c = vec3(0.0);\n"
+                       "    float base_r = 1.0, base_p = 1.0, transparency = 0.0, ior = 1.0, coat_r = -1.0, "
+                       "coat_p = 1.0;\n");
+    int used = 0, position = 0;
+    for (uint32_t k = 0; k < l->material_count; k++)
+        used += l->materials[k].used ? 1 : 0;
+    for (uint32_t k = 0; k < l->material_count; k++) {
+        if (!l->materials[k].used)
+            continue;
+        branch(t, "mat", k, position++, used);
+        emit_material(l, t, k);
+        gpu_text_append(t, "    }\n");
+    }
+    gpu_text_append(t, "    nrm = vec4(n, base_r);\n    base = vec4(base_c, base_p);\n    coat = vec4(coat_c, coat_r);\n"
+                       "    tangent = vec4(tg, coat_p);\n    once = emission + (1.0 - transparency) * ambient;\n"
+                       "    xparent = vec2(transparency, ior);\n}\n");
+}
+
+/* One light's term, the light given by its index into the light arrays (a number or the loop's). */
+static void emit_light_term(gpu_text *t, const char *i, const char *indent)
+{
+    gpu_text_printf(t,
+                    "%sradiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, bg_lpos[%s], bg_lrad[%s], "
+                    "bg_latt[%s], bg_lspot[%s], bg_lexp[%s]);\n",
+                    indent, i, i, i, i, i);
+}
+
+/* Every light in the scene's order (docs/shading.md 8): unrolled, or a loop of the scene's exact
+ * size over the light arrays where unrolling would inline too many shadow tests. */
+static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
+{
+    gpu_text_append(t, "// ---- generated: lights\n"
+                       "void bg_fused_direct(vec3 p, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, vec3 view, float self, "
+                       "vec3 lw, inout vec3 radiance)\n{\n");
+    if (l->light_loop) {
+        gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
+        emit_light_term(t, "i", "        ");
+    } else {
+        for (uint32_t i = 0; i < l->light_count; i++) {
+            char k[16];
+            snprintf(k, sizeof k, "%u", (unsigned)i);
+            emit_light_term(t, k, "    ");
+        }
+    }
+    gpu_text_append(t, "}\n");
+}
+
+/* ---- main ---- */
+
+static const char *const trace_call =
+    "bg_fused_ray(bg_ro, bg_rd, bg_cw.rgb, bg_background, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp)";
+
+/* The children of the hit just traced (docs/shading.md 9), by the multipass spawn function. */
+static void emit_spawn(gpu_text *t, bool transmitted, int child)
+{
+    gpu_text_printf(t,
+                    "        bg_spawn(%s, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp.x, bg_xp.y, bg_rd, vec4(bg_cw.rgb, 1.0), "
+                    "bg_min_weight, bg_o%d, bg_d%d, bg_w%d);\n",
+                    transmitted ? "true" : "false", child, child, child);
+}
+
+/* Makes child `c` the next ray (its level is the current one plus 1). */
+static void emit_follow(gpu_text *t, int c, const char *indent)
+{
+    gpu_text_printf(t, "%sbg_ro = bg_o%d;\n%sbg_rd = bg_d%d;\n%sbg_cw = vec4(bg_w%d.rgb, bg_cw.a + 1.0);\n", indent, c,
+                    indent, c, indent, c);
+}
+
+/* A chain of reflections: one child per hit, no stack. */
+static void emit_chain(const gpu_fused_layout *l, gpu_text *t)
+{
+    gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n", l->loop_rays);
+    gpu_text_printf(t, "    if (!%s || bg_cw.a >= %d.0)\n        break;\n", trace_call, l->max_depth);
+    gpu_text_append(t, "    vec4 bg_o1, bg_d1, bg_w1;\n    {\n");
+    emit_spawn(t, false, 1);
+    gpu_text_append(t, "    }\n    if (bg_w1.a <= 0.0)\n        break;\n");
+    emit_follow(t, 1, "    ");
+    gpu_text_append(t, "}\n");
+}
+
+/* The whole tree depth-first: the reflected child is followed and the transmitted one pushed. The
+ * pending rays are right siblings of the rays on the current path, at most one per level, so a stack
+ * of max_depth entries holds them; it lives in separate variables shifted on push and pop, which on
+ * llvmpipe measured faster than an indexed local array. (Tracing the camera ray before the loop
+ * instead, so that pixels without bounces never enter it, measured slower: 12 % on glass, 50 % on
+ * mirror, with twice the code to compile.) */
+static void emit_tree(const gpu_fused_layout *l, gpu_text *t)
+{
+    int n = l->stack;
+    for (int k = 0; k < n; k++)
+        gpu_text_printf(t, "vec4 bg_s%d_o = vec4(0.0), bg_s%d_d = vec4(0.0), bg_s%d_w = vec4(0.0);\n", k, k, k);
+    gpu_text_append(t, "int bg_pending = 0;\n");
+    gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n    bool bg_next = false;\n", l->loop_rays);
+    gpu_text_printf(t, "    if (%s && bg_cw.a < %d.0) {\n", trace_call, l->max_depth);
+    gpu_text_append(t, "        vec4 bg_o1, bg_d1, bg_w1, bg_o2, bg_d2, bg_w2;\n");
+    emit_spawn(t, false, 1);
+    emit_spawn(t, true, 2);
+    gpu_text_append(t, "        if (bg_w1.a > 0.0 && bg_w2.a > 0.0) {\n");
+    for (int k = n - 1; k > 0; k--)
+        gpu_text_printf(t, "            bg_s%d_o = bg_s%d_o;\n            bg_s%d_d = bg_s%d_d;\n"
+                           "            bg_s%d_w = bg_s%d_w;\n",
+                        k, k - 1, k, k - 1, k, k - 1);
+    gpu_text_append(t, "            bg_s0_o = bg_o2;\n            bg_s0_d = bg_d2;\n"
+                       "            bg_s0_w = vec4(bg_w2.rgb, bg_cw.a + 1.0);\n            bg_pending++;\n");
+    gpu_text_append(t, "        }\n        if (bg_w1.a > 0.0) {\n");
+    emit_follow(t, 1, "            ");
+    gpu_text_append(t, "            bg_next = true;\n        } else if (bg_w2.a > 0.0) {\n");
+    emit_follow(t, 2, "            ");
+    gpu_text_append(t, "            bg_next = true;\n        }\n    }\n"
+                       "    if (!bg_next) {\n        if (bg_pending == 0)\n            break;\n"
+                       "        bg_ro = bg_s0_o;\n        bg_rd = bg_s0_d;\n        bg_cw = bg_s0_w;\n");
+    for (int k = 0; k + 1 < n; k++)
+        gpu_text_printf(t, "        bg_s%d_o = bg_s%d_o;\n        bg_s%d_d = bg_s%d_d;\n        bg_s%d_w = bg_s%d_w;\n", k,
+                        k + 1, k, k + 1, k, k + 1);
+    gpu_text_append(t, "        bg_pending--;\n    }\n}\n");
+}
+
+static void emit_main(const gpu_fused_layout *l, gpu_text *t)
+{
+    /* The eye is the origin of the camera-relative frame (origin.c). bg_cw is the path weight and,
+     * in a, the ray's level. */
+    gpu_text_append(t, "vec4 bg_ro, bg_rd, bg_w0;\n"
+                       "bg_camera_ray(gl_FragCoord.xy, bg_size, vec3(0.0), bg_forward, bg_right, bg_up, bg_tan_half, "
+                       "bg_ro, bg_rd, bg_w0);\n"
+                       "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
+                       "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
+    if (l->max_depth == 0)
+        gpu_text_printf(t, "%s;\n", trace_call);
+    else if (l->stack == 0)
+        emit_chain(l, t);
+    else
+        emit_tree(l, t);
+    /* The output encoding (docs/shading.md 10) is a uniform: RGBA8 in either encoding and RGBA32F
+     * share the program. */
+    gpu_text_append(t, "vec4 bg_out = vec4(bg_radiance, 1.0);\n"
+                       "if (bg_output.x > 0.5)\n    bg_out = vec4(bg_encode(bg_radiance, bg_output.y > 0.5), 1.0);\n");
+}
+
+bool gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output)
+{
+    bool ok = library(l, functions);
+    emit_nearest(l, functions);
+    emit_blocked(l, functions);
+    emit_surface(l, functions);
+    emit_direct(l, functions);
+    emit_main(l, main);
+    *output = "bg_out";
+    return ok && !functions->failed && !main->failed;
+}

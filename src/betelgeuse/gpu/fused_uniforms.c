@@ -1,0 +1,383 @@
+/* The fused shader's uniforms, from one list (GPU_FUSED_UNIFORMS and GPU_FUSED_PARAMS in
+ * gpu_internal.h): their declarations, the uniform budget they take, their values per render, and
+ * the names the generated source uses. A new uniform is one new row there and, for a row of
+ * GPU_FUSED_UNIFORMS, one value function here.
+ *
+ * Every position is camera-relative (origin.c): the eye is the origin of the GPU's frame. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "../common/alloc.h"
+#include "gpu_internal.h"
+
+#define PI 3.14159265358979323846
+
+/* Names are short ("bg_m12_transparency"): this is room for any index. */
+#define NAME_SIZE 40
+
+typedef void (*value_fn)(const gpu_fused_values *v, uint32_t i, float *out);
+
+typedef struct row {
+    gpu_fused_scope scope;
+    const char *name;
+    macs_uniform_type type;
+    gpu_fused_need need;
+    value_fn value; /* NULL for a material parameter: param_value */
+    int param;      /* the gpu_fused_param of a parameter row, else -1 */
+} row;
+
+/* ---- values ---- */
+
+static void copy3(const double *d, float *out)
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = (float)d[i];
+}
+
+static void image_size(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    out[0] = (float)v->width;
+    out[1] = (float)v->height;
+}
+
+static void camera_forward(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    copy3(v->state->camera.forward, out);
+}
+
+static void camera_right(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    copy3(v->state->camera.right, out);
+}
+
+static void camera_up(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    copy3(v->state->camera.up, out);
+}
+
+/* docs/shading.md 1: the horizontal half extent carries the aspect ratio. */
+static void camera_tan_half(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    double aspect = (double)v->width / (double)v->height;
+    out[0] = (float)(aspect * v->state->camera.tan_half_fov_y);
+    out[1] = (float)v->state->camera.tan_half_fov_y;
+}
+
+static void background(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    copy3(v->settings->background, out);
+}
+
+/* (encode into bytes, sRGB): one program serves RGBA8 in either encoding and RGBA32F. */
+static void output_encoding(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    out[0] = v->float_output ? 0.0f : 1.0f;
+    out[1] = v->settings->encoding == BG_ENCODING_SRGB ? 1.0f : 0.0f;
+}
+
+static void min_weight(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    out[0] = (float)v->settings->min_weight;
+}
+
+/* One light packed as bg_light.glsl reads it (the packing of gpu_set_light_uniforms, for any
+ * number of lights). */
+typedef struct packed_light {
+    float pos[4], rad[3], att[3], spot[4], exponent;
+} packed_light;
+
+static packed_light pack_light(const bg_scene_state *state, uint32_t k)
+{
+    const bg_light *l = &state->lights[k];
+    packed_light p;
+    bool directional = l->type == BG_LIGHT_DIRECTIONAL;
+    if (directional) {
+        p.pos[0] = (float)l->direction.x;
+        p.pos[1] = (float)l->direction.y;
+        p.pos[2] = (float)l->direction.z;
+    } else {
+        gpu_origin_point(state, &l->position, p.pos);
+    }
+    p.pos[3] = directional ? 1.0f : 0.0f;
+    for (int c = 0; c < 3; c++) {
+        p.rad[c] = (float)(l->color[c] * l->intensity);
+        p.att[c] = (float)l->attenuation[c];
+    }
+    double axis[3] = {l->direction.x, l->direction.y, l->direction.z};
+    double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    bool cone = !directional && l->spot_cutoff_degrees < 180.0 && len > 0.0;
+    for (int c = 0; c < 3; c++)
+        p.spot[c] = cone ? (float)(axis[c] / len) : 0.0f;
+    /* -2: no cone (bg_light.glsl), below every cosine. */
+    p.spot[3] = cone ? (float)cos(l->spot_cutoff_degrees * (PI / 180.0)) : -2.0f;
+    p.exponent = (float)l->spot_exponent;
+    return p;
+}
+
+static void light_position(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    for (uint32_t k = 0; k < v->state->light_count; k++)
+        memcpy(out + 4 * k, pack_light(v->state, k).pos, 4 * sizeof(float));
+}
+
+static void light_radiance(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    for (uint32_t k = 0; k < v->state->light_count; k++)
+        memcpy(out + 3 * k, pack_light(v->state, k).rad, 3 * sizeof(float));
+}
+
+static void light_attenuation(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    for (uint32_t k = 0; k < v->state->light_count; k++)
+        memcpy(out + 3 * k, pack_light(v->state, k).att, 3 * sizeof(float));
+}
+
+static void light_spot(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    for (uint32_t k = 0; k < v->state->light_count; k++)
+        memcpy(out + 4 * k, pack_light(v->state, k).spot, 4 * sizeof(float));
+}
+
+static void light_exponent(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    for (uint32_t k = 0; k < v->state->light_count; k++)
+        out[k] = pack_light(v->state, k).exponent;
+}
+
+/* GL takes matrices column by column; the scene's are row-major. */
+static void column_major3(const double *m, float *out)
+{
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < 3; r++)
+            out[c * 3 + r] = (float)m[r * 3 + c];
+}
+
+static void object_to_object(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    gpu_origin_to_object(v->state, i, out);
+}
+
+static void object_normal(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    column_major3(&v->state->objects[i].normal_to_world[0][0], out);
+}
+
+static void object_to_world3(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    const double(*w)[4] = v->state->objects[i].to_world;
+    double l3[3][3];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            l3[r][c] = w[r][c];
+    column_major3(&l3[0][0], out);
+}
+
+static void object_uv_scale(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    out[0] = (float)v->state->objects[i].uv_scale[0];
+    out[1] = (float)v->state->objects[i].uv_scale[1];
+}
+
+static void material_ior(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    out[0] = (float)v->state->materials[i].ior;
+}
+
+/* A parameter's constant; the scene's ambient light folds into the material's ambient colour. */
+static void param_value(const gpu_fused_values *v, int param, uint32_t k, float *out)
+{
+    double c[3];
+    uint32_t texture;
+    int channel;
+    gpu_fused_param_of(&v->state->materials[k], (gpu_fused_param)param, c, &texture, &channel);
+    if (param == GPU_FUSED_P_AMBIENT)
+        for (int i = 0; i < 3; i++)
+            c[i] *= v->state->ambient[i];
+    copy3(c, out);
+}
+
+/* ---- the list ---- */
+
+static const row rows[GPU_FUSED_ROW_COUNT] = {
+#define FIXED_ROW_(id, scope, name, type, need, value) \
+    {GPU_FUSED_##scope, name, MACS_UNIFORM_##type, GPU_FUSED_NEED_##need, value, -1},
+    GPU_FUSED_UNIFORMS(FIXED_ROW_)
+#undef FIXED_ROW_
+#define PARAM_ROW_(id, local, color, unit, need) \
+    {GPU_FUSED_MATERIAL, "bg_m%u_" local, color ? MACS_UNIFORM_VEC3 : MACS_UNIFORM_FLOAT, GPU_FUSED_NEED_##need, NULL, \
+     GPU_FUSED_P_##id},
+    GPU_FUSED_PARAMS(PARAM_ROW_)
+#undef PARAM_ROW_
+};
+
+/* How many objects or materials a row is repeated for (1 for frame and light rows). */
+static uint32_t repeats(const gpu_fused_layout *l, const row *w)
+{
+    return w->scope == GPU_FUSED_OBJECT ? l->object_count : w->scope == GPU_FUSED_MATERIAL ? l->material_count : 1;
+}
+
+/* Array length of a row's uniform: the light rows hold one element per light; 0 = not an array. */
+static int array_count(const gpu_fused_layout *l, const row *w)
+{
+    return w->scope == GPU_FUSED_LIGHTS ? (int)l->light_count : 0;
+}
+
+/* Storage of one element as old hardware allocates it: every float, vec2 or vec3 a whole vec4. */
+static int components(macs_uniform_type t)
+{
+    return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
+}
+
+void gpu_fused_uniform_name(int r, uint32_t i, char *name, size_t size)
+{
+    if (rows[r].scope == GPU_FUSED_OBJECT || rows[r].scope == GPU_FUSED_MATERIAL)
+        snprintf(name, size, rows[r].name, (unsigned)i);
+    else
+        snprintf(name, size, "%s", rows[r].name);
+}
+
+bool gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
+{
+    const row *w = &rows[r];
+    switch (w->scope) {
+    case GPU_FUSED_FRAME:
+        return w->need != GPU_FUSED_NEED_BOUNCE || l->max_depth > 0;
+    case GPU_FUSED_LIGHTS:
+        return l->light_count > 0;
+    case GPU_FUSED_OBJECT:
+        return w->need == GPU_FUSED_NEED_ALWAYS || (w->need == GPU_FUSED_NEED_TANGENT && gpu_fused_object_tangent(l, i)) ||
+               (w->need == GPU_FUSED_NEED_UV && gpu_fused_object_uv(l, i));
+    case GPU_FUSED_MATERIAL:
+        return gpu_fused_material_has(&l->materials[i], w->need);
+    }
+    return false;
+}
+
+/* Calls fn for every uniform the layout has; stops at the first false. */
+typedef bool (*visit_fn)(void *user, int r, uint32_t i);
+
+static bool each_uniform(const gpu_fused_layout *l, visit_fn fn, void *user)
+{
+    for (int r = 0; r < GPU_FUSED_ROW_COUNT; r++)
+        for (uint32_t i = 0; i < repeats(l, &rows[r]); i++)
+            if (gpu_fused_uniform_present(l, r, i) && !fn(user, r, i))
+                return false;
+    return true;
+}
+
+typedef struct budget {
+    const gpu_fused_layout *l;
+    int components;
+} budget;
+
+static bool add_components(void *user, int r, uint32_t i)
+{
+    (void)i;
+    budget *b = user;
+    int n = array_count(b->l, &rows[r]);
+    b->components += components(rows[r].type) * (n > 0 ? n : 1);
+    return true;
+}
+
+int gpu_fused_uniform_components(const gpu_fused_layout *l)
+{
+    budget b = {l, 0};
+    each_uniform(l, add_components, &b);
+    return b.components;
+}
+
+static bool count_one(void *user, int r, uint32_t i)
+{
+    (void)r;
+    (void)i;
+    (*(int *)user)++;
+    return true;
+}
+
+typedef struct declaring {
+    const gpu_fused_layout *l;
+    macs_uniform_desc *desc;
+    char *names;
+    int n;
+} declaring;
+
+static bool declare_one(void *user, int r, uint32_t i)
+{
+    declaring *d = user;
+    char *name = d->names + (size_t)d->n * NAME_SIZE;
+    gpu_fused_uniform_name(r, i, name, NAME_SIZE);
+    d->desc[d->n++] = (macs_uniform_desc){name, rows[r].type, array_count(d->l, &rows[r])};
+    return true;
+}
+
+bool gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l, macs_uniform_desc **out, int *count,
+                                char **names)
+{
+    int n = 0;
+    each_uniform(l, count_one, &n);
+    size_t slots = n ? (size_t)n : 1;
+    declaring d = {l, bg_alloc(a, slots * sizeof *d.desc), bg_alloc(a, slots * NAME_SIZE), 0};
+    if (!d.desc || !d.names) {
+        gpu_fused_uniforms_free(a, d.desc, d.names);
+        return false;
+    }
+    each_uniform(l, declare_one, &d);
+    *out = d.desc;
+    *count = d.n;
+    *names = d.names;
+    return true;
+}
+
+void gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names)
+{
+    bg_free(a, desc);
+    bg_free(a, names);
+}
+
+typedef struct setting {
+    macs_pass *pass;
+    const gpu_fused_layout *l;
+    const gpu_fused_values *v;
+    float *scratch; /* room for the largest value: every light's vec4 */
+    macs_status ms;
+} setting;
+
+static bool set_one(void *user, int r, uint32_t i)
+{
+    setting *s = user;
+    const row *w = &rows[r];
+    if (w->value)
+        w->value(s->v, i, s->scratch);
+    else
+        param_value(s->v, w->param, i, s->scratch);
+    char name[NAME_SIZE];
+    gpu_fused_uniform_name(r, i, name, sizeof name);
+    s->ms = macs_pass_set_uniform(s->pass, name, s->scratch);
+    return s->ms == MACS_OK;
+}
+
+bg_status gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v)
+{
+    size_t n = 16 + 4 * (size_t)l->light_count;
+    setting s = {pass, l, v, bg_alloc(&r->allocator, n * sizeof(float)), MACS_OK};
+    if (!s.scratch)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory setting the fused pass's uniforms");
+    memset(s.scratch, 0, n * sizeof(float));
+    each_uniform(l, set_one, &s);
+    bg_free(&r->allocator, s.scratch);
+    return s.ms ? gpu_fail_macs(r, s.ms, "fused pass uniforms") : BG_OK;
+}

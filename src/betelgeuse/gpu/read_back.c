@@ -1,0 +1,35 @@
+/* The last step of every plan: a finished RGBA8 or RGBA32F texture into the caller's image. */
+#include <string.h>
+
+#include "../common/alloc.h"
+#include "gpu_internal.h"
+
+bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride)
+{
+    size_t w = (size_t)image->width, h = (size_t)image->height;
+    bool as_float = image->format == BG_PIXEL_RGBA32F;
+    size_t row = w * (as_float ? 16 : 4);
+    if (r->readback_size < row * h) {
+        bg_free(&r->allocator, r->readback);
+        r->readback = bg_alloc(&r->allocator, row * h);
+        r->readback_size = r->readback ? row * h : 0;
+        if (!r->readback)
+            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the read-back buffer");
+    }
+    macs_status ms = macs_texture_read(texture, r->readback, 0);
+    if (ms)
+        return gpu_fail_macs(r, ms, "reading the image back");
+    /* GL rows run bottom-up, the caller's top-down. */
+    const unsigned char *src = (const unsigned char *)r->readback;
+    for (size_t y = 0; y < h; y++) {
+        unsigned char *dst = (unsigned char *)image->pixels + y * stride;
+        memcpy(dst, src + (h - 1 - y) * row, row);
+        if (as_float) {
+            /* The image is opaque; a plan's float target may use alpha for its own bookkeeping. */
+            float one = 1.0f;
+            for (size_t x = 0; x < w; x++)
+                memcpy(dst + x * 16 + 12, &one, sizeof one);
+        }
+    }
+    return BG_OK;
+}

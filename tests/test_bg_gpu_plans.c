@@ -1,0 +1,541 @@
+/* The GPU renderer's two plans (bg_gpu_plan): the fused plan, one fragment pass per frame, against
+ * the CPU reference on every shared scene within the thresholds the multipass is held to
+ * (gpu_thresholds.h); BG_PLAN_AUTO choosing it where it applies and the multipass, with the reason
+ * logged, where it does not; a forced multipass rendering what the multipass always rendered; a
+ * forced fused plan that cannot run failing clearly; and re-commits that change only values
+ * rendering right without compiling a program.
+ *
+ * The two plans are not bit-identical to each other: they evaluate the same formulas in a
+ * different order (one pass sums a pixel's whole ray tree in registers, the multipass adds level by
+ * level by blending) and the multipass chooses the nearest hit by depth buffer values while the
+ * fused plan compares t itself. Each is held to the CPU reference instead. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "betelgeuse.h"
+#include "betelgeuse/cpu/cpu_internal.h"
+#include "betelgeuse/scene/scene_internal.h"
+#include "gpu_thresholds.h"
+#include "scenes/image_metrics.h"
+#include "scenes/scenes.h"
+#include "util_gl.h"
+#include "util_gpu.h"
+
+/* The size of test_bg_gpu_scenes, where the thresholds were measured. */
+enum { W = 160, H = 120 };
+
+/* ---- helpers ---- */
+
+/* What a renderer logged at BG_LOG_INFO, for the reasons of BG_PLAN_AUTO. */
+typedef struct info_log {
+    char last[1024];
+    int count;
+} info_log;
+
+static void capture_info(bg_log_level level, const char *message, void *user)
+{
+    info_log *log = user;
+    if (level != BG_LOG_INFO)
+        return;
+    snprintf(log->last, sizeof log->last, "%s", message);
+    log->count++;
+}
+
+static bg_renderer *logging_renderer(info_log *log)
+{
+    bg_renderer_desc d = {0};
+    d.context = util_fx.ctx;
+    d.log = capture_info;
+    d.log_user = log;
+    bg_renderer *r = NULL;
+    char message[512];
+    if (bg_renderer_create(&d, &r, message, sizeof message) != BG_OK)
+        fail_msg("bg_renderer_create: %s", message);
+    return r;
+}
+
+static bg_render_settings plan_settings(bg_gpu_plan plan)
+{
+    bg_render_settings s = bg_render_settings_init();
+    s.gpu_plan = plan;
+    return s;
+}
+
+static bg_render_stats render(bg_renderer *r, bg_scene *s, const bg_render_settings *set, bg_image *img,
+                              const char *label)
+{
+    util_render_gpu(r, util_fx.ctx, s, set, img, label);
+    bg_render_stats stats;
+    bg_renderer_stats(r, &stats);
+    return stats;
+}
+
+/* The CPU reference of a scene at an image's size. */
+static unsigned char *reference(bg_scene *s, const bg_render_settings *set, int width, int height)
+{
+    unsigned char *cpu = malloc((size_t)width * height * 4);
+    assert_non_null(cpu);
+    bg_image ci = {width, height, BG_PIXEL_RGBA8, 0, cpu};
+    assert_int_equal(bg_render_cpu(s, set, &ci), BG_OK);
+    return cpu;
+}
+
+/* The GPU image against a CPU reference, within the row of id. */
+static void expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label)
+{
+    bg_image ci = {gpu->width, gpu->height, BG_PIXEL_RGBA8, 0, (void *)cpu};
+    image_metrics m;
+    assert_true(image_metrics_compare(&ci, gpu, GPU_SILHOUETTE_THRESHOLD, &m));
+    char line[512], why[256];
+    print_message("%-28s %s\n", label, image_metrics_format(&m, line, sizeof line));
+    if (!gpu_threshold_check(gpu_threshold_of(id), &m, why, sizeof why))
+        fail_msg("%s: %s", label, why);
+}
+
+/* The GPU image against the CPU reference of the same scene and settings, within the row of id. */
+static void expect_within(bg_scene *s, const bg_render_settings *set, const bg_image *gpu, scene_id id,
+                          const char *label)
+{
+    unsigned char *cpu = reference(s, set, gpu->width, gpu->height);
+    expect_near(cpu, gpu, id, label);
+    free(cpu);
+}
+
+/* ---- every shared scene ---- */
+
+static void check_scene(scene_id id)
+{
+    const char *name = scenes_name(id);
+    char label[64];
+    bg_scene *s = util_scene(id);
+    size_t bytes = (size_t)W * H * 4;
+    bg_render_settings set = plan_settings(BG_PLAN_AUTO);
+    unsigned char *cpu = reference(s, &set, W, H);
+    unsigned char *fused = malloc(bytes), *other = malloc(bytes);
+    float *linear = malloc(bytes * sizeof(float));
+    assert_non_null(fused);
+    assert_non_null(other);
+    assert_non_null(linear);
+    bg_image fi = {W, H, BG_PIXEL_RGBA8, 0, fused}, oi = {W, H, BG_PIXEL_RGBA8, 0, other};
+    bg_image li = {W, H, BG_PIXEL_RGBA32F, 0, linear};
+
+    /* Forced fused: within the scene's thresholds, one pass. */
+    set = plan_settings(BG_PLAN_FUSED);
+    bg_render_stats st = render(util_fx.renderer, s, &set, &fi, name);
+    assert_int_equal(st.plan, BG_PLAN_FUSED);
+    assert_int_equal(st.passes[BG_PASS_INTERSECT], 1);
+    assert_int_equal(st.intersect_objects, (int)bg_scene_committed(s)->object_count);
+    snprintf(label, sizeof label, "%s fused", name);
+    expect_near(cpu, &fi, id, label);
+
+    /* Its float output is finite and what the RGBA8 output encodes. */
+    render(util_fx.renderer, s, &set, &li, name);
+    size_t bad = image_metrics_count_nonfinite(&li);
+    if (bad != 0)
+        fail_msg("%s: %zu non-finite values in the fused RGBA32F output", name, bad);
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        for (int c = 0; c < 3; c++) {
+            float v = linear[4 * i + c];
+            int want = bg_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            if (v < 0.0f || abs(want - fused[4 * i + c]) > 1 || linear[4 * i + 3] != 1.0f)
+                fail_msg("%s: pixel %zu channel %d: float %g encodes to %d, RGBA8 output %d", name, i, c, (double)v,
+                         want, fused[4 * i + c]);
+        }
+
+    /* Automatic: every shared scene is within the fused plan's bounds, and gets the same program. */
+    set = plan_settings(BG_PLAN_AUTO);
+    st = render(util_fx.renderer, s, &set, &oi, name);
+    if (st.plan != BG_PLAN_FUSED)
+        fail_msg("%s: BG_PLAN_AUTO ran plan %d, not the fused plan", name, (int)st.plan);
+    assert_memory_equal(fused, other, bytes);
+
+    free(cpu);
+    free(fused);
+    free(other);
+    free(linear);
+    bg_scene_destroy(s);
+}
+
+UTIL_EACH_SCENE(UTIL_SCENE_TEST)
+
+/* A forced multipass renders what the multipass always rendered, within the same thresholds: the
+ * image BG_PLAN_AUTO gives when a skip is switched off, which sends it to the multipass (switching
+ * off batching changes no bit, test_bg_gpu_skips). Two scenes, one with every bounce kind, keep the
+ * suite short: test_bg_gpu_scenes holds the multipass to the thresholds on every scene. */
+static void forced_multipass_is_the_multipass(void **state)
+{
+    (void)state;
+    const scene_id ids[2] = {SCENE_PAPER_EARTH_SHADOW, SCENE_GLASS};
+    unsigned char forced[W * H * 4], automatic[W * H * 4];
+    bg_image fi = {W, H, BG_PIXEL_RGBA8, 0, forced}, ai = {W, H, BG_PIXEL_RGBA8, 0, automatic};
+    for (int k = 0; k < 2; k++) {
+        bg_scene *s = util_scene(ids[k]);
+        bg_render_settings set = plan_settings(BG_PLAN_MULTIPASS);
+        bg_render_stats st = render(util_fx.renderer, s, &set, &fi, scenes_name(ids[k]));
+        assert_int_equal(st.plan, BG_PLAN_MULTIPASS);
+        assert_true(st.passes[BG_PASS_RAYS] == 1 && st.passes[BG_PASS_RESOLVE] == 1);
+        char label[64];
+        snprintf(label, sizeof label, "%s multipass", scenes_name(ids[k]));
+        expect_within(s, &set, &fi, ids[k], label);
+        set = plan_settings(BG_PLAN_AUTO);
+        set.gpu_disable_skips = BG_SKIP_BATCH;
+        assert_int_equal(render(util_fx.renderer, s, &set, &ai, scenes_name(ids[k])).plan, BG_PLAN_MULTIPASS);
+        assert_memory_equal(forced, automatic, sizeof forced);
+        bg_scene_destroy(s);
+    }
+}
+
+/* The ray tree's shapes: no bounce at all, a single bounce, a partial tree under a coloured
+ * background (seen at every level, through the glass too), and the full tree of max_depth 5 with
+ * nothing pruned (63 rays a pixel, the stack full). */
+static void depths_and_pruning(void **state)
+{
+    (void)state;
+    bg_scene *s = util_scene(SCENE_GLASS);
+    unsigned char px[W * H * 4];
+    bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
+    const int depths[4] = {0, 1, 3, 5};
+    for (int k = 0; k < 4; k++) {
+        bg_render_settings set = plan_settings(BG_PLAN_FUSED);
+        set.max_depth = depths[k];
+        if (depths[k] == 3) {
+            set.background[0] = 0.2;
+            set.background[1] = 0.3;
+            set.background[2] = 0.5;
+        }
+        if (depths[k] == 5)
+            set.min_weight = 0.0;
+        char label[64];
+        snprintf(label, sizeof label, "glass depth %d%s", depths[k], depths[k] == 5 ? " unpruned" : "");
+        assert_int_equal(render(util_fx.renderer, s, &set, &img, label).plan, BG_PLAN_FUSED);
+        expect_within(s, &set, &img, SCENE_GLASS, label);
+    }
+    bg_scene_destroy(s);
+}
+
+/* ---- re-commits ---- */
+
+/* Renders the glass scene fused after each change, within its thresholds, and returns how many
+ * programs the render built. */
+static int fused_render_count(bg_renderer *r, bg_scene *s, bg_image *img, const char *label)
+{
+    bg_render_settings set = plan_settings(BG_PLAN_FUSED);
+    bg_render_stats st = render(r, s, &set, img, label);
+    assert_int_equal(st.plan, BG_PLAN_FUSED);
+    if (img->format == BG_PIXEL_RGBA8)
+        expect_within(s, &set, img, SCENE_GLASS, label);
+    return st.programs_compiled;
+}
+
+/* Camera, material colour, light, transform, image size and format are values: the fused program
+ * stays. A material crossing into another class (glass made opaque: no refraction anywhere) is
+ * structure: a new program. */
+static void value_recommits_compile_nothing(void **state)
+{
+    (void)state;
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    bg_scene *s = util_scene(SCENE_GLASS);
+    const bg_scene_state *ss = bg_scene_committed(s);
+    unsigned char px[W * H * 4];
+    float fpx[W * H * 4];
+    bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
+    assert_true(fused_render_count(r, s, &img, "glass first render") >= 1);
+
+    bg_camera cam = ss->camera.camera;
+    cam.position = bg_vec3_make(0.8, 1.9, 5.2);
+    assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    assert_int_equal(fused_render_count(r, s, &img, "glass camera moved"), 0);
+
+    /* The last material is the mirror sphere's (scenes.c adds floor, glass, chrome). */
+    uint32_t chrome = ss->material_count;
+    bg_material m = ss->materials[chrome - 1];
+    m.base.reflectance.r = 0.95;
+    m.base.reflectance.g = 0.6;
+    m.base.reflectance.b = 0.3;
+    assert_int_equal(bg_scene_set_material(s, chrome, &m), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    assert_int_equal(fused_render_count(r, s, &img, "glass mirror tinted"), 0);
+
+    bg_light l = ss->lights[0];
+    l.position = bg_vec3_make(-2, 7, 3);
+    l.intensity = 1.1;
+    assert_int_equal(bg_scene_set_light(s, 1, &l), BG_OK);
+    bg_mat4 t = bg_mat4_mul(bg_mat4_translate(1.0, 0.1, -0.6), bg_mat4_scale(0.9, 0.9, 0.9));
+    assert_int_equal(bg_scene_set_transform(s, ss->object_count, &t), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    assert_int_equal(fused_render_count(r, s, &img, "glass light and sphere moved"), 0);
+
+    bg_image smaller = {W / 2, H / 2, BG_PIXEL_RGBA8, 0, px};
+    assert_int_equal(fused_render_count(r, s, &smaller, "glass at half size"), 0);
+    bg_image as_float = {W, H, BG_PIXEL_RGBA32F, 0, fpx};
+    assert_int_equal(fused_render_count(r, s, &as_float, "glass as float"), 0);
+
+    /* The glass sphere's material comes before the mirror's. */
+    m = ss->materials[chrome - 2];
+    m.transparency.value = 0.0;
+    assert_int_equal(bg_scene_set_material(s, chrome - 1, &m), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    assert_true(fused_render_count(r, s, &img, "glass made opaque") >= 1);
+
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+}
+
+/* ---- choosing ---- */
+
+/* Outside its bounds, or asked for what only the multipass has, BG_PLAN_AUTO renders with the
+ * multipass and says why; forced, the fused plan still renders there, within the same thresholds. */
+static void auto_falls_back_and_says_why(void **state)
+{
+    (void)state;
+    info_log log = {"", 0};
+    bg_renderer *r = logging_renderer(&log);
+    enum { SW = 48, SH = 36 };
+    unsigned char px[SW * SH * 4];
+    bg_image small = {SW, SH, BG_PIXEL_RGBA8, 0, px};
+
+    /* Skips switched off: their switches are the multipass's. */
+    bg_scene *s = util_scene(SCENE_PAPER_EARTH);
+    bg_render_settings set = plan_settings(BG_PLAN_AUTO);
+    set.gpu_disable_skips = BG_SKIP_SCISSOR;
+    assert_int_equal(render(r, s, &set, &small, "skips off").plan, BG_PLAN_MULTIPASS);
+    if (log.count != 1 || !strstr(log.last, "gpu_disable_skips"))
+        fail_msg("no reason logged for skips off (%d messages, last \"%s\")", log.count, log.last);
+    /* A depth scale of its own: dmax is the multipass's. */
+    set = plan_settings(BG_PLAN_AUTO);
+    set.dmax = 50.0;
+    assert_int_equal(render(r, s, &set, &small, "dmax").plan, BG_PLAN_MULTIPASS);
+    if (log.count != 2 || !strstr(log.last, "dmax"))
+        fail_msg("no reason logged for dmax (%d messages, last \"%s\")", log.count, log.last);
+    bg_scene_destroy(s);
+
+    /* A deep glass tree: more rays per pixel than the fused plan was measured with. */
+    s = util_scene(SCENE_GLASS);
+    set = plan_settings(BG_PLAN_AUTO);
+    set.max_depth = 12;
+    assert_int_equal(render(r, s, &set, &small, "deep glass").plan, BG_PLAN_MULTIPASS);
+    if (log.count != 3 || !strstr(log.last, "rays"))
+        fail_msg("no reason logged for the deep tree (%d messages, last \"%s\")", log.count, log.last);
+    unsigned char big[W * H * 4];
+    bg_image img = {W, H, BG_PIXEL_RGBA8, 0, big};
+    set.gpu_plan = BG_PLAN_FUSED;
+    assert_int_equal(render(r, s, &set, &img, "deep glass fused").plan, BG_PLAN_FUSED);
+    expect_within(s, &set, &img, SCENE_GLASS, "glass depth 12 fused");
+    bg_scene_destroy(s);
+
+    /* More objects than it unrolls. */
+    scene_params p = {0};
+    p.spheres = 48;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    assert_int_equal(scenes_build_ex(SCENE_MANY_SPHERES, &p, s), BG_OK);
+    set = plan_settings(BG_PLAN_AUTO);
+    assert_int_equal(render(r, s, &set, &small, "48 spheres").plan, BG_PLAN_MULTIPASS);
+    if (log.count != 4 || !strstr(log.last, "objects"))
+        fail_msg("no reason logged for 48 spheres (%d messages, last \"%s\")", log.count, log.last);
+    bg_scene_destroy(s);
+    assert_int_equal(bg_renderer_error(r), BG_OK);
+    bg_renderer_destroy(r);
+
+    /* A renderer made for a half-float G-buffer (where GL renders to RGBA16F) keeps its G-buffer. */
+    bg_renderer_desc d = {0};
+    d.context = util_fx.ctx;
+    d.half_gbuffer = true;
+    assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_OK);
+    s = util_scene(SCENE_PAPER_EARTH);
+    set = plan_settings(BG_PLAN_AUTO);
+    bg_render_stats st = render(r, s, &set, &small, "half G-buffer");
+    assert_int_equal(st.plan, st.gbuffer_half_targets > 0 ? BG_PLAN_MULTIPASS : BG_PLAN_FUSED);
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+}
+
+/* A forced fused plan beyond what it can run fails with BG_ERR_LIMIT and says so; the renderer
+ * renders the next frame. */
+static void forced_fused_beyond_limits_fails(void **state)
+{
+    (void)state;
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    bg_scene *s = util_scene(SCENE_GLASS);
+    unsigned char px[32 * 24 * 4];
+    bg_image img = {32, 24, BG_PIXEL_RGBA8, 0, px};
+    /* Without min_weight's pruning the full tree of depth 20 needs 2^21 - 1 rays per pixel. */
+    bg_render_settings set = plan_settings(BG_PLAN_FUSED);
+    set.max_depth = 20;
+    set.min_weight = 0.0;
+    assert_int_equal(bg_render_gpu(r, s, &set, &img), BG_ERR_LIMIT);
+    assert_int_equal(bg_renderer_error(r), BG_ERR_LIMIT);
+    const char *msg = bg_renderer_error_message(r);
+    if (!strstr(msg, "BG_PLAN_FUSED") || !strstr(msg, "rays"))
+        fail_msg("unclear message: \"%s\"", msg);
+    bg_renderer_clear_error(r);
+    set = plan_settings(BG_PLAN_FUSED);
+    assert_int_equal(render(r, s, &set, &img, "after the limit").plan, BG_PLAN_FUSED);
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+
+    /* Fewer texture units than the scene samples textures. */
+    macs_limits caps = {0};
+    caps.max_texture_units = 2;
+    macs_context *ctx = util_context(util_fx.headless, &caps);
+    r = util_renderer(ctx);
+    s = util_scene(SCENE_TEXTURED_ANISO);
+    assert_int_equal(bg_render_gpu(r, s, &set, &img), BG_ERR_LIMIT);
+    msg = bg_renderer_error_message(r);
+    if (!strstr(msg, "texture units"))
+        fail_msg("unclear message: \"%s\"", msg);
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+    macs_context_destroy(ctx);
+}
+
+/* The plan is a setting like any other: defaults to automatic, unknown values are refused. */
+static void plan_setting(void **state)
+{
+    (void)state;
+    bg_render_settings set = bg_render_settings_init();
+    assert_int_equal(set.gpu_plan, BG_PLAN_AUTO);
+    bg_scene *s = util_scene(SCENE_PAPER_EARTH);
+    unsigned char px[8 * 8 * 4];
+    bg_image img = {8, 8, BG_PIXEL_RGBA8, 0, px};
+    set.gpu_plan = (bg_gpu_plan)7;
+    assert_int_equal(bg_render_gpu(util_fx.renderer, s, &set, &img), BG_ERR_INVALID_ARGUMENT);
+    if (!strstr(bg_renderer_error_message(util_fx.renderer), "gpu_plan"))
+        fail_msg("message does not name the field: \"%s\"", bg_renderer_error_message(util_fx.renderer));
+    bg_renderer_clear_error(util_fx.renderer);
+    bg_scene_destroy(s);
+}
+
+/* ---- a GL that refuses the fused program, and a context capped below it ------------------------ */
+
+/* glShaderSource swaps any fragment source holding the fused trace for one that does not compile,
+ * as a GL whose compiler cannot take the long program would fail it. */
+typedef void (*shader_source_fn)(unsigned, int, const char *const *, const int *);
+
+static struct {
+    macs_get_proc_address_fn real;
+    void *real_user;
+    shader_source_fn shader_source;
+    int refused;
+} nofused;
+
+static void nofused_shader_source(unsigned shader, int count, const char *const *strings, const int *lengths)
+{
+    /* MACS passes NUL-terminated sources (lengths NULL), so strstr stays inside each string. */
+    for (int i = 0; i < count && !lengths; i++) {
+        if (strings[i] && strstr(strings[i], "bg_fused_nearest")) {
+            static const char *const broken = "#version 110\nvoid main() { refused by the test's loader }\n";
+            nofused.refused++;
+            nofused.shader_source(shader, 1, &broken, NULL);
+            return;
+        }
+    }
+    nofused.shader_source(shader, count, strings, lengths);
+}
+
+static void *nofused_loader(const char *name, void *user)
+{
+    (void)user;
+    void *p = nofused.real(name, nofused.real_user);
+    if (p && strcmp(name, "glShaderSource") == 0) {
+        /* Function and data pointers meet through memcpy: C99 has no cast between them. */
+        shader_source_fn f = nofused_shader_source;
+        void *fake = NULL;
+        memcpy(&nofused.shader_source, &p, sizeof p);
+        memcpy(&fake, &f, sizeof fake);
+        return fake;
+    }
+    return p;
+}
+
+/* Renders a scene on ctx with AUTO (expecting the multipass, with a reason logged) and with the
+ * multipass forced on the default fixture: the two images must be the same bits. */
+static void auto_falls_back_to_the_same_image(macs_context *ctx, scene_id id, const char *why, const char *label)
+{
+    info_log log = {"", 0};
+    bg_renderer_desc d = {0};
+    d.context = ctx;
+    d.log = capture_info;
+    d.log_user = &log;
+    bg_renderer *r = NULL;
+    char message[512];
+    if (bg_renderer_create(&d, &r, message, sizeof message) != BG_OK)
+        fail_msg("bg_renderer_create: %s", message);
+    bg_scene *s = util_scene(id);
+    float *a = malloc((size_t)W * H * 16), *b = malloc((size_t)W * H * 16);
+    assert_non_null(a);
+    assert_non_null(b);
+    bg_image ia = {W, H, BG_PIXEL_RGBA32F, 0, a}, ib = {W, H, BG_PIXEL_RGBA32F, 0, b};
+    bg_render_settings set = plan_settings(BG_PLAN_AUTO);
+    util_render_gpu(r, ctx, s, &set, &ia, label);
+    bg_render_stats st;
+    bg_renderer_stats(r, &st);
+    assert_int_equal(st.plan, BG_PLAN_MULTIPASS);
+    if (log.count < 1 || !strstr(log.last, why))
+        fail_msg("%s: no reason naming \"%s\" logged (%d messages, last \"%s\")", label, why, log.count, log.last);
+    assert_int_equal(bg_renderer_error(r), BG_OK);
+    set = plan_settings(BG_PLAN_MULTIPASS);
+    util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &ib, label);
+    if (memcmp(a, b, (size_t)W * H * 16) != 0)
+        fail_msg("%s: the fallback's image differs from the forced multipass", label);
+    free(a);
+    free(b);
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+}
+
+static void refused_program_falls_back(void **state)
+{
+    (void)state;
+    memset(&nofused, 0, sizeof nofused);
+    nofused.real = macs_headless_get_proc_address(util_fx.headless);
+    nofused.real_user = macs_headless_proc_user(util_fx.headless);
+    macs_context_desc cd = {0};
+    cd.get_proc_address = nofused_loader;
+    macs_context *ctx = NULL;
+    assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
+    auto_falls_back_to_the_same_image(ctx, SCENE_GLASS, "multipass", "refused fused program");
+    assert_true(nofused.refused >= 1);
+    assert_int_equal(macs_context_error(ctx), MACS_OK);
+    macs_context_destroy(ctx);
+}
+
+static void uniform_cap_falls_back(void **state)
+{
+    (void)state;
+    macs_context_desc cd = {0};
+    cd.get_proc_address = macs_headless_get_proc_address(util_fx.headless);
+    cd.get_proc_address_user = macs_headless_proc_user(util_fx.headless);
+    cd.caps.max_uniform_components = 256; /* GL 2.0 hardware's budget; the multipass's batches fit it */
+    macs_context *ctx = NULL;
+    assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
+    macs_limits eff;
+    macs_context_limits(ctx, NULL, &eff);
+    assert_int_equal(eff.max_uniform_components, 256);
+    assert_int_equal(macs_context_max_uniform_components(ctx), 256);
+    auto_falls_back_to_the_same_image(ctx, SCENE_MANY_LIGHTS, "uniform components", "uniform cap");
+    macs_context_destroy(ctx);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        UTIL_EACH_SCENE(UTIL_SCENE_UNIT_TEST)
+        cmocka_unit_test(forced_multipass_is_the_multipass),
+        cmocka_unit_test(depths_and_pruning),
+        cmocka_unit_test(value_recommits_compile_nothing),
+        cmocka_unit_test(auto_falls_back_and_says_why),
+        cmocka_unit_test(forced_fused_beyond_limits_fails),
+        cmocka_unit_test(plan_setting),
+        cmocka_unit_test(refused_program_falls_back),
+        cmocka_unit_test(uniform_cap_falls_back),
+    };
+    return cmocka_run_group_tests(tests, util_gpu_group_setup, util_gpu_group_teardown);
+}
