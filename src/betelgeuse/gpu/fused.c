@@ -256,7 +256,7 @@ static bg_status program_text_make(bg_renderer *r, const gpu_fused_layout *l, pr
 static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_text *p, macs_texture *out, bool trial,
                              macs_pass **pass, char *refused, size_t refused_size)
 {
-    enum { NAME = 16 };
+    enum { NAME = 24 }; /* "bg_tex" and any int */
     int n = l->sampler_count;
     macs_input_desc *inputs = bg_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
     if (!inputs)
