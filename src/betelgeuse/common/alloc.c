@@ -53,3 +53,12 @@ bool bg_size_mul(size_t a, size_t b, size_t *out)
     *out = a * b;
     return true;
 }
+
+char *bg_strdup(const bg_allocator *a, const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = bg_alloc(a, n);
+    if (c)
+        memcpy(c, s, n);
+    return c;
+}

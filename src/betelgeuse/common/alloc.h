@@ -12,6 +12,8 @@ void *bg_alloc(const bg_allocator *a, size_t size);
 void *bg_realloc(const bg_allocator *a, void *ptr, size_t old_size, size_t new_size);
 /* Frees a block from bg_alloc or bg_realloc; NULL is ignored. */
 void bg_free(const bg_allocator *a, void *ptr);
+/* A copy of the string s through the hooks, or NULL. */
+char *bg_strdup(const bg_allocator *a, const char *s);
 /* a * b into *out; false on overflow of size_t. */
 bool bg_size_mul(size_t a, size_t b, size_t *out);
 

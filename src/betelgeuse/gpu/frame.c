@@ -5,7 +5,6 @@
  * counted by an occlusion query; a set with none is never traced. Depth-first order keeps at most
  * max_depth + 2 sets alive at once. */
 #include <string.h>
-#include <time.h>
 
 #include "../common/alloc.h"
 #include "gpu_internal.h"
@@ -25,28 +24,14 @@ typedef struct frame {
     int bounce_rect[4];
 } frame;
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-/* Phase timing needs the GPU drained at both ends, so it only happens when asked for. */
 static void phase_start(frame *f)
 {
-    if (!f->timing)
-        return;
-    macs_context_finish(f->r->ctx);
-    f->clock = now_ms();
+    gpu_phase_start(f->r, f->timing, &f->clock);
 }
 
 static void phase_end(frame *f, bg_phase phase)
 {
-    if (!f->timing)
-        return;
-    macs_context_finish(f->r->ctx);
-    f->r->stats.phase_ms[phase] += now_ms() - f->clock;
+    gpu_phase_end(f->r, f->timing, &f->clock, phase);
 }
 
 static bg_status run(frame *f, macs_pass *pass, bg_pass_kind kind, const macs_run_desc *desc)
@@ -439,7 +424,7 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     f.state = state;
     f.settings = settings;
     f.timing = settings->gpu_timing;
-    double start = f.timing ? now_ms() : 0.0;
+    double start = f.timing ? gpu_now_ms() : 0.0;
     if (f.timing)
         macs_context_finish(r->ctx);
     gpu_dmax_levels(state, settings, f.dmax);
@@ -478,7 +463,7 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     r->stats.depth_bits = macs_depth_stencil_format(r->depth) == MACS_DEPTH32F_STENCIL8 ? 32 : 24;
     if (f.timing) {
         r->stats.timed = true;
-        r->stats.total_ms = now_ms() - start;
+        r->stats.total_ms = gpu_now_ms() - start;
     }
     return BG_OK;
 }

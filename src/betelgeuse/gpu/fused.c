@@ -3,8 +3,8 @@
  * it), where the multipass writes ray maps and a G-buffer and runs shadow, light and spawn passes
  * level by level. On llvmpipe the one pass saves what each of those passes costs whatever it
  * computes, and every G-buffer write and read: at 512x512 (medians of 7, interleaved with the
- * multipass, 2 cores shared with other work) paper_earth took 15.5 ms against 37.0, paper_earth_shadow
- * 20.7 against 49.7 and glass (max_depth 5) 74 against 1065.
+ * multipass, 2 quiet cores) paper_earth took 9.2 ms against 21.5, paper_earth_shadow 12.5 against
+ * 29.5 and glass (max_depth 5) 44.4 against 651.6.
  *
  * Invariant: the program depends on the scene's structure alone (gpu_fused_layout), and its full
  * source is the cache key; values reach it as uniforms, so a re-commit that moves the camera or
@@ -14,7 +14,6 @@
  * why at BG_LOG_INFO. */
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "../common/alloc.h"
 #include "gpu_internal.h"
@@ -43,21 +42,6 @@ struct gpu_fused {
     uint64_t texture_hash;   /* of what textures hold */
 };
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-static char *copy_string(const bg_allocator *a, const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *c = bg_alloc(a, n);
-    if (c)
-        memcpy(c, s, n);
-    return c;
-}
 
 /* BG_PLAN_AUTO goes to the multipass: says why at BG_LOG_INFO. */
 static bg_status decline(bg_renderer *r, const char *why)
@@ -195,18 +179,12 @@ static void outputs_release(struct gpu_fused *f)
 static bg_status output_for(bg_renderer *r, struct gpu_fused *f, int w, int h, bool as_float, macs_texture **out)
 {
     macs_texture **slot = as_float ? &f->out_float : &f->out_bytes;
-    if (!*slot) {
-        macs_texture_desc d;
-        memset(&d, 0, sizeof d);
-        d.width = w;
-        d.height = h;
-        d.format = as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8;
-        macs_status ms = macs_texture_create(r->ctx, &d, slot);
-        if (ms)
-            return gpu_fail_macs(r, ms, "fused plan: output texture");
-    }
-    *out = *slot;
-    return BG_OK;
+    *out = NULL;
+    bg_status st = gpu_texture_ensure(r, w, h, as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8, slot,
+                                      "fused plan: output texture");
+    if (st == BG_OK)
+        *out = *slot;
+    return st;
 }
 
 /* The source text, with the uniforms and samplers it is declared with: the key of the program. */
@@ -271,19 +249,14 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
     macs_pass_desc desc;
     gpu_pass_desc_init(&desc, p->main.s, inputs, NULL, n, p->uniforms, p->uniform_count, &output, outs, 1);
     desc.functions = p->functions.s;
-    bool clean = macs_context_error(r->ctx) == MACS_OK;
-    macs_status ms = macs_pass_create(r->ctx, &desc, pass);
+    macs_status ms;
+    char why[MACS_MESSAGE_SIZE / 2]; /* GL's message, leaving room for the words around it in refused */
+    bg_status st = gpu_pass_create_trial(r, trial ? "fused pass" : "fused pass (BG_PLAN_FUSED)", &desc, trial, pass,
+                                         &ms, why, sizeof why);
     bg_free(&r->allocator, inputs);
-    if (ms == MACS_OK)
-        return BG_OK;
-    *pass = NULL;
-    if (trial && clean && (ms == MACS_ERR_SHADER_COMPILE || ms == MACS_ERR_SHADER_LINK)) {
-        snprintf(refused, refused_size, "GL refused the fused program (%s): %s", macs_status_string(ms),
-                 macs_context_error_message(r->ctx));
-        macs_context_clear_error(r->ctx);
-        return BG_OK;
-    }
-    return gpu_fail_macs(r, ms, trial ? "fused pass" : "fused pass (BG_PLAN_FUSED)");
+    if (st == BG_OK && ms != MACS_OK)
+        snprintf(refused, refused_size, "GL refused the fused program (%s): %s", macs_status_string(ms), why);
+    return st;
 }
 
 /* Makes f->pass the program of p at w x h, reusing the cached one when its key is the same. A size
@@ -314,7 +287,7 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
         return st;
     if (!pass) {
         bg_free(&r->allocator, f->refused);
-        f->refused = copy_string(&r->allocator, p->key.s);
+        f->refused = bg_strdup(&r->allocator, p->key.s);
         *declined = true;
         return decline(r, refused);
     }
@@ -325,7 +298,7 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
     f->width = w;
     f->height = h;
     if (!same) {
-        char *key = copy_string(&r->allocator, p->key.s);
+        char *key = bg_strdup(&r->allocator, p->key.s);
         if (!key)
             return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory caching the fused program");
         bg_free(&r->allocator, f->key);
@@ -338,16 +311,6 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
 }
 
 /* ---- one frame ---- */
-
-static void phase_mark(bg_renderer *r, bool timing, double *clock, bg_phase phase)
-{
-    if (!timing)
-        return;
-    macs_context_finish(r->ctx);
-    double t = now_ms();
-    r->stats.phase_ms[phase] += t - *clock;
-    *clock = t;
-}
 
 /* Binds the frame's textures and output to the cached pass and sets every uniform; *out gets the
  * output texture. */
@@ -387,11 +350,9 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
                         size_t stride, gpu_fused_layout *l, bool forced, bool *declined)
 {
     bool timing = settings->gpu_timing;
-    double start = 0.0, clock = 0.0;
-    if (timing) {
-        macs_context_finish(r->ctx);
-        start = clock = now_ms();
-    }
+    double clock = 0.0;
+    gpu_phase_start(r, timing, &clock);
+    double start = clock;
     program_text p;
     bg_status st = program_text_make(r, l, &p);
     if (st == BG_OK)
@@ -402,22 +363,22 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
         return st;
     macs_texture *out = NULL;
     st = bind_frame(r, state, settings, image, &out);
-    phase_mark(r, timing, &clock, BG_PHASE_SETUP);
+    gpu_phase_end(r, timing, &clock, BG_PHASE_SETUP);
     if (st == BG_OK) {
         macs_status ms = macs_pass_run(r->fused->pass, NULL);
         if (ms)
             st = gpu_fail_macs(r, ms, "running the fused pass");
     }
-    phase_mark(r, timing, &clock, BG_PHASE_INTERSECT);
+    gpu_phase_end(r, timing, &clock, BG_PHASE_INTERSECT);
     if (st == BG_OK)
         st = gpu_read_back(r, out, image, stride);
-    phase_mark(r, timing, &clock, BG_PHASE_RESOLVE);
+    gpu_phase_end(r, timing, &clock, BG_PHASE_RESOLVE);
     if (st != BG_OK)
         return st;
     frame_stats(r, state, image);
     if (timing) {
         r->stats.timed = true;
-        r->stats.total_ms = now_ms() - start;
+        r->stats.total_ms = gpu_now_ms() - start;
     }
     return BG_OK;
 }

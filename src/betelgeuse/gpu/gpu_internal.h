@@ -192,6 +192,8 @@ void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *sett
 bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
 
 /* ---- targets.c ---- */
+/* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
+bg_status gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what);
 /* (Re)creates the size-dependent targets for width x height and the features' G-buffer slots. */
 bg_status gpu_targets_prepare(bg_renderer *r, int width, int height);
 /* Whether RGBA16F works as a render target next to RGBA32F (one small pass, read back); false with
@@ -218,6 +220,11 @@ void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_de
 /* Creates one pass whose functions are the listed glsl110/ files (plus extra text); reports errors. */
 bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
                           macs_pass_desc *desc, macs_pass **out);
+/* Creates a pass. With trial, a program GL refuses (compile or link) on a context with no earlier
+ * error is not an error: *out stays NULL, *refused gets the status and why GL's message, and the
+ * MACS error is forgotten; a caller then takes another way and says so. */
+bg_status gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
+                                macs_status *refused, char *why, size_t why_size);
 /* Creates a pass from assembled functions. With trial, a shader GL refuses (compile or link) is
  * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
 bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
@@ -293,6 +300,14 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
 #define GPU_SPAWN_IN_WEIGHT 1
 #define GPU_MARK_IN_WEIGHT 0
 #define GPU_BACKGROUND_IN_WEIGHT 0
+
+/* ---- phase_clock.c ---- */
+/* Milliseconds of a monotonic clock. */
+double gpu_now_ms(void);
+/* With timing, drains the GPU and starts *clock; without, does nothing. */
+void gpu_phase_start(bg_renderer *r, bool timing, double *clock);
+/* With timing, drains the GPU, adds the time since *clock to the phase and restarts *clock. */
+void gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase);
 
 /* ---- read_back.c ---- */
 /* Copies a finished RGBA8 or RGBA32F texture of the image's size into the caller's image, rows

@@ -51,27 +51,41 @@ bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *f
     return BG_OK;
 }
 
-bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
-                       macs_pass **out, bool *rejected)
+bg_status gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
+                                macs_status *refused, char *why, size_t why_size)
 {
-    desc->functions = functions;
-    /* A batch's failure is forgotten only if nothing was wrong before it. */
+    *refused = MACS_OK;
+    /* A refusal is forgotten only if nothing was wrong before it. */
     bool clean = macs_context_error(r->ctx) == MACS_OK;
     macs_status ms = macs_pass_create(r->ctx, desc, out);
     if (ms == MACS_OK)
         return BG_OK;
     *out = NULL;
     if (trial && clean && (ms == MACS_ERR_SHADER_COMPILE || ms == MACS_ERR_SHADER_LINK)) {
-        /* The longer shader of a batch is beyond this GL: the caller falls back to smaller passes. */
-        gpu_log(r, BG_LOG_WARNING,
-                "bg_render_gpu: %s: the batched shader was refused (%s), falling back to one object per pass: %s",
-                what, macs_status_string(ms), macs_context_error_message(r->ctx));
+        *refused = ms;
+        snprintf(why, why_size, "%s", macs_context_error_message(r->ctx));
         macs_context_clear_error(r->ctx);
-        if (rejected)
-            *rejected = true;
         return BG_OK;
     }
     return gpu_fail_macs(r, ms, what);
+}
+
+bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+                       macs_pass **out, bool *rejected)
+{
+    desc->functions = functions;
+    macs_status refused;
+    char why[MACS_MESSAGE_SIZE];
+    bg_status st = gpu_pass_create_trial(r, what, desc, trial, out, &refused, why, sizeof why);
+    if (st == BG_OK && refused != MACS_OK) {
+        /* The longer shader of a batch is beyond this GL: the caller falls back to smaller passes. */
+        gpu_log(r, BG_LOG_WARNING,
+                "bg_render_gpu: %s: the batched shader was refused (%s), falling back to one object per pass: %s",
+                what, macs_status_string(refused), why);
+        if (rejected)
+            *rejected = true;
+    }
+    return st;
 }
 
 bg_status gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,

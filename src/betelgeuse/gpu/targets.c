@@ -7,7 +7,7 @@
 #include "../common/alloc.h"
 #include "gpu_internal.h"
 
-static bg_status texture(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
+bg_status gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
 {
     if (*out)
         return BG_OK;
@@ -134,14 +134,14 @@ bg_status gpu_targets_prepare(bg_renderer *r, int w, int h)
     bg_status st = BG_OK;
     for (int s = 0; s < GPU_SLOT_COUNT && st == BG_OK; s++)
         if (r->features.slot[s])
-            st = texture(r, w, h, gpu_slot_format(r, (gpu_slot)s), &r->gbuffer[s], "G-buffer texture");
+            st = gpu_texture_ensure(r, w, h, gpu_slot_format(r, (gpu_slot)s), &r->gbuffer[s], "G-buffer texture");
     if (st == BG_OK)
-        st = texture(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
+        st = gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
     /* Visibility is 0 or 1 per channel: 8 bits hold it exactly. */
     if (st == BG_OK)
-        st = texture(r, w, h, MACS_FORMAT_RGBA8, &r->vis, "visibility texture");
+        st = gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->vis, "visibility texture");
     if (st == BG_OK)
-        st = texture(r, w, h, MACS_FORMAT_RGBA8, &r->encoded, "output texture");
+        st = gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->encoded, "output texture");
     if (st == BG_OK && !r->depth) {
         macs_depth_stencil_desc d = {w, h, r->float_depth ? MACS_DEPTH32F_STENCIL8 : MACS_DEPTH24_STENCIL8};
         macs_status ms = macs_depth_stencil_create(r->ctx, &d, &r->depth);
@@ -163,11 +163,11 @@ bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
         r->set_count = index + 1;
     }
     gpu_ray_set *s = &r->sets[index];
-    bg_status st = texture(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
+    bg_status st = gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
     if (st == BG_OK)
-        st = texture(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
+        st = gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
     if (st == BG_OK)
-        st = texture(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
+        st = gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
     *out = s;
     return st;
 }

@@ -66,8 +66,7 @@ bg_status bg_scene_tree_prepare(bg_scene *s)
     if (st != BG_OK)
         return st;
     split_objects(s);
-    bool same_members = s->committed && same_list(&s->p_tree_objects, &s->c_tree_objects, sizeof(uint32_t)) &&
-                        s->tree.prim_count == s->p_boxes.count;
+    bool same_members = s->committed && same_list(&s->p_tree_objects, &s->c_tree_objects, sizeof(uint32_t));
     if (same_members && same_list(&s->p_boxes, &s->c_boxes, sizeof(bg_bvh_box))) {
         s->tree_action = TREE_KEEP;
         return BG_OK;

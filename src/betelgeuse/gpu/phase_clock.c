@@ -1,0 +1,31 @@
+/* Wall time per frame phase, for bg_render_settings.gpu_timing. Both plans time their phases here, so
+ * bg_render_stats.phase_ms means the same for each. */
+#include <time.h>
+
+#include "gpu_internal.h"
+
+double gpu_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* A phase's time is only its own once the GPU has drained its work, so timing waits at both ends. */
+void gpu_phase_start(bg_renderer *r, bool timing, double *clock)
+{
+    if (!timing)
+        return;
+    macs_context_finish(r->ctx);
+    *clock = gpu_now_ms();
+}
+
+void gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase)
+{
+    if (!timing)
+        return;
+    macs_context_finish(r->ctx);
+    double t = gpu_now_ms();
+    r->stats.phase_ms[phase] += t - *clock;
+    *clock = t;
+}
