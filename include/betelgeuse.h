@@ -337,13 +337,19 @@ enum {
 /* How the GPU renderer lays out a frame (docs/gpu_pipeline.md). The plans render the same shading
  * model within the same accuracy against the CPU reference, but not bit for bit alike. */
 typedef enum bg_gpu_plan {
-    BG_PLAN_AUTO = 0,  /* fused where the scene and the GL limits allow it, else multipass (the reason
+    BG_PLAN_AUTO = 0,  /* fused where the scene and the GL limits allow it (BG_PLAN_FUSED up to 16
+                          bounded objects, BG_PLAN_FUSED_TREE beyond), else multipass (the reason
                           is logged at BG_LOG_INFO); multipass whenever an option only it has is
                           asked for: gpu_disable_skips, dmax, half_gbuffer or float_depth */
-    BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image;
-                          bg_render_gpu fails (BG_ERR_LIMIT, or BG_ERR_GL when GL refuses the program)
-                          where it cannot run */
-    BG_PLAN_MULTIPASS  /* ray maps, G-buffer, shadow, light and spawn passes level by level */
+    BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image,
+                          every object's test written into the shader; bg_render_gpu fails
+                          (BG_ERR_LIMIT, or BG_ERR_GL when GL refuses the program) where it cannot
+                          run */
+    BG_PLAN_MULTIPASS, /* ray maps, G-buffer, shadow, light and spawn passes level by level */
+    BG_PLAN_FUSED_TREE /* the fused pass with the bounded objects in a tree walked from textures, so
+                          its program and its cost grow with the shapes and log(objects); a pixel
+                          whose walks would outrun the shader's loop limit is rendered by the CPU
+                          reference (bg_render_stats.fallback_pixels) */
 } bg_gpu_plan;
 
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
@@ -459,13 +465,15 @@ typedef struct bg_render_stats {
     int intersect_objects;           /* objects tested by intersection passes, summed over the passes
                                         (over passes[BG_PASS_INTERSECT]: objects per pass) */
     int shadow_objects;              /* the same for shadow passes */
-    bg_gpu_plan plan;                /* the plan that ran: BG_PLAN_FUSED or BG_PLAN_MULTIPASS. The fused
-                                        plan draws one pass, counted as BG_PASS_INTERSECT (or as
+    bg_gpu_plan plan;                /* the plan that ran: BG_PLAN_FUSED, BG_PLAN_FUSED_TREE or
+                                        BG_PLAN_MULTIPASS. A fused plan draws one pass, counted as BG_PASS_INTERSECT (or as
                                         BG_PASS_BACKGROUND for a scene without objects); it keeps no
                                         ray sets, levels, dmax, G-buffer or depth buffer, so those
                                         fields stay 0 */
     int programs_compiled;           /* shader programs this render built (0 when every pass it needed
-                                        was cached); counted by the fused plan only so far */
+                                        was cached); counted by the fused plans only so far */
+    uint64_t fallback_pixels;        /* BG_PLAN_FUSED_TREE: pixels whose tree walks would have run past
+                                        the shader's loop limit, rendered by the CPU reference instead */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

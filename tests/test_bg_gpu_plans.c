@@ -77,37 +77,6 @@ static bg_render_stats render(bg_renderer *r, bg_scene *s, const bg_render_setti
     return stats;
 }
 
-/* The CPU reference of a scene at an image's size. */
-static unsigned char *reference(bg_scene *s, const bg_render_settings *set, int width, int height)
-{
-    unsigned char *cpu = malloc((size_t)width * height * 4);
-    assert_non_null(cpu);
-    bg_image ci = {width, height, BG_PIXEL_RGBA8, 0, cpu};
-    assert_int_equal(bg_render_cpu(s, set, &ci), BG_OK);
-    return cpu;
-}
-
-/* The GPU image against a CPU reference, within the row of id. */
-static void expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label)
-{
-    bg_image ci = {gpu->width, gpu->height, BG_PIXEL_RGBA8, 0, (void *)cpu};
-    image_metrics m;
-    assert_true(image_metrics_compare(&ci, gpu, GPU_SILHOUETTE_THRESHOLD, &m));
-    char line[512], why[256];
-    print_message("%-28s %s\n", label, image_metrics_format(&m, line, sizeof line));
-    if (!gpu_threshold_check(gpu_threshold_of(id), &m, why, sizeof why))
-        fail_msg("%s: %s", label, why);
-}
-
-/* The GPU image against the CPU reference of the same scene and settings, within the row of id. */
-static void expect_within(bg_scene *s, const bg_render_settings *set, const bg_image *gpu, scene_id id,
-                          const char *label)
-{
-    unsigned char *cpu = reference(s, set, gpu->width, gpu->height);
-    expect_near(cpu, gpu, id, label);
-    free(cpu);
-}
-
 /* ---- every shared scene ---- */
 
 static void check_scene(scene_id id)
@@ -117,7 +86,7 @@ static void check_scene(scene_id id)
     bg_scene *s = util_scene(id);
     size_t bytes = (size_t)W * H * 4;
     bg_render_settings set = plan_settings(BG_PLAN_AUTO);
-    unsigned char *cpu = reference(s, &set, W, H);
+    unsigned char *cpu = util_cpu_reference(s, &set, W, H);
     unsigned char *fused = malloc(bytes), *other = malloc(bytes);
     float *linear = malloc(bytes * sizeof(float));
     assert_non_null(fused);
@@ -133,7 +102,7 @@ static void check_scene(scene_id id)
     assert_int_equal(st.passes[BG_PASS_INTERSECT], 1);
     assert_int_equal(st.intersect_objects, (int)bg_scene_committed(s)->object_count);
     snprintf(label, sizeof label, "%s fused", name);
-    expect_near(cpu, &fi, id, label);
+    util_expect_near(cpu, &fi, id, label);
 
     /* Its float output is finite and what the RGBA8 output encodes. */
     render(util_fx.renderer, s, &set, &li, name);
@@ -148,6 +117,18 @@ static void check_scene(scene_id id)
                 fail_msg("%s: pixel %zu channel %d: float %g encodes to %d, RGBA8 output %d", name, i, c, (double)v,
                          want, fused[4 * i + c]);
         }
+
+    /* Forced tree variant: the bounded objects walked from textures, within the same thresholds,
+     * every pixel finished by the GPU. Not the unrolled image bit for bit (other float operations). */
+    set = plan_settings(BG_PLAN_FUSED_TREE);
+    st = render(util_fx.renderer, s, &set, &oi, name);
+    assert_int_equal(st.plan, BG_PLAN_FUSED_TREE);
+    assert_int_equal(st.passes[BG_PASS_INTERSECT], 1);
+    if (st.fallback_pixels != 0)
+        fail_msg("%s: %llu pixels of the tree variant went to the CPU reference", name,
+                 (unsigned long long)st.fallback_pixels);
+    snprintf(label, sizeof label, "%s fused tree", name);
+    util_expect_near(cpu, &oi, id, label);
 
     /* Automatic: every shared scene is within the fused plan's bounds, and gets the same program. */
     set = plan_settings(BG_PLAN_AUTO);
@@ -183,7 +164,7 @@ static void forced_multipass_is_the_multipass(void **state)
         assert_true(st.passes[BG_PASS_RAYS] == 1 && st.passes[BG_PASS_RESOLVE] == 1);
         char label[64];
         snprintf(label, sizeof label, "%s multipass", scenes_name(ids[k]));
-        expect_within(s, &set, &fi, ids[k], label);
+        util_expect_within(s, &set, &fi, ids[k], label);
         set = plan_settings(BG_PLAN_AUTO);
         set.gpu_disable_skips = BG_SKIP_BATCH;
         assert_int_equal(render(util_fx.renderer, s, &set, &ai, scenes_name(ids[k])).plan, BG_PLAN_MULTIPASS);
@@ -215,7 +196,7 @@ static void depths_and_pruning(void **state)
         char label[64];
         snprintf(label, sizeof label, "glass depth %d%s", depths[k], depths[k] == 5 ? " unpruned" : "");
         assert_int_equal(render(util_fx.renderer, s, &set, &img, label).plan, BG_PLAN_FUSED);
-        expect_within(s, &set, &img, SCENE_GLASS, label);
+        util_expect_within(s, &set, &img, SCENE_GLASS, label);
     }
     bg_scene_destroy(s);
 }
@@ -230,7 +211,7 @@ static int fused_render_count(bg_renderer *r, bg_scene *s, bg_image *img, const 
     bg_render_stats st = render(r, s, &set, img, label);
     assert_int_equal(st.plan, BG_PLAN_FUSED);
     if (img->format == BG_PIXEL_RGBA8)
-        expect_within(s, &set, img, SCENE_GLASS, label);
+        util_expect_within(s, &set, img, SCENE_GLASS, label);
     return st.programs_compiled;
 }
 
@@ -328,18 +309,21 @@ static void auto_falls_back_and_says_why(void **state)
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, big};
     set.gpu_plan = BG_PLAN_FUSED;
     assert_int_equal(render(r, s, &set, &img, "deep glass fused").plan, BG_PLAN_FUSED);
-    expect_within(s, &set, &img, SCENE_GLASS, "glass depth 12 fused");
+    util_expect_within(s, &set, &img, SCENE_GLASS, "glass depth 12 fused");
     bg_scene_destroy(s);
 
-    /* More objects than it unrolls. */
-    scene_params p = {0};
-    p.spheres = 48;
+    /* More unbounded objects than it unrolls: planes stay outside the object tree. */
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_int_equal(scenes_build_ex(SCENE_MANY_SPHERES, &p, s), BG_OK);
+    assert_int_equal(scenes_build(SCENE_PAPER_EARTH_SHADOW, s), BG_OK);
+    uint32_t id = 0;
+    for (int k = 0; k < 40; k++)
+        assert_int_equal(bg_scene_add_plane(s, (bg_vec3){0.0, -10.0 - k, 0.0}, (bg_vec3){0.0, 1.0, 0.0}, 1, &id),
+                         BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
     set = plan_settings(BG_PLAN_AUTO);
-    assert_int_equal(render(r, s, &set, &small, "48 spheres").plan, BG_PLAN_MULTIPASS);
-    if (log.count != 4 || !strstr(log.last, "objects"))
-        fail_msg("no reason logged for 48 spheres (%d messages, last \"%s\")", log.count, log.last);
+    assert_int_equal(render(r, s, &set, &small, "40 planes").plan, BG_PLAN_MULTIPASS);
+    if (log.count != 4 || !strstr(log.last, "objects outside the object tree"))
+        fail_msg("no reason logged for 40 planes (%d messages, last \"%s\")", log.count, log.last);
     bg_scene_destroy(s);
     assert_int_equal(bg_renderer_error(r), BG_OK);
     bg_renderer_destroy(r);

@@ -5,9 +5,45 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <stdlib.h>
 
+#include "gpu_thresholds.h"
+#include "scenes/image_metrics.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+
+unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height)
+{
+    unsigned char *cpu = malloc((size_t)width * height * 4);
+    assert_non_null(cpu);
+    bg_image ci = {width, height, BG_PIXEL_RGBA8, 0, cpu};
+    assert_int_equal(bg_render_cpu(s, set, &ci), BG_OK);
+    return cpu;
+}
+
+void util_expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label)
+{
+    util_expect_near_row(cpu, gpu, gpu_threshold_of(id), label);
+}
+
+void util_expect_near_row(const unsigned char *cpu, const bg_image *gpu, const gpu_threshold *row, const char *label)
+{
+    bg_image ci = {gpu->width, gpu->height, BG_PIXEL_RGBA8, 0, (void *)cpu};
+    image_metrics m;
+    assert_true(image_metrics_compare(&ci, gpu, GPU_SILHOUETTE_THRESHOLD, &m));
+    char line[512], why[256];
+    print_message("%-28s %s\n", label, image_metrics_format(&m, line, sizeof line));
+    if (!gpu_threshold_check(row, &m, why, sizeof why))
+        fail_msg("%s: %s", label, why);
+}
+
+void util_expect_within(bg_scene *s, const bg_render_settings *set, const bg_image *gpu, scene_id id,
+                        const char *label)
+{
+    unsigned char *cpu = util_cpu_reference(s, set, gpu->width, gpu->height);
+    util_expect_near(cpu, gpu, id, label);
+    free(cpu);
+}
 
 bg_renderer *util_renderer(macs_context *ctx)
 {

@@ -2,6 +2,8 @@
 #ifndef UTIL_GPU_H
 #define UTIL_GPU_H
 
+#include "gpu_thresholds.h"
+
 #include "betelgeuse.h"
 #include "scenes/scenes.h"
 
@@ -29,6 +31,17 @@ bg_render_settings util_multipass_settings(void);
  * message and the message of ctx (the MACS context r renders with). */
 void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_render_settings *set, bg_image *img,
                      const char *label);
+
+/* The CPU reference of a scene at width x height, RGBA8, malloc'd (free it). */
+unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height);
+/* Fails the test unless the GPU image is within the threshold row of id against the CPU image
+ * (gpu_thresholds.h); prints the comparison under label. */
+void util_expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label);
+/* The same against a row of a suite's own (a scene the shared table has no row for). */
+void util_expect_near_row(const unsigned char *cpu, const bg_image *gpu, const gpu_threshold *row, const char *label);
+/* util_expect_near against the CPU reference of the same scene and settings. */
+void util_expect_within(bg_scene *s, const bg_render_settings *set, const bg_image *gpu, scene_id id,
+                        const char *label);
 
 /* The suite-wide fixture of the GPU suites: util_gpu_group_setup opens it with default caps
  * (util_gpu_open), util_gpu_group_teardown closes it; pass both to cmocka_run_group_tests, or call

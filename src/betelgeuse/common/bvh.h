@@ -87,6 +87,13 @@ void bg_bvh_destroy(bg_bvh *bvh);
  * boxes gives back the built floats bit for bit. */
 bg_status bg_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
 
+/* Writes the tree's node_count nodes into out as seen from origin: every box minus origin, computed
+ * in double and rounded outward again (the invariant holds for the shifted boxes), and each leaf's
+ * primitive replaced by prim_ids[primitive] when prim_ids is not NULL (ids below 2^24 stay exact).
+ * The GPU keeps its world frame at the camera (a float box far from the origin would lose the ray's
+ * precision), so it uploads this copy. */
+void bg_bvh_shifted_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out);
+
 /* Fills *stats for the tree. */
 void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats);
 

@@ -461,3 +461,27 @@ void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats)
         sum += node_half_area(bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS);
     stats->sah_cost = sum / root;
 }
+
+/* ---- a moved copy -------------------------------------------------------------------------- */
+
+static double clamp_to_float_range(double x)
+{
+    return x < -FLT_MAX ? -FLT_MAX : (x > FLT_MAX ? FLT_MAX : x);
+}
+
+/* Each coordinate's double difference is within half an ulp of a double of the exact one, far below
+ * the float step the rounding adds; a box the shifted box should contain is therefore inside it. */
+void bg_bvh_shifted_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
+{
+    for (uint32_t i = 0; i < bvh->node_count; i++) {
+        const float *node = bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
+        float *o = out + (size_t)i * BG_BVH_NODE_FLOATS;
+        for (int a = 0; a < 3; a++) {
+            o[BG_BVH_NODE_MIN + a] = float_down(clamp_to_float_range((double)node[BG_BVH_NODE_MIN + a] - origin[a]));
+            o[BG_BVH_NODE_MAX + a] = float_up(clamp_to_float_range((double)node[BG_BVH_NODE_MAX + a] - origin[a]));
+        }
+        float prim = node[BG_BVH_NODE_PRIM];
+        o[BG_BVH_NODE_PRIM] = prim >= 0.0f && prim_ids ? (float)prim_ids[node_index(node, BG_BVH_NODE_PRIM)] : prim;
+        o[BG_BVH_NODE_MISS] = node[BG_BVH_NODE_MISS];
+    }
+}

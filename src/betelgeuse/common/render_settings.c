@@ -33,7 +33,8 @@ bg_status bg_render_settings_check(const bg_render_settings *s, const char *wher
     else if (s->gpu_disable_skips & ~(unsigned)BG_SKIP_ALL)
         snprintf(message, size, "%s: settings.gpu_disable_skips has unknown bits 0x%x", where,
                  s->gpu_disable_skips & ~(unsigned)BG_SKIP_ALL);
-    else if (s->gpu_plan != BG_PLAN_AUTO && s->gpu_plan != BG_PLAN_FUSED && s->gpu_plan != BG_PLAN_MULTIPASS)
+    else if (s->gpu_plan != BG_PLAN_AUTO && s->gpu_plan != BG_PLAN_FUSED && s->gpu_plan != BG_PLAN_MULTIPASS &&
+             s->gpu_plan != BG_PLAN_FUSED_TREE)
         snprintf(message, size, "%s: settings.gpu_plan %d is unknown", where, (int)s->gpu_plan);
     else
         return BG_OK;

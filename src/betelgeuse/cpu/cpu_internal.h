@@ -184,6 +184,11 @@ void bg_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *set
 void bg_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3]);
 
+/* Renders pixel (x, y) of image (rows `stride` bytes apart, row 0 at the top) in its format, alpha 1:
+ * what bg_render_cpu writes there. The GPU's tree plan calls it for the pixels it cannot finish. */
+void bg_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
+                         size_t stride, int x, int y);
+
 /* An 8-bit channel: floor(clamp(x, 0, 1) * 255 + 0.5) after the encoding. */
 uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding);
 

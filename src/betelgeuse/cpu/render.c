@@ -30,24 +30,28 @@ typedef struct job {
     int next_row;
 } job;
 
+void bg_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
+                         size_t stride, int x, int y)
+{
+    unsigned char *row = (unsigned char *)image->pixels + (size_t)y * stride;
+    double o[3], d[3], rgb[3];
+    bg_cpu_primary_ray(&state->camera, image->width, image->height, x, y, o, d);
+    bg_cpu_shade_ray(state, settings, o, d, rgb);
+    if (image->format == BG_PIXEL_RGBA32F) {
+        float px[4] = {(float)rgb[0], (float)rgb[1], (float)rgb[2], 1.0f};
+        memcpy(row + (size_t)x * sizeof px, px, sizeof px);
+    } else {
+        unsigned char *px = row + (size_t)x * 4;
+        for (int i = 0; i < 3; i++)
+            px[i] = bg_cpu_encode_channel(rgb[i], settings->encoding);
+        px[3] = 255;
+    }
+}
+
 static void render_row(const job *jb, int y)
 {
-    const bg_image *img = jb->image;
-    unsigned char *row = (unsigned char *)img->pixels + (size_t)y * jb->stride;
-    for (int x = 0; x < img->width; x++) {
-        double o[3], d[3], rgb[3];
-        bg_cpu_primary_ray(&jb->state->camera, img->width, img->height, x, y, o, d);
-        bg_cpu_shade_ray(jb->state, jb->settings, o, d, rgb);
-        if (img->format == BG_PIXEL_RGBA32F) {
-            float px[4] = {(float)rgb[0], (float)rgb[1], (float)rgb[2], 1.0f};
-            memcpy(row + (size_t)x * sizeof px, px, sizeof px);
-        } else {
-            unsigned char *px = row + (size_t)x * 4;
-            for (int i = 0; i < 3; i++)
-                px[i] = bg_cpu_encode_channel(rgb[i], jb->settings->encoding);
-            px[3] = 255;
-        }
-    }
+    for (int x = 0; x < jb->image->width; x++)
+        bg_cpu_render_pixel(jb->state, jb->settings, jb->image, jb->stride, x, y);
 }
 
 /* Takes rows from the shared counter until none is left (C99 has no atomics, hence the mutex). */

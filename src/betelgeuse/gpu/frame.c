@@ -332,9 +332,9 @@ static bg_status read_back(frame *f, bg_image *image, size_t stride)
 {
     bg_renderer *r = f->r;
     if (image->format == BG_PIXEL_RGBA32F)
-        return gpu_read_back(r, r->accum, image, stride);
+        return gpu_read_back(r, r->accum, image, stride, true);
     bg_status st = run(f, r->passes.resolve, BG_PASS_RESOLVE, NULL);
-    return st != BG_OK ? st : gpu_read_back(r, r->encoded, image, stride);
+    return st != BG_OK ? st : gpu_read_back(r, r->encoded, image, stride, true);
 }
 
 static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)

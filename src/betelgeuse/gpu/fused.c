@@ -29,6 +29,11 @@
 #define AUTO_MAX_OBJECTS 32
 #define AUTO_MAX_LIGHTS 64
 #define AUTO_MAX_RAYS 1023.0
+/* BG_PLAN_AUTO walks a tree from this many objects in the scene's tree on (TREE_FROM below unrolls). */
+#define AUTO_TREE_FROM 17
+/* The fewest walk steps per pixel the tree variant runs with: below, most pixels of an ordinary
+ * scene would go to the CPU reference. */
+#define MIN_WALK_BUDGET 1024
 
 struct gpu_fused {
     char *key;     /* the cached program's source and declarations: its structure */
@@ -40,6 +45,7 @@ struct gpu_fused {
     macs_texture **textures; /* per scene texture (handle - 1), those some sampler reads */
     uint32_t texture_count;
     uint64_t texture_hash;   /* of what textures hold */
+    gpu_fused_tree tree;     /* the tree variant's textures */
 };
 
 
@@ -73,19 +79,28 @@ static const char *multipass_option(const bg_renderer *r, const bg_render_settin
 
 /* False with the reason when the layout is beyond the GL limits or, for BG_PLAN_AUTO, beyond the
  * bounds the fused plan was measured within. */
-static bool fits(const bg_renderer *r, const gpu_fused_layout *l, bool forced, char *why, size_t size)
+static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fused_layout *l, bool forced, char *why,
+                 size_t size)
 {
     int comps = gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
-    if (l->rays_needed > l->loop_rays)
+    int units = l->sampler_count + (gpu_fused_layout_walks(l) ? 2 : 0);
+    uint32_t unrolled = l->object_count - l->tree_count;
+    if (l->tree && !gpu_fused_tree_fits(r, state, why, size))
+        return false;
+    if (gpu_fused_layout_walks(l) && l->walk_budget < MIN_WALK_BUDGET)
+        snprintf(why, size, "%.0f rays per pixel with %u lights leave the tree walks %d loop steps, fewer than %d",
+                 (double)l->loop_rays, l->light_count, l->walk_budget, MIN_WALK_BUDGET);
+    else if (l->rays_needed > l->loop_rays)
         snprintf(why, size, "a pixel may follow up to %.0f rays at max_depth %d (min_weight counted), more than "
                  "the %d the fused shader's loop may run", l->rays_needed, l->max_depth, l->loop_rays);
     else if (comps > budget)
         snprintf(why, size, "the fused shader needs %d uniform components, GL allows %d", comps, budget);
-    else if (l->sampler_count > r->limits.max_texture_units)
-        snprintf(why, size, "the fused shader samples %d textures, GL has %d texture units", l->sampler_count,
+    else if (units > r->limits.max_texture_units)
+        snprintf(why, size, "the fused shader samples %d textures, GL has %d texture units", units,
                  r->limits.max_texture_units);
-    else if (!forced && l->object_count > AUTO_MAX_OBJECTS)
-        snprintf(why, size, "%u objects, more than the %d the fused plan unrolls", l->object_count, AUTO_MAX_OBJECTS);
+    else if (!forced && unrolled > AUTO_MAX_OBJECTS)
+        snprintf(why, size, "%u objects outside the object tree, more than the %d the fused plan unrolls", unrolled,
+                 AUTO_MAX_OBJECTS);
     else if (!forced && l->light_count > AUTO_MAX_LIGHTS)
         snprintf(why, size, "%u lights, more than the %d the fused plan was measured with", l->light_count,
                  AUTO_MAX_LIGHTS);
@@ -235,14 +250,19 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
                              macs_pass **pass, char *refused, size_t refused_size)
 {
     enum { NAME = 24 }; /* "bg_tex" and any int */
-    int n = l->sampler_count;
+    int n = l->sampler_count + (gpu_fused_layout_walks(l) ? 2 : 0);
     macs_input_desc *inputs = bg_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
     if (!inputs)
         return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
     char *names = (char *)(inputs + (n ? n : 1));
-    for (int k = 0; k < n; k++) {
+    for (int k = 0; k < l->sampler_count; k++) {
         snprintf(names + k * NAME, NAME, "bg_tex%d", k);
         inputs[k].name = names + k * NAME;
+    }
+    /* The tree's textures follow the scene's (bind_frame sets them in this order). */
+    if (gpu_fused_layout_walks(l)) {
+        inputs[l->sampler_count].name = "bg_nodes";
+        inputs[l->sampler_count + 1].name = "bg_objects";
     }
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
@@ -259,6 +279,16 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
     return st;
 }
 
+/* The frame's layout replaces the cached one: one program serves layouts that differ in what the
+ * program does not hold (which objects the tree has, and the indices of the others), and the
+ * uniforms and textures of the frame follow its own. */
+static void adopt_layout(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *l)
+{
+    gpu_fused_layout_free(&r->allocator, &f->layout);
+    f->layout = *l;
+    memset(l, 0, sizeof *l); /* the cache owns its arrays now */
+}
+
 /* Makes f->pass the program of p at w x h, reusing the cached one when its key is the same. A size
  * change alone makes a pass of the same program, which MACS's program cache hands over while the
  * old pass still holds it: nothing is compiled. *declined is set when GL refused the program under
@@ -268,8 +298,10 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
 {
     *declined = false;
     bool same = f->pass && f->key && strcmp(f->key, p->key.s) == 0;
-    if (same && f->width == w && f->height == h)
+    if (same && f->width == w && f->height == h) {
+        adopt_layout(r, f, l);
         return BG_OK;
+    }
     if (!forced && f->refused && strcmp(f->refused, p->key.s) == 0) {
         *declined = true;
         return decline(r, "GL refused the fused program for this scene before");
@@ -303,10 +335,8 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
             return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory caching the fused program");
         bg_free(&r->allocator, f->key);
         f->key = key;
-        gpu_fused_layout_free(&r->allocator, &f->layout);
-        f->layout = *l;
-        memset(l, 0, sizeof *l); /* the cache owns its arrays now */
     }
+    adopt_layout(r, f, l);
     return BG_OK;
 }
 
@@ -320,7 +350,10 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     struct gpu_fused *f = r->fused;
     const gpu_fused_layout *l = &f->layout;
     bool as_float = image->format == BG_PIXEL_RGBA32F;
+    bool walks = gpu_fused_layout_walks(l);
     bg_status st = textures_prepare(r, f, state, l);
+    if (st == BG_OK && walks)
+        st = gpu_fused_tree_prepare(r, &f->tree, state);
     if (st == BG_OK)
         st = output_for(r, f, image->width, image->height, as_float, out);
     if (st != BG_OK)
@@ -328,11 +361,15 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     macs_status ms = MACS_OK;
     for (int k = 0; k < l->sampler_count && !ms; k++)
         ms = macs_pass_set_input(f->pass, k, f->textures[l->samplers[k] - 1]);
+    if (!ms && walks)
+        ms = macs_pass_set_input(f->pass, l->sampler_count, f->tree.nodes.texture);
+    if (!ms && walks)
+        ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
         return gpu_fail_macs(r, ms, "binding the fused pass");
-    gpu_fused_values v = {state, settings, image->width, image->height, as_float};
+    gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, image->width, image->height, as_float};
     return gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
 
@@ -371,7 +408,9 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     }
     gpu_phase_end(r, timing, &clock, BG_PHASE_INTERSECT);
     if (st == BG_OK)
-        st = gpu_read_back(r, out, image, stride);
+        st = gpu_read_back(r, out, image, stride, !gpu_fused_layout_walks(&r->fused->layout));
+    if (st == BG_OK && gpu_fused_layout_walks(&r->fused->layout))
+        r->stats.fallback_pixels = gpu_fused_tree_fallback(state, settings, image, stride);
     gpu_phase_end(r, timing, &clock, BG_PHASE_RESOLVE);
     if (st != BG_OK)
         return st;
@@ -390,7 +429,10 @@ bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg
     r->stats.plan = BG_PLAN_MULTIPASS;
     if (settings->gpu_plan == BG_PLAN_MULTIPASS)
         return BG_OK;
-    bool forced = settings->gpu_plan == BG_PLAN_FUSED;
+    bool forced = settings->gpu_plan == BG_PLAN_FUSED || settings->gpu_plan == BG_PLAN_FUSED_TREE;
+    bool tree = settings->gpu_plan == BG_PLAN_FUSED_TREE ||
+                (settings->gpu_plan == BG_PLAN_AUTO && state->tree_count >= AUTO_TREE_FROM);
+    const char *name = tree ? "BG_PLAN_FUSED_TREE" : "BG_PLAN_FUSED";
     const char *option = multipass_option(r, settings);
     if (!forced && option)
         return decline(r, option);
@@ -401,13 +443,13 @@ bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg
         memset(r->fused, 0, sizeof *r->fused);
     }
     gpu_fused_layout l;
-    if (!gpu_fused_layout_build(&r->allocator, state, settings, &l))
+    if (!gpu_fused_layout_build(&r->allocator, state, settings, tree, &l))
         return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan's layout");
     char why[256];
-    if (!fits(r, &l, forced, why, sizeof why)) {
+    if (!fits(r, state, &l, forced, why, sizeof why)) {
         gpu_fused_layout_free(&r->allocator, &l);
         if (forced)
-            return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED cannot render this frame: %s", why);
+            return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: %s cannot render this frame: %s", name, why);
         return decline(r, why);
     }
     bool declined = false;
@@ -420,7 +462,7 @@ bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg
         return st;
     }
     if (!declined) {
-        r->stats.plan = BG_PLAN_FUSED;
+        r->stats.plan = tree ? BG_PLAN_FUSED_TREE : BG_PLAN_FUSED;
         *done = true;
     }
     return BG_OK;
@@ -434,6 +476,7 @@ void gpu_fused_release(bg_renderer *r)
     macs_pass_destroy(f->pass);
     outputs_release(f);
     textures_release(r, f);
+    gpu_fused_tree_release(&r->allocator, &f->tree);
     gpu_fused_layout_free(&r->allocator, &f->layout);
     bg_free(&r->allocator, f->key);
     bg_free(&r->allocator, f->refused);

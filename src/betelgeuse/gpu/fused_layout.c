@@ -101,6 +101,26 @@ static void describe_material(const bg_material *src, gpu_fused_material *m, gpu
     }
 }
 
+/* The kinds of objects the tree holds (gpu_fused_tree_kinds). */
+static void describe_tree(gpu_fused_layout *l)
+{
+    gpu_fused_tree_kinds *k = &l->kinds;
+    k->all_cast = true;
+    for (uint32_t j = 0; j < l->object_count; j++) {
+        const gpu_fused_object *o = &l->objects[j];
+        if (!o->in_tree)
+            continue;
+        l->tree_count++;
+        k->shape[o->shape] = true;
+        k->caster[o->shape] |= o->casts_shadows;
+        k->all_cast &= o->casts_shadows;
+        bool uv = gpu_fused_object_uv(l, j), tangent = gpu_fused_object_tangent(l, j);
+        k->uv |= uv;
+        k->tangent |= tangent;
+        k->mapping[o->uv_mapping] |= uv || tangent;
+    }
+}
+
 /* Whether some caster can shadow another object: a lone object only ever meets its own surface,
  * which is never tested (docs/shading.md 2.8). */
 static bool any_shadow(const gpu_fused_layout *l)
@@ -113,13 +133,29 @@ static bool any_shadow(const gpu_fused_layout *l)
     return false;
 }
 
-/* Objects whose shadow a point may have to test: none where no caster can shadow another. */
+/* Shadow tests the shader inlines per light: one per unrolled caster, one walk for the tree's. */
 static uint32_t casters(const gpu_fused_layout *l)
 {
     uint32_t n = 0;
-    for (uint32_t j = 0; j < l->object_count && l->shadows; j++)
-        n += l->objects[j].casts_shadows ? 1 : 0;
-    return n;
+    bool tree_casts = false;
+    for (uint32_t j = 0; j < l->object_count && l->shadows; j++) {
+        if (l->objects[j].in_tree)
+            tree_casts |= l->objects[j].casts_shadows;
+        else
+            n += l->objects[j].casts_shadows ? 1 : 0;
+    }
+    return n + (tree_casts ? 1 : 0);
+}
+
+/* Of llvmpipe's loop iterations, what the trace and light loops do not take goes to the tree walks.
+ * A pixel makes at most one nearest walk per ray and one shadow walk per light and ray; each walk
+ * may also spend a few iterations that end its loops, reserved here. */
+static int walk_budget(const gpu_fused_layout *l)
+{
+    int loops = l->loop_rays * (1 + (l->light_loop ? (int)l->light_count : 0));
+    long walks = (long)l->loop_rays * (1 + (long)l->light_count);
+    long left = GPU_FUSED_MAX_LOOP - loops - 3 * walks - 64;
+    return left > 0 ? (int)left : 0;
 }
 
 /* The most rays one pixel can follow down to `depth` levels: a chain without transparency, else
@@ -141,7 +177,7 @@ static double rays_bound(int depth, bool tree, double min_weight)
 }
 
 bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
-                            gpu_fused_layout *out)
+                            bool tree, gpu_fused_layout *out)
 {
     gpu_fused_layout l;
     memset(&l, 0, sizeof l);
@@ -158,9 +194,15 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     memset(l.materials, 0, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
     for (uint32_t j = 0; j < l.object_count; j++) {
         const bg_object_data *o = &state->objects[j];
-        l.objects[j] = (gpu_fused_object){o->shape, o->material, o->uv_mapping, o->casts_shadows};
+        l.objects[j] = (gpu_fused_object){o->shape, o->material, o->uv_mapping, o->casts_shadows, false, 0};
         l.materials[o->material].used = true;
     }
+    l.tree = tree;
+    for (uint32_t i = 0; i < state->tree_count && tree; i++)
+        l.objects[state->tree_objects[i]].in_tree = true;
+    for (uint32_t j = 0, slot = 0; j < l.object_count; j++)
+        if (!l.objects[j].in_tree)
+            l.objects[j].slot = slot++;
     bool bounce = false;
     for (uint32_t k = 0; k < l.material_count; k++) {
         gpu_fused_material *m = &l.materials[k];
@@ -172,6 +214,8 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
         l.coat |= m->coat;
         bounce |= m->bounce;
     }
+    if (tree)
+        describe_tree(&l);
     l.shadows = any_shadow(&l) && l.light_count > 0;
     l.max_depth = bounce ? settings->max_depth : 0;
     l.stack = l.transparent ? l.max_depth : 0;
@@ -184,6 +228,7 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     int most = GPU_FUSED_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
     l.loop_rays = full < most ? (int)full : most;
     l.rays_needed = rays_bound(l.max_depth, l.transparent, settings->min_weight);
+    l.walk_budget = tree ? walk_budget(&l) : 0;
     *out = l;
     return true;
 }
@@ -204,4 +249,9 @@ bool gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object)
 bool gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
 {
     return l->materials[l->objects[object].material].aniso;
+}
+
+bool gpu_fused_layout_walks(const gpu_fused_layout *l)
+{
+    return l->tree && l->tree_count > 0;
 }

@@ -48,10 +48,10 @@ typedef struct name {
     char s[48];
 } name;
 
-static name uniform(int row, uint32_t i)
+static name uniform(const gpu_fused_layout *l, int row, uint32_t i)
 {
     name n;
-    gpu_fused_uniform_name(row, i, n.s, sizeof n.s);
+    gpu_fused_uniform_name(l, row, i, n.s, sizeof n.s);
     return n;
 }
 
@@ -90,6 +90,8 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     }
     if (ok && l->aniso)
         ok = gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->tree)
+        ok = gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
         ok = gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)
@@ -99,6 +101,143 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
 
 /* ---- generated functions ---- */
 
+/* Objects tested one by one with their own uniforms: those outside the tree. */
+static uint32_t unrolled_count(const gpu_fused_layout *l)
+{
+    uint32_t n = 0;
+    for (uint32_t j = 0; j < l->object_count; j++)
+        n += l->objects[j].in_tree ? 0 : 1;
+    return n;
+}
+
+static bool tree_casts(const gpu_fused_layout *l)
+{
+    if (!gpu_fused_layout_walks(l) || !l->shadows)
+        return false;
+    for (int s = 0; s < BG_SHAPE_COUNT_; s++)
+        if (l->kinds.caster[s])
+            return true;
+    return false;
+}
+
+/* `before` + shape suffix + `after` for the tree object in `meta` (its texel 3: shape first), an
+ * if-chain over the shapes in `present` with the last one as the plain else. */
+static void emit_shape_dispatch(gpu_text *t, const bool present[BG_SHAPE_COUNT_], const char *indent,
+                                const char *before, const char *after)
+{
+    int count = 0, position = 0;
+    for (int s = 0; s < BG_SHAPE_COUNT_; s++)
+        count += present[s] ? 1 : 0;
+    for (int s = 0; s < BG_SHAPE_COUNT_; s++) {
+        if (!present[s])
+            continue;
+        const char *suffix = gpu_shape_suffix((bg_shape)s);
+        if (count == 1)
+            gpu_text_printf(t, "%s%s%s%s\n", indent, before, suffix, after);
+        else if (position == count - 1)
+            gpu_text_printf(t, "%selse\n%s    %s%s%s\n", indent, indent, before, suffix, after);
+        else
+            gpu_text_printf(t, "%s%sif (meta.x == %d.0)\n%s    %s%s%s\n", indent, position ? "else " : "", s, indent,
+                            before, suffix, after);
+        position++;
+    }
+}
+
+static int shape_count(const bool present[BG_SHAPE_COUNT_])
+{
+    int n = 0;
+    for (int s = 0; s < BG_SHAPE_COUNT_; s++)
+        n += present[s] ? 1 : 0;
+    return n;
+}
+
+/* The loops of one walk of the tree: `done` (a GLSL condition) ends it early, `t_max` bounds the
+ * ray for the box tests, `leaf` is the code run for an entered leaf (object lo.w, its transform m).
+ * Every step spends one of the pixel's bg_tree_left steps, so the pixel's walks together stay
+ * within what llvmpipe's loop limit leaves them (gpu_fused_layout.walk_budget); the inner loop is
+ * at most 255 long, the limit of one loop on SM3-class hardware. A walk that stops before its
+ * end marks the pixel (bg_tree_short), which the CPU reference then renders (fused_tree.c). */
+static void emit_walk(const gpu_fused_layout *l, gpu_text *t, const char *origin, const char *direction,
+                      const char *t_max, const char *done, const char *leaf_test, const char *leaf)
+{
+    enum { INNER = 255 };
+    int outer = (l->walk_budget + INNER - 1) / INNER;
+    gpu_text_printf(t, "    vec3 inv = bg_tree_inverse(%s);\n    float node = 0.0;\n", direction);
+    const char *stop = "node >= bg_tree_count || bg_tree_left <= 0.0";
+    gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
+                    outer > 0 ? outer : 1, INNER);
+    gpu_text_printf(t, "            if (%s%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop, done);
+    gpu_text_append(t, "            vec4 lo = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 0.0);\n"
+                       "            vec4 hi = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 1.0);\n");
+    gpu_text_printf(t, "            bool entered = bg_tree_box(%s, inv, %s, lo.xyz, hi.xyz);\n", origin, t_max);
+    gpu_text_printf(t, "            if (entered && lo.w >= 0.0%s) {\n"
+                       "                mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, lo.w);\n",
+                    leaf_test);
+    gpu_text_append(t, leaf);
+    gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 1.0 : hi.w;\n        }\n");
+    gpu_text_printf(t, "        if (%s%s)\n            break;\n    }\n", stop, done);
+}
+
+/* The nearest root over the tree's objects, after the unrolled ones (docs/shading.md 2.7): of two
+ * equal distances the lower object index wins, as in a loop over the objects in order. */
+static void emit_tree_nearest(const gpu_fused_layout *l, gpu_text *t)
+{
+    gpu_text_append(t, "void bg_tree_nearest(vec4 ro, vec4 rd, inout float t, inout float win, inout vec3 p_obj, "
+                       "inout vec3 n_obj, inout bool first_root)\n{\n");
+    gpu_text leaf;
+    gpu_text_init(&leaf, t->allocator);
+    gpu_text_append(&leaf, "                float tj;\n                vec3 pj, nj;\n                bool fj, h;\n");
+    if (shape_count(l->kinds.shape) > 1)
+        gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
+                               "lo.w, 3.0);\n");
+    emit_shape_dispatch(&leaf, l->kinds.shape, "                ", "h = bg_hit_root_",
+                        "(ro, rd, lo.w, m, tj, pj, nj, fj);");
+    gpu_text_append(&leaf, "                if (h && (win < 0.0 || tj < t || (tj == t && lo.w < win))) {\n"
+                           "                    t = tj;\n                    win = lo.w;\n                    p_obj = pj;\n"
+                           "                    n_obj = nj;\n                    first_root = fj;\n                }\n");
+    emit_walk(l, t, "ro.xyz", "rd.xyz", "win >= 0.0 ? t : 1e38", "", "", leaf.s ? leaf.s : "");
+    if (leaf.failed)
+        t->failed = true;
+    gpu_text_free(&leaf);
+    gpu_text_append(t, "    if (node < bg_tree_count)\n        bg_tree_short = 1.0;\n}\n");
+}
+
+/* Whether a caster of the tree other than `self` meets the shadow segment (docs/shading.md 2.8). */
+static void emit_tree_blocked(const gpu_fused_layout *l, gpu_text *t)
+{
+    gpu_text_append(t, "bool bg_tree_blocked(vec3 p, vec3 l, float dist, float self)\n{\n    bool blocked = false;\n");
+    gpu_text leaf;
+    gpu_text_init(&leaf, t->allocator);
+    bool ask = !l->kinds.all_cast;
+    if (ask || shape_count(l->kinds.caster) > 1)
+        gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
+                               "lo.w, 3.0);\n");
+    if (ask)
+        gpu_text_append(&leaf, "                if (meta.w > 0.5) {\n");
+    emit_shape_dispatch(&leaf, l->kinds.caster, ask ? "                    " : "                ",
+                        "blocked = bg_segment_blocked_", "(p, l, dist, m);");
+    if (ask)
+        gpu_text_append(&leaf, "                }\n");
+    emit_walk(l, t, "p", "l", "dist < 0.0 ? 1e38 : dist", " || blocked", " && lo.w != self", leaf.s ? leaf.s : "");
+    if (leaf.failed)
+        t->failed = true;
+    gpu_text_free(&leaf);
+    gpu_text_append(t, "    if (!blocked && node < bg_tree_count)\n        bg_tree_short = 1.0;\n    return blocked;\n}\n");
+}
+
+/* The walks and the per-pixel step count they share. */
+static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
+{
+    if (!gpu_fused_layout_walks(l))
+        return;
+    gpu_text_append(t, "// ---- generated: walks of the object tree\n"
+                       "float bg_tree_left;  // steps the pixel's walks may still take\n"
+                       "float bg_tree_short; // 1.0 once a walk ran out of them\n");
+    emit_tree_nearest(l, t);
+    if (tree_casts(l))
+        emit_tree_blocked(l, t);
+}
+
 /* The nearest root: a strict < keeps the object added first on a tie (docs/shading.md 2.7). */
 static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
 {
@@ -107,15 +246,22 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
                        "out vec3 n_obj, out bool first_root)\n{\n"
                        "    t = 0.0;\n    win = -1.0;\n    p_obj = vec3(0.0);\n    n_obj = vec3(0.0, 1.0, 0.0);\n"
                        "    first_root = true;\n");
-    if (l->object_count > 0)
+    if (unrolled_count(l) > 0)
         gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
-    for (uint32_t j = 0; j < l->object_count; j++)
+    int emitted = 0;
+    for (uint32_t j = 0; j < l->object_count; j++) {
+        if (l->objects[j].in_tree)
+            continue;
+        name id = uniform(l, GPU_FUSED_U_ID, j);
         gpu_text_printf(t,
-                        "    if (bg_hit_root_%s(ro, rd, %u.0, %s, tj, pj, nj, fj)%s) {\n"
-                        "        t = tj;\n        win = %u.0;\n        p_obj = pj;\n        n_obj = nj;\n"
+                        "    if (bg_hit_root_%s(ro, rd, %s, %s, tj, pj, nj, fj)%s) {\n"
+                        "        t = tj;\n        win = %s;\n        p_obj = pj;\n        n_obj = nj;\n"
                         "        first_root = fj;\n    }\n",
-                        gpu_shape_suffix(l->objects[j].shape), (unsigned)j, uniform(GPU_FUSED_U_TO_OBJECT, j).s,
-                        j ? " && (win < 0.0 || tj < t)" : "", (unsigned)j);
+                        gpu_shape_suffix(l->objects[j].shape), id.s, uniform(l, GPU_FUSED_U_TO_OBJECT, j).s,
+                        emitted++ ? " && (win < 0.0 || tj < t)" : "", id.s);
+    }
+    if (gpu_fused_layout_walks(l))
+        gpu_text_append(t, "    bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
     gpu_text_append(t, "    return win >= 0.0;\n}\n");
 }
 
@@ -127,23 +273,26 @@ static void emit_blocked(const gpu_fused_layout *l, gpu_text *t)
     gpu_text_append(t, "// ---- generated: shadow casters\n"
                        "bool bg_fused_blocked(vec3 p, vec3 l, float dist, float self)\n{\n");
     for (uint32_t j = 0; j < l->object_count && l->shadows; j++) {
-        if (!l->objects[j].casts_shadows)
+        if (!l->objects[j].casts_shadows || l->objects[j].in_tree)
             continue;
-        gpu_text_printf(t, "    if (self != %u.0 && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
-                        (unsigned)j, gpu_shape_suffix(l->objects[j].shape), uniform(GPU_FUSED_U_TO_OBJECT, j).s);
+        gpu_text_printf(t, "    if (self != %s && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
+                        uniform(l, GPU_FUSED_U_ID, j).s, gpu_shape_suffix(l->objects[j].shape),
+                        uniform(l, GPU_FUSED_U_TO_OBJECT, j).s);
     }
+    if (tree_casts(l))
+        gpu_text_append(t, "    if (bg_tree_blocked(p, l, dist, self))\n        return true;\n");
     gpu_text_append(t, "    return false;\n}\n");
 }
 
-/* One branch of an if-chain over `count` cases, the last one the plain else. */
-static void branch(gpu_text *t, const char *var, uint32_t value, int position, int count)
+/* One branch of an if-chain over `count` cases, the last one the plain else: var == value. */
+static void branch(gpu_text *t, const char *var, const char *value, int position, int count)
 {
     if (count == 1)
         gpu_text_append(t, "    {\n");
     else if (position == count - 1)
         gpu_text_append(t, "    else {\n");
     else
-        gpu_text_printf(t, "    %sif (%s == %u.0) {\n", position ? "else " : "", var, (unsigned)value);
+        gpu_text_printf(t, "    %sif (%s == %s) {\n", position ? "else " : "", var, value);
 }
 
 /* The hit attributes of object j (docs/shading.md 3): normal facing the ray, hit code, UV, tangent. */
@@ -152,17 +301,17 @@ static void emit_object_attributes(const gpu_fused_layout *l, gpu_text *t, uint3
     const gpu_fused_object *o = &l->objects[j];
     const char *thin = bg_shape_thin(o->shape) ? "true" : "false";
     gpu_text_printf(t, "        n = bg_hit_normal(%s, n_obj, d, %s, first_root, entering);\n",
-                    uniform(GPU_FUSED_U_NORMAL, j).s, thin);
-    gpu_text_printf(t, "        code = bg_hit_code(%u.0, %s, entering);\n        mat = %u.0;\n", (unsigned)j, thin,
-                    (unsigned)o->material);
+                    uniform(l, GPU_FUSED_U_NORMAL, j).s, thin);
+    gpu_text_printf(t, "        code = bg_hit_code(%s, %s, entering);\n        mat = %u.0;\n",
+                    uniform(l, GPU_FUSED_U_ID, j).s, thin, (unsigned)o->material);
     bool want_uv = gpu_fused_object_uv(l, j), want_tangent = gpu_fused_object_tangent(l, j);
     if (want_uv || want_tangent)
         gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[o->uv_mapping]);
     if (want_uv)
-        gpu_text_printf(t, "        uv *= %s;\n", uniform(GPU_FUSED_U_UV_SCALE, j).s);
+        gpu_text_printf(t, "        uv *= %s;\n", uniform(l, GPU_FUSED_U_UV_SCALE, j).s);
     /* An isotropic layer's azimuth factor is exactly 1 whatever the tangent (bg_brdf.glsl). */
     if (want_tangent)
-        gpu_text_printf(t, "        tg = bg_tangent(%s * dpdu, n);\n", uniform(GPU_FUSED_U_TO_WORLD3, j).s);
+        gpu_text_printf(t, "        tg = bg_tangent(%s * dpdu, n);\n", uniform(l, GPU_FUSED_U_TO_WORLD3, j).s);
     else
         gpu_text_append(t, "        tg = n;\n");
 }
@@ -177,7 +326,7 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
         if (!gpu_fused_uniform_present(l, GPU_FUSED_PARAM_ROW(p), k))
             continue;
         char value[160];
-        name u = uniform(GPU_FUSED_PARAM_ROW(p), k);
+        name u = uniform(l, GPU_FUSED_PARAM_ROW(p), k);
         if (m->sampler[p] >= 0)
             snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, uv).%s", u.s, m->sampler[p],
                      param_color[p] ? "rgb" : channel_lane[m->channel[p] & 3]);
@@ -189,7 +338,50 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
             gpu_text_printf(t, "        %s = max(%s, vec3(0.0));\n", param_local[p], value);
     }
     if (gpu_fused_uniform_present(l, GPU_FUSED_U_IOR, k))
-        gpu_text_printf(t, "        ior = %s;\n", uniform(GPU_FUSED_U_IOR, k).s);
+        gpu_text_printf(t, "        ior = %s;\n", uniform(l, GPU_FUSED_U_IOR, k).s);
+}
+
+/* The hit attributes of a tree object, as emit_object_attributes writes them from uniforms, here
+ * from the object's texels. */
+static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
+{
+    const gpu_fused_tree_kinds *k = &l->kinds;
+    gpu_text_append(t, "        mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, win);\n"
+                       "        vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 3.0);\n");
+    int thin = 0, shapes = shape_count(k->shape);
+    char test[256] = "";
+    for (int s = 0; s < BG_SHAPE_COUNT_; s++) {
+        if (!k->shape[s] || !bg_shape_thin((bg_shape)s))
+            continue;
+        size_t used = strlen(test);
+        snprintf(test + used, sizeof test - used, "%smeta.x == %d.0", thin++ ? " || " : "", s);
+    }
+    gpu_text_printf(t, "        bool thin = %s;\n", thin == 0 ? "false" : thin == shapes ? "true" : test);
+    gpu_text_append(t, "        n = bg_hit_normal(bg_tree_normal_matrix(m), n_obj, d, thin, first_root, entering);\n"
+                       "        code = bg_hit_code(win, thin, entering);\n        mat = meta.y;\n");
+    if (k->uv || k->tangent) {
+        int count = 0, position = 0;
+        for (int u = 0; u < BG_UV_COUNT_; u++)
+            count += k->mapping[u] ? 1 : 0;
+        for (int u = 0; u < BG_UV_COUNT_; u++) {
+            if (!k->mapping[u])
+                continue;
+            if (count == 1)
+                gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
+            else if (position == count - 1)
+                gpu_text_printf(t, "        else\n            uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
+            else
+                gpu_text_printf(t, "        %sif (meta.z == %d.0)\n            uv = bg_uv_map_%s(p_obj, dpdu);\n",
+                                position ? "else " : "", u, uv_name[u]);
+            position++;
+        }
+    }
+    if (k->uv)
+        gpu_text_append(t, "        uv *= bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0).xy;\n");
+    if (k->tangent)
+        gpu_text_append(t, "        tg = bg_tangent(bg_tree_to_world3(bg_objects, bg_object_dims, win) * dpdu, n);\n");
+    else
+        gpu_text_append(t, "        tg = n;\n");
 }
 
 /* The winner's attributes by object, then its material by material: objects of one material share
@@ -201,22 +393,33 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
                        "out vec4 nrm, out vec4 base, out vec4 coat, out vec4 tangent, out vec3 once, out vec2 xparent)\n{\n"
                        "    bool entering = true;\n    vec3 n = -d;\n    float mat = 0.0;\n    vec2 uv = vec2(0.0);\n"
                        "    vec3 dpdu = vec3(0.0);\n    vec3 tg = -d;\n    code = 0.0;\n");
+    int cases = (int)unrolled_count(l) + (gpu_fused_layout_walks(l) ? 1 : 0), position = 0;
     for (uint32_t j = 0; j < l->object_count; j++) {
-        branch(t, "win", j, (int)j, (int)l->object_count);
+        if (l->objects[j].in_tree)
+            continue;
+        branch(t, "win", uniform(l, GPU_FUSED_U_ID, j).s, position++, cases);
         emit_object_attributes(l, t, j);
+        gpu_text_append(t, "    }\n");
+    }
+    if (gpu_fused_layout_walks(l)) {
+        branch(t, "win", "", position, cases);
+        emit_tree_attributes(l, t);
         gpu_text_append(t, "    }\n");
     }
     /* Parameters a material lacks keep the values that make them vanish: isotropic, opaque, no coat. */
     gpu_text_append(t, "    vec3 base_c = vec3(0.0), ambient = vec3(0.0), emission = vec3(0.0), coat_c = vec3(0.0);\n"
                        "    float base_r = 1.0, base_p = 1.0, transparency = 0.0, ior = 1.0, coat_r = -1.0, "
                        "coat_p = 1.0;\n");
-    int used = 0, position = 0;
+    int used = 0;
+    position = 0;
     for (uint32_t k = 0; k < l->material_count; k++)
         used += l->materials[k].used ? 1 : 0;
     for (uint32_t k = 0; k < l->material_count; k++) {
         if (!l->materials[k].used)
             continue;
-        branch(t, "mat", k, position++, used);
+        char value[16];
+        snprintf(value, sizeof value, "%u.0", (unsigned)k);
+        branch(t, "mat", value, position++, used);
         emit_material(l, t, k);
         gpu_text_append(t, "    }\n");
     }
@@ -333,6 +536,8 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
                        "bg_ro, bg_rd, bg_w0);\n"
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
+    if (gpu_fused_layout_walks(l))
+        gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
     if (l->max_depth == 0)
         gpu_text_printf(t, "%s;\n", trace_call);
     else if (l->stack == 0)
@@ -341,13 +546,16 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
         emit_tree(l, t);
     /* The output encoding (docs/shading.md 10) is a uniform: RGBA8 in either encoding and RGBA32F
      * share the program. */
-    gpu_text_append(t, "vec4 bg_out = vec4(bg_radiance, 1.0);\n"
-                       "if (bg_output.x > 0.5)\n    bg_out = vec4(bg_encode(bg_radiance, bg_output.y > 0.5), 1.0);\n");
+    /* Alpha 0 marks a pixel whose tree walks ran out of steps (fused_tree.c renders it again). */
+    gpu_text_printf(t, "float bg_alpha = %s;\nvec4 bg_out = vec4(bg_radiance, bg_alpha);\n"
+                       "if (bg_output.x > 0.5)\n    bg_out = vec4(bg_encode(bg_radiance, bg_output.y > 0.5), bg_alpha);\n",
+                    gpu_fused_layout_walks(l) ? "1.0 - bg_tree_short" : "1.0");
 }
 
 bool gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output)
 {
     bool ok = library(l, functions);
+    emit_tree_walks(l, functions);
     emit_nearest(l, functions);
     emit_blocked(l, functions);
     emit_surface(l, functions);

@@ -89,6 +89,24 @@ static void min_weight(const gpu_fused_values *v, uint32_t i, float *out)
     out[0] = (float)v->settings->min_weight;
 }
 
+static void tree_node_dims(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    memcpy(out, v->tree->nodes, sizeof v->tree->nodes);
+}
+
+static void tree_object_dims(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    memcpy(out, v->tree->objects, sizeof v->tree->objects);
+}
+
+static void tree_node_count(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    out[0] = v->tree->node_count;
+}
+
 /* One light packed as bg_light.glsl reads it (the packing of gpu_set_light_uniforms, for any
  * number of lights). */
 typedef struct packed_light {
@@ -164,6 +182,12 @@ static void column_major3(const double *m, float *out)
     for (int c = 0; c < 3; c++)
         for (int r = 0; r < 3; r++)
             out[c * 3 + r] = (float)m[r * 3 + c];
+}
+
+static void object_id(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)v;
+    out[0] = (float)i;
 }
 
 static void object_to_object(const gpu_fused_values *v, uint32_t i, float *out)
@@ -242,9 +266,11 @@ static int components(macs_uniform_type t)
     return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
 }
 
-void gpu_fused_uniform_name(int r, uint32_t i, char *name, size_t size)
+void gpu_fused_uniform_name(const gpu_fused_layout *l, int r, uint32_t i, char *name, size_t size)
 {
-    if (rows[r].scope == GPU_FUSED_OBJECT || rows[r].scope == GPU_FUSED_MATERIAL)
+    if (rows[r].scope == GPU_FUSED_OBJECT)
+        snprintf(name, size, rows[r].name, (unsigned)l->objects[i].slot);
+    else if (rows[r].scope == GPU_FUSED_MATERIAL)
         snprintf(name, size, rows[r].name, (unsigned)i);
     else
         snprintf(name, size, "%s", rows[r].name);
@@ -255,10 +281,12 @@ bool gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
     const row *w = &rows[r];
     switch (w->scope) {
     case GPU_FUSED_FRAME:
-        return w->need != GPU_FUSED_NEED_BOUNCE || l->max_depth > 0;
+        return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;
     case GPU_FUSED_LIGHTS:
         return l->light_count > 0;
     case GPU_FUSED_OBJECT:
+        if (l->objects[i].in_tree)
+            return false;
         return w->need == GPU_FUSED_NEED_ALWAYS || (w->need == GPU_FUSED_NEED_TANGENT && gpu_fused_object_tangent(l, i)) ||
                (w->need == GPU_FUSED_NEED_UV && gpu_fused_object_uv(l, i));
     case GPU_FUSED_MATERIAL:
@@ -319,7 +347,7 @@ static bool declare_one(void *user, int r, uint32_t i)
 {
     declaring *d = user;
     char *name = d->names + (size_t)d->n * NAME_SIZE;
-    gpu_fused_uniform_name(r, i, name, NAME_SIZE);
+    gpu_fused_uniform_name(d->l, r, i, name, NAME_SIZE);
     d->desc[d->n++] = (macs_uniform_desc){name, rows[r].type, array_count(d->l, &rows[r])};
     return true;
 }
@@ -365,7 +393,7 @@ static bool set_one(void *user, int r, uint32_t i)
     else
         param_value(s->v, w->param, i, s->scratch);
     char name[NAME_SIZE];
-    gpu_fused_uniform_name(r, i, name, sizeof name);
+    gpu_fused_uniform_name(s->l, r, i, name, sizeof name);
     s->ms = macs_pass_set_uniform(s->pass, name, s->scratch);
     return s->ms == MACS_OK;
 }

@@ -311,8 +311,9 @@ void gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase);
 
 /* ---- read_back.c ---- */
 /* Copies a finished RGBA8 or RGBA32F texture of the image's size into the caller's image, rows
- * flipped to top-down, alpha 1 for float images. */
-bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride);
+ * flipped to top-down; with opaque, alpha 1 for float images (else the texture's, for the caller to
+ * read and then set). */
+bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque);
 
 /* ---- rect.c ---- */
 /* Grows a to the smallest rectangle holding a and b ({x, y, width, height}; empty ones add nothing). */
@@ -349,10 +350,11 @@ typedef enum gpu_fused_param {
     GPU_FUSED_P_COUNT_
 } gpu_fused_param;
 
-/* When a uniform (or parameter) exists: for every frame, with bounces, with lights; per object
+/* When a uniform (or parameter) exists: for every frame, with bounces, with lights, with the object
+ * tree; per object unrolled (outside the tree)
  * always, with a tangent, with UVs; per material used, anisotropic, transparent, coated, both. */
 typedef enum gpu_fused_need {
-    GPU_FUSED_NEED_ALWAYS = 0, GPU_FUSED_NEED_BOUNCE, GPU_FUSED_NEED_LIGHTS, GPU_FUSED_NEED_TANGENT,
+    GPU_FUSED_NEED_ALWAYS = 0, GPU_FUSED_NEED_BOUNCE, GPU_FUSED_NEED_LIGHTS, GPU_FUSED_NEED_TREE, GPU_FUSED_NEED_TANGENT,
     GPU_FUSED_NEED_UV, GPU_FUSED_NEED_USED, GPU_FUSED_NEED_ANISO, GPU_FUSED_NEED_TRANSPARENT,
     GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO
 } gpu_fused_need;
@@ -374,11 +376,15 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(BACKGROUND, FRAME, "bg_background", VEC3, ALWAYS, background)             \
     X(OUTPUT, FRAME, "bg_output", VEC2, ALWAYS, output_encoding)                \
     X(MIN_WEIGHT, FRAME, "bg_min_weight", FLOAT, BOUNCE, min_weight)            \
+    X(TREE_DIMS, FRAME, "bg_tree_dims", VEC4, TREE, tree_node_dims)             \
+    X(OBJECT_DIMS, FRAME, "bg_object_dims", VEC4, TREE, tree_object_dims)       \
+    X(TREE_NODES, FRAME, "bg_tree_count", FLOAT, TREE, tree_node_count)         \
     X(LIGHT_POS, LIGHTS, "bg_lpos", VEC4, LIGHTS, light_position)               \
     X(LIGHT_RAD, LIGHTS, "bg_lrad", VEC3, LIGHTS, light_radiance)               \
     X(LIGHT_ATT, LIGHTS, "bg_latt", VEC3, LIGHTS, light_attenuation)            \
     X(LIGHT_SPOT, LIGHTS, "bg_lspot", VEC4, LIGHTS, light_spot)                 \
     X(LIGHT_EXP, LIGHTS, "bg_lexp", FLOAT, LIGHTS, light_exponent)              \
+    X(ID, OBJECT, "bg_o%u_id", FLOAT, ALWAYS, object_id)                        \
     X(TO_OBJECT, OBJECT, "bg_o%u_to_object", MAT4, ALWAYS, object_to_object)    \
     X(NORMAL, OBJECT, "bg_o%u_normal", MAT3, ALWAYS, object_normal)             \
     X(TO_WORLD3, OBJECT, "bg_o%u_to_world3", MAT3, TANGENT, object_to_world3)   \
@@ -411,7 +417,21 @@ typedef struct gpu_fused_object {
     uint32_t material;
     bg_uv_mapping uv_mapping;
     bool casts_shadows;
+    bool in_tree; /* walked from the tree's textures rather than unrolled with its own uniforms */
+    uint32_t slot; /* outside the tree: its place among those objects, which names its uniforms (the
+                      object's index is a uniform too, so the program does not change when objects
+                      before it come and go) */
 } gpu_fused_object;
+
+/* What the tree variant's code depends on: which shapes, mappings and needs its objects have (never
+ * how many objects or which), so that adding or moving objects of those kinds compiles nothing. */
+typedef struct gpu_fused_tree_kinds {
+    bool shape[BG_SHAPE_COUNT_];    /* shapes of tree objects */
+    bool caster[BG_SHAPE_COUNT_];   /* shapes of tree objects that cast shadows */
+    bool mapping[BG_UV_COUNT_];     /* UV mappings some tree object needs (for UVs or a tangent) */
+    bool uv, tangent;               /* some tree object needs UVs / a tangent */
+    bool all_cast;                  /* every tree object casts shadows: the walk need not ask */
+} gpu_fused_tree_kinds;
 
 /* Everything the fused program depends on: the scene's structure and the bounce depth. Values
  * never enter the program; rays_needed, the one field a value (min_weight) sets, only decides
@@ -428,6 +448,10 @@ typedef struct gpu_fused_layout {
     bool light_loop;     /* lights in a loop rather than unrolled (GPU_FUSED_UNROLLED_SHADOW_TESTS) */
     int loop_rays;       /* the trace loop's bound: every ray of the full tree, within GPU_FUSED_MAX_LOOP */
     double rays_needed;  /* the most rays a pixel can follow, min_weight's pruning counted */
+    bool tree;           /* BG_PLAN_FUSED_TREE: the bounded objects are walked from the tree's textures */
+    uint32_t tree_count; /* objects in the tree (not part of the program) */
+    gpu_fused_tree_kinds kinds;
+    int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
 } gpu_fused_layout;
 
 /* llvmpipe ends a shader invocation silently after 65535 loop iterations in all, so the trace loop
@@ -439,10 +463,18 @@ typedef struct gpu_fused_layout {
  * (many_spheres, many_lights, glass at 256x256). */
 #define GPU_FUSED_UNROLLED_SHADOW_TESTS 16
 
+/* The tree variant's texture geometry: per texture (items per row, its inverse, 1 / width,
+ * 1 / height), as bg_fused_tree.glsl reads it, and the node count. */
+typedef struct gpu_fused_tree_dims {
+    float nodes[4], objects[4];
+    float node_count;
+} gpu_fused_tree_dims;
+
 /* The values of one render, for the uniforms. */
 typedef struct gpu_fused_values {
     const bg_scene_state *state;
     const bg_render_settings *settings;
+    const gpu_fused_tree_dims *tree; /* NULL without the tree */
     int width, height;
     bool float_output;
 } gpu_fused_values;
@@ -455,11 +487,35 @@ bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg
 /* Frees the fused plan's program, textures and cache. */
 void gpu_fused_release(bg_renderer *r);
 
+/* ---- fused_tree.c ---- */
+/* One texture of the tree variant with the host copy of what it holds (held) and room to build the
+ * next frame's (scratch), so that only a change is uploaded. */
+typedef struct gpu_fused_tree_texture {
+    macs_texture *texture;
+    float *held, *scratch;
+    size_t floats;
+} gpu_fused_tree_texture;
+
+typedef struct gpu_fused_tree {
+    gpu_fused_tree_texture nodes, objects;
+    gpu_fused_tree_dims dims; /* of the prepared textures */
+} gpu_fused_tree;
+
+/* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
+bool gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
+/* Makes the two textures hold the committed scene's tree and objects, as seen from its camera. */
+bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state);
+void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
+/* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
+ * returns how many there were. */
+uint64_t gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
+                                 const bg_image *image, size_t stride);
+
 /* ---- fused_layout.c ---- */
-/* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator);
- * false when out of memory. */
+/* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),
+ * with tree the objects of the scene's object tree walked from textures; false when out of memory. */
 bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
-                            gpu_fused_layout *out);
+                            bool tree, gpu_fused_layout *out);
 void gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
 /* The constant and texture of material parameter p of m (rgb for colours; value in v[0] for scalars). */
 void gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel);
@@ -467,11 +523,14 @@ void gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], ui
 bool gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);
 /* Whether an object of the layout's material samples textures / needs a shading tangent. */
 bool gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
+/* Whether the program walks a tree: the tree variant with some object in the scene's tree. */
+bool gpu_fused_layout_walks(const gpu_fused_layout *l);
 bool gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object);
 
 /* ---- fused_uniforms.c ---- */
-/* The GLSL name of row `row` (a gpu_fused_uniform or GPU_FUSED_PARAM_ROW) for object or material i. */
-void gpu_fused_uniform_name(int row, uint32_t i, char *name, size_t size);
+/* The GLSL name of row `row` (a gpu_fused_uniform or GPU_FUSED_PARAM_ROW) for object or material i
+ * (an object's uniforms are named by its slot). */
+void gpu_fused_uniform_name(const gpu_fused_layout *l, int row, uint32_t i, char *name, size_t size);
 /* Whether row exists for object or material i (frame and light rows: i is ignored). */
 bool gpu_fused_uniform_present(const gpu_fused_layout *l, int row, uint32_t i);
 /* Uniform components the layout declares, counted in whole vec4s as old hardware allocates them. */

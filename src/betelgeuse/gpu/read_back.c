@@ -4,7 +4,7 @@
 #include "../common/alloc.h"
 #include "gpu_internal.h"
 
-bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride)
+bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque)
 {
     size_t w = (size_t)image->width, h = (size_t)image->height;
     bool as_float = image->format == BG_PIXEL_RGBA32F;
@@ -24,7 +24,7 @@ bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, 
     for (size_t y = 0; y < h; y++) {
         unsigned char *dst = (unsigned char *)image->pixels + y * stride;
         memcpy(dst, src + (h - 1 - y) * row, row);
-        if (as_float) {
+        if (as_float && opaque) {
             /* The image is opaque; a plan's float target may use alpha for its own bookkeeping. */
             float one = 1.0f;
             for (size_t x = 0; x < w; x++)

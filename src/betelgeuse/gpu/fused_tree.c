@@ -1,0 +1,198 @@
+/* The tree variant of the fused plan (BG_PLAN_FUSED_TREE): its two textures and the pixels it hands
+ * to the CPU reference.
+ *
+ * The scene's object tree (common/bvh.h) goes to the GPU as it is, seen from the camera: the GPU's
+ * frame is camera-relative (origin.c), so each frame's nodes are the tree's boxes minus the eye,
+ * rounded outward again (bg_bvh_shifted_nodes), with each leaf naming its object. Each object's
+ * transforms and kinds go in a second texture, indexed by object (bg_fused_tree.glsl gives both
+ * layouts). Both are rebuilt on the host every frame and uploaded only when they differ from what
+ * the textures hold: a frame after a change of nothing the GPU sees uploads nothing, and one after
+ * a material change only the uniforms.
+ *
+ * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
+ * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
+ * rendered here by the CPU reference, pixel by pixel, on the same tree: never cut short silently. */
+#include <stdio.h>
+#include <string.h>
+
+#include "../common/alloc.h"
+#include "../common/bvh.h"
+#include "../cpu/cpu_internal.h"
+#include "gpu_internal.h"
+
+enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096 };
+
+/* Items per row (a power of two), width and height of a texture of `items` items of `per` texels
+ * within max_size; false when even the widest rows need more than max_size of them. */
+static bool geometry(int max_size, uint32_t items, int per, int *per_row, int *width, int *height)
+{
+    int cap = max_size < WIDEST_ROW ? max_size : WIDEST_ROW;
+    int k = 1;
+    while (2 * k * per <= cap && (uint32_t)k < items)
+        k *= 2;
+    uint64_t rows = items ? ((uint64_t)items + (uint64_t)k - 1) / (uint64_t)k : 1;
+    *per_row = k;
+    *width = k * per;
+    *height = (int)(rows < (uint64_t)max_size ? rows : (uint64_t)max_size);
+    return rows <= (uint64_t)max_size;
+}
+
+bool gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
+{
+    int k, w, h;
+    uint32_t nodes = state->tree ? state->tree->node_count : 0;
+    if (!geometry(r->limits.max_texture_size, nodes, NODE_TEXELS, &k, &w, &h)) {
+        snprintf(why, size, "the object tree's %u nodes need more than %d rows of a %d-texel texture", nodes,
+                 r->limits.max_texture_size, w);
+        return false;
+    }
+    if (!geometry(r->limits.max_texture_size, state->object_count, OBJECT_TEXELS, &k, &w, &h)) {
+        snprintf(why, size, "the %u objects need more than %d rows of a %d-texel texture", state->object_count,
+                 r->limits.max_texture_size, w);
+        return false;
+    }
+    return true;
+}
+
+/* ---- the host copies ---- */
+
+static void fill_nodes(const bg_scene_state *state, float *out)
+{
+    const bg_vec3 *eye = &state->camera.camera.position;
+    double origin[3] = {eye->x, eye->y, eye->z};
+    if (state->tree && state->tree->node_count)
+        bg_bvh_shifted_nodes(state->tree, origin, state->tree_objects, out);
+}
+
+/* Object i's texels, as bg_fused_tree.glsl reads them. */
+static void fill_object(const bg_scene_state *state, uint32_t i, float *o)
+{
+    const bg_object_data *obj = &state->objects[i];
+    float m16[16];
+    gpu_origin_to_object(state, i, m16); /* column-major */
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            o[4 * r + c] = m16[c * 4 + r];
+    o[12] = (float)obj->shape;
+    o[13] = (float)obj->material;
+    o[14] = (float)obj->uv_mapping;
+    o[15] = obj->casts_shadows ? 1.0f : 0.0f;
+    o[16] = (float)obj->uv_scale[0];
+    o[17] = (float)obj->uv_scale[1];
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++)
+            o[20 + 4 * r + c] = (float)obj->to_world[r][c];
+        o[23 + 4 * r] = 0.0f;
+    }
+}
+
+static void fill_objects(const bg_scene_state *state, float *out)
+{
+    for (uint32_t i = 0; i < state->object_count; i++)
+        fill_object(state, i, out + (size_t)i * OBJECT_TEXELS * 4);
+}
+
+/* ---- one texture ---- */
+
+/* Makes *texture hold what fill writes for a width x height texture, uploading only a change. */
+static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, const bg_scene_state *state, int width,
+                                 int height, void (*fill)(const bg_scene_state *, float *), const char *what)
+{
+    size_t floats = (size_t)width * (size_t)height * 4;
+    if (t->floats != floats || !t->held || !t->scratch) {
+        macs_texture_destroy(t->texture);
+        bg_free(&r->allocator, t->held);
+        bg_free(&r->allocator, t->scratch);
+        memset(t, 0, sizeof *t);
+        t->held = bg_alloc(&r->allocator, floats * sizeof(float));
+        t->scratch = bg_alloc(&r->allocator, floats * sizeof(float));
+        if (!t->held || !t->scratch)
+            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the %s (%zu floats)", what,
+                            floats);
+        t->floats = floats;
+    }
+    memset(t->scratch, 0, floats * sizeof(float));
+    fill(state, t->scratch);
+    if (t->texture && memcmp(t->scratch, t->held, floats * sizeof(float)) == 0)
+        return BG_OK;
+    macs_status ms = MACS_OK;
+    if (!t->texture) {
+        bg_status st = gpu_texture_ensure(r, width, height, MACS_FORMAT_RGBA32F, &t->texture, what);
+        if (st != BG_OK)
+            return st;
+    }
+    ms = macs_texture_upload(t->texture, t->scratch, 0);
+    if (ms)
+        return gpu_fail_macs(r, ms, what);
+    float *swap = t->held;
+    t->held = t->scratch;
+    t->scratch = swap;
+    return BG_OK;
+}
+
+static void texture_release(const bg_allocator *a, gpu_fused_tree_texture *t)
+{
+    macs_texture_destroy(t->texture);
+    bg_free(a, t->held);
+    bg_free(a, t->scratch);
+    memset(t, 0, sizeof *t);
+}
+
+static void set_dims(float dims[4], int per_row, int width, int height)
+{
+    dims[0] = (float)per_row;
+    dims[1] = 1.0f / (float)per_row;
+    dims[2] = 1.0f / (float)width;
+    dims[3] = 1.0f / (float)height;
+}
+
+bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
+{
+    char why[160];
+    if (!gpu_fused_tree_fits(r, state, why, sizeof why))
+        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
+    uint32_t nodes = state->tree ? state->tree->node_count : 0;
+    int k, w, h;
+    geometry(r->limits.max_texture_size, nodes, NODE_TEXELS, &k, &w, &h);
+    set_dims(t->dims.nodes, k, w, h);
+    t->dims.node_count = (float)nodes;
+    bg_status st = texture_prepare(r, &t->nodes, state, w, h, fill_nodes, "object tree texture");
+    if (st != BG_OK)
+        return st;
+    geometry(r->limits.max_texture_size, state->object_count, OBJECT_TEXELS, &k, &w, &h);
+    set_dims(t->dims.objects, k, w, h);
+    return texture_prepare(r, &t->objects, state, w, h, fill_objects, "tree objects texture");
+}
+
+void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
+{
+    texture_release(a, &t->nodes);
+    texture_release(a, &t->objects);
+    memset(&t->dims, 0, sizeof t->dims);
+}
+
+uint64_t gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
+                                 const bg_image *image, size_t stride)
+{
+    uint64_t count = 0;
+    bool as_float = image->format == BG_PIXEL_RGBA32F;
+    for (int y = 0; y < image->height; y++) {
+        const unsigned char *row = (const unsigned char *)image->pixels + (size_t)y * stride;
+        for (int x = 0; x < image->width; x++) {
+            bool marked;
+            if (as_float) {
+                float alpha, one = 1.0f;
+                memcpy(&alpha, row + (size_t)x * 16 + 12, sizeof alpha);
+                marked = alpha < 0.5f;
+                memcpy((unsigned char *)row + (size_t)x * 16 + 12, &one, sizeof one);
+            } else {
+                marked = row[(size_t)x * 4 + 3] == 0;
+            }
+            if (marked) {
+                bg_cpu_render_pixel(state, settings, image, stride, x, y);
+                count++;
+            }
+        }
+    }
+    return count;
+}
