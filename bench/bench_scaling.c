@@ -13,7 +13,15 @@
 #include "lib/diffuse_spheres.h"
 #include "scenes/scenes.h"
 
-typedef enum series_kind { SERIES_OBJECTS, SERIES_LIGHTS, SERIES_DEPTH, SERIES_RESOLUTION, SERIES_DIFFUSE } series_kind;
+typedef enum series_kind {
+    SERIES_OBJECTS, SERIES_LIGHTS, SERIES_DEPTH, SERIES_RESOLUTION, SERIES_DIFFUSE, SERIES_DIFFUSE_CLOUD
+} series_kind;
+
+/* The series that build diffuse_spheres scenes of their own, and in which layout. */
+static bool builds_diffuse(series_kind kind)
+{
+    return kind == SERIES_DIFFUSE || kind == SERIES_DIFFUSE_CLOUD;
+}
 
 typedef struct series {
     series_kind kind;
@@ -31,7 +39,9 @@ static const series all_series[] = {
     {SERIES_DEPTH, "depth", "bounce levels (max_depth)", SCENE_GLASS, {0, 1, 2, 3, 4, 5, 6}, 7, {0, 2, 4, 6}, 4},
     {SERIES_RESOLUTION, "resolution", "image side (pixels)", SCENE_PAPER_EARTH_SHADOW, {256, 512, 1024, 2048}, 4,
      {256, 512, 1024}, 3},
-    {SERIES_DIFFUSE, "diffuse", "diffuse spheres, 2 lights, no bounces", SCENE_COUNT,
+    {SERIES_DIFFUSE, "diffuse", "diffuse spheres in a layer, 2 lights, no bounces", SCENE_COUNT,
+     {1, 16, 256, 4096, 65536}, 5, {1, 256, 4096}, 3},
+    {SERIES_DIFFUSE_CLOUD, "diffuse_cloud", "diffuse spheres in a cube, 2 lights, no bounces", SCENE_COUNT,
      {1, 16, 256, 4096, 65536}, 5, {1, 256, 4096}, 3},
 };
 
@@ -104,14 +114,14 @@ static bool series_list_valid(const char *list)
 /* A new diffuse scene and the time of its first commit. That commit validates and copies every
  * object and builds the object tree from nothing; later commits of the same scene only keep or
  * refit the tree, so they would not measure the build. */
-static bg_scene *diffuse_scene_committed(int n, double *commit_ms)
+static bg_scene *diffuse_scene_committed(int n, diffuse_layout layout, double *commit_ms)
 {
     bg_scene *scene = NULL;
     if (bg_scene_create(NULL, &scene) != BG_OK) {
         fprintf(stderr, "cannot create a scene\n");
         return NULL;
     }
-    bg_status st = diffuse_spheres_build(scene, n);
+    bg_status st = diffuse_spheres_build(scene, n, layout);
     double t0 = bench_now_ms();
     if (st == BG_OK)
         st = bg_scene_commit(scene);
@@ -127,13 +137,13 @@ static bg_scene *diffuse_scene_committed(int n, double *commit_ms)
 
 /* Builds the diffuse scene `runs` times, each time timing its first commit; keeps the last scene
  * for rendering and gives the median commit time. */
-static bg_scene *diffuse_scene_timed(int n, int runs, double *commit_ms)
+static bg_scene *diffuse_scene_timed(int n, diffuse_layout layout, int runs, double *commit_ms)
 {
     double times[COMMIT_RUNS];
     bg_scene *scene = NULL;
     for (int r = 0; r < runs; r++) {
         bg_scene_destroy(scene);
-        scene = diffuse_scene_committed(n, &times[r]);
+        scene = diffuse_scene_committed(n, layout, &times[r]);
         if (!scene)
             return NULL;
     }
@@ -155,14 +165,15 @@ static bg_scene *point_scene(const series *s, int x, int commit_runs, bg_render_
     case SERIES_LIGHTS: params.lights = x; break;
     case SERIES_DEPTH: settings->max_depth = x; break;
     case SERIES_RESOLUTION: *size = x; break;
-    case SERIES_DIFFUSE: return diffuse_scene_timed(x, commit_runs, commit_ms);
+    case SERIES_DIFFUSE: return diffuse_scene_timed(x, DIFFUSE_LAYER, commit_runs, commit_ms);
+    case SERIES_DIFFUSE_CLOUD: return diffuse_scene_timed(x, DIFFUSE_CLOUD, commit_runs, commit_ms);
     }
     return bench_scene(s->scene, &params);
 }
 
 static const char *series_scene_name(const series *s)
 {
-    return s->kind == SERIES_DIFFUSE ? "diffuse_spheres" : scenes_name(s->scene);
+    return builds_diffuse(s->kind) ? "diffuse_spheres" : scenes_name(s->scene);
 }
 
 /* ---- measuring ---- */
@@ -184,7 +195,7 @@ static bool gpu_frame_worth_timing(bench_gpu *gpu, const series *s, int x, bg_sc
                                    const bg_render_settings *settings, point_result *r)
 {
     r->gpu_measured = true;
-    if (s->kind != SERIES_DIFFUSE || x <= MULTIPASS_TIMED_OBJECTS)
+    if (!builds_diffuse(s->kind) || x <= MULTIPASS_TIMED_OBJECTS)
         return true;
     bg_image probe;
     if (!bench_image_alloc(&probe, PROBE_SIZE, PROBE_SIZE, BG_PIXEL_RGBA8))

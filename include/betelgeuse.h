@@ -337,8 +337,8 @@ enum {
 /* How the GPU renderer lays out a frame (docs/gpu_pipeline.md). The plans render the same shading
  * model within the same accuracy against the CPU reference, but not bit for bit alike. */
 typedef enum bg_gpu_plan {
-    BG_PLAN_AUTO = 0,  /* fused where the scene and the GL limits allow it (BG_PLAN_FUSED up to 16
-                          bounded objects, BG_PLAN_FUSED_TREE beyond), else multipass (the reason
+    BG_PLAN_AUTO = 0,  /* fused where the scene and the GL limits allow it (BG_PLAN_FUSED up to 7
+                          bounded objects, BG_PLAN_FUSED_TREE from 8), else multipass (the reason
                           is logged at BG_LOG_INFO); multipass whenever an option only it has is
                           asked for: gpu_disable_skips, dmax, half_gbuffer or float_depth */
     BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image,

@@ -842,9 +842,13 @@ static void test_corrupt_nodes(void **state)
     float keep_miss = *miss, keep_prim = *prim;
     bg_bvh_walk walk;
 
-    *miss = 0.0f; /* back to the root: a cycle */
+    *miss = 0.0f; /* back to the root: a cycle for the threaded walk, which deep trees take */
+    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_ERR_INVALID_ARGUMENT);
+    uint32_t depth = bvh.depth;
+    bvh.depth = 200;
     assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_ERR_LIMIT);
     assert_int_equal(walk.nodes_visited, 2 * bvh.node_count);
+    bvh.depth = depth;
     *miss = (float)(bvh.node_count + 1);
     assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
     *miss = NAN;
@@ -892,6 +896,74 @@ static void test_stop_early(void **state)
     assert_int_equal(walk.nodes_visited, 1);
     assert_int_equal(walk.prims_visited, 0);
     bg_bvh_destroy(&bvh);
+}
+
+/* The copy for a viewpoint: the same tree shifted (a valid tree over the shifted double boxes),
+ * each interior node's nearer child first, leaves renamed through the id list. */
+static double distance2(const float *node, const double p[3])
+{
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double lo = node[BG_BVH_NODE_MIN + a], hi = node[BG_BVH_NODE_MAX + a];
+        double d = p[a] < lo ? lo - p[a] : (p[a] > hi ? p[a] - hi : 0.0);
+        d2 += d * d;
+    }
+    return d2;
+}
+
+static void test_view_nodes(void **state)
+{
+    (void)state;
+    const double eye[3] = {3.25, -2.5, 7.0}, zero[3] = {0.0, 0.0, 0.0};
+    for (size_t s = 0; s < sizeof SCENE_SIZES / sizeof SCENE_SIZES[0]; s++) {
+        uint32_t n = SCENE_SIZES[s];
+        test_scene ts = random_scene(n, 500 + n);
+        bg_bvh bvh = build_ok(ts.boxes, n);
+        float *out = malloc((size_t)bvh.node_count * BG_BVH_NODE_FLOATS * sizeof(float));
+        bg_bvh_box *shifted = malloc(n * sizeof *shifted);
+        assert_non_null(out);
+        assert_non_null(shifted);
+        for (uint32_t i = 0; i < n; i++)
+            for (int a = 0; a < 3; a++) {
+                shifted[i].min[a] = ts.boxes[i].min[a] - eye[a];
+                shifted[i].max[a] = ts.boxes[i].max[a] - eye[a];
+            }
+        assert_int_equal(bg_bvh_view_nodes(&bvh, eye, NULL, out), BG_OK);
+        bg_bvh view = bvh;
+        view.nodes = out;
+        check_tree(&view, shifted, n);
+        uint32_t swapped = 0;
+        for (uint32_t i = 0; i < view.node_count; i++) {
+            if (NODE(&view, i)[BG_BVH_NODE_PRIM] >= 0.0f)
+                continue;
+            uint32_t first = i + 1, second = field(&view, first, BG_BVH_NODE_MISS);
+            if (distance2(NODE(&view, second), zero) < distance2(NODE(&view, first), zero))
+                fail_msg("%u objects: node %u has its farther child first", n, i);
+            swapped += field(&view, first, BG_BVH_NODE_MISS) - first != field(&bvh, i + 1, BG_BVH_NODE_MISS) - (i + 1);
+        }
+        /* The ids: leaf k of the view names ids[prim]. */
+        uint32_t *ids = malloc(n * sizeof *ids);
+        assert_non_null(ids);
+        for (uint32_t p = 0; p < n; p++)
+            ids[p] = 7 * p + 3;
+        float *renamed = malloc((size_t)bvh.node_count * BG_BVH_NODE_FLOATS * sizeof(float));
+        assert_non_null(renamed);
+        assert_int_equal(bg_bvh_view_nodes(&bvh, eye, ids, renamed), BG_OK);
+        for (uint32_t i = 0; i < view.node_count; i++) {
+            float p = out[(size_t)i * BG_BVH_NODE_FLOATS + BG_BVH_NODE_PRIM];
+            float q = renamed[(size_t)i * BG_BVH_NODE_FLOATS + BG_BVH_NODE_PRIM];
+            assert_true(p < 0.0f ? q == p : q == (float)ids[(uint32_t)p]);
+        }
+        /* Reordering happened: some node's first child now spans another count of nodes. */
+        if (n >= 100)
+            assert_true(swapped > 0);
+        free(ids);
+        free(renamed);
+        free(out);
+        free(shifted);
+        bg_bvh_destroy(&bvh);
+        free_scene(&ts);
+    }
 }
 
 static void test_stats(void **state)
@@ -1071,6 +1143,7 @@ int main(void)
         cmocka_unit_test(test_bad_rays_and_refits),
         cmocka_unit_test(test_corrupt_nodes),
         cmocka_unit_test(test_stop_early),
+        cmocka_unit_test(test_view_nodes),
         cmocka_unit_test(test_stats),
         cmocka_unit_test(test_out_of_memory),
     };

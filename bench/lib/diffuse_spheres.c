@@ -1,7 +1,8 @@
 /* The diffuse spheres scene: see diffuse_spheres.h.
  *
- * The spheres sit in a grid of side ceil(cbrt(N)) cells inside the cube [-CUBE_HALF, CUBE_HALF]^3,
- * N of its cells chosen evenly through it, each sphere jittered inside its cell. The radius is a
+ * The spheres sit in a grid of side ceil(cbrt(N)) cells inside the cube [-CUBE_HALF, CUBE_HALF]^3
+ * (a cloud), or of side ceil(sqrt(N)) in the square of that half side at z = 0 (a layer), N of its
+ * cells chosen evenly through it, each sphere jittered inside its cell. The radius is a
  * fixed share of the cell, so a ray crossing the cube meets about the same number of spheres per
  * cell at every N and the image stays about as covered; radius plus jitter stays under half a
  * cell, so no two spheres touch and every silhouette is one sphere's own. There is no ground plane:
@@ -14,6 +15,10 @@
 #define CUBE_HALF 1.2
 #define RADIUS_SHARE 0.28 /* of the cell side */
 #define JITTER_SHARE 0.2  /* largest offset from the cell centre per axis, of the cell side */
+/* A layer's spheres are larger and less jittered (0.4 + 0.08 < 1/2: still apart), so that the
+ * square looks covered from its oblique camera. */
+#define LAYER_RADIUS_SHARE 0.4
+#define LAYER_JITTER_SHARE 0.08
 #define JITTER_SEED 0x5eed2024u
 #define MATERIAL_SEED 0xc0102u
 #define MATERIAL_COUNT 4
@@ -43,11 +48,12 @@ static uint32_t material_of(uint32_t cell)
     return hash32(MATERIAL_SEED ^ cell) % MATERIAL_COUNT;
 }
 
-/* The smallest side whose cube of cells holds n, in integers (cbrt may round below an exact cube). */
-static int grid_side(int n)
+/* The smallest side whose square or cube of cells holds n, in integers (sqrt and cbrt may round
+ * below an exact power). */
+static int grid_side(int n, int dimensions)
 {
     int side = 1;
-    while ((int64_t)side * side * side < n)
+    while ((dimensions == 3 ? (int64_t)side * side * side : (int64_t)side * side) < n)
         side++;
     return side;
 }
@@ -72,20 +78,26 @@ static bg_status add_materials(bg_scene *scene, uint32_t materials[MATERIAL_COUN
 
 /* Sphere k of n takes cell floor(k * cells / n): distinct cells (n <= cells), spread through the
  * whole cube rather than filling its first layers, so a partial grid covers the same region. */
-static bg_status add_spheres(bg_scene *scene, int n, const uint32_t materials[MATERIAL_COUNT])
+static bg_status add_spheres(bg_scene *scene, int n, diffuse_layout layout, const uint32_t materials[MATERIAL_COUNT])
 {
-    const int side = grid_side(n);
-    const int64_t cells = (int64_t)side * side * side;
+    const int dimensions = layout == DIFFUSE_CLOUD ? 3 : 2;
+    const int side = grid_side(n, dimensions);
+    const int64_t cells = dimensions == 3 ? (int64_t)side * side * side : (int64_t)side * side;
     const double spacing = 2.0 * CUBE_HALF / side;
+    const double radius = (dimensions == 3 ? RADIUS_SHARE : LAYER_RADIUS_SHARE) * spacing;
+    const double spread = dimensions == 3 ? JITTER_SHARE : LAYER_JITTER_SHARE;
     for (int k = 0; k < n; k++) {
         uint32_t cell = (uint32_t)((int64_t)k * cells / n);
         int index[3] = {(int)(cell % (uint32_t)side), (int)(cell / (uint32_t)side % (uint32_t)side),
                         (int)(cell / ((uint32_t)side * (uint32_t)side))};
         double c[3];
         for (int a = 0; a < 3; a++)
-            c[a] = -CUBE_HALF + (index[a] + 0.5 + JITTER_SHARE * jitter(cell, a)) * spacing;
+            c[a] = -CUBE_HALF + (index[a] + 0.5 + spread * jitter(cell, a)) * spacing;
+        /* A layer's third axis is its one cell around z = 0, jittered like the others. */
+        if (dimensions == 2)
+            c[2] = spread * jitter(cell, 2) * spacing;
         uint32_t object;
-        bg_status st = bg_scene_add_sphere(scene, bg_vec3_make(c[0], c[1], c[2]), RADIUS_SHARE * spacing,
+        bg_status st = bg_scene_add_sphere(scene, bg_vec3_make(c[0], c[1], c[2]), radius,
                                            materials[material_of(cell)], &object);
         if (st != BG_OK)
             return st;
@@ -93,15 +105,18 @@ static bg_status add_spheres(bg_scene *scene, int n, const uint32_t materials[MA
     return BG_OK;
 }
 
-/* A key light above and left of the camera and a dimmer fill to the right, both well off the view
- * axis, so the shadow rays of visible points cross other spheres of the cube. */
-static bg_status add_lights(bg_scene *scene)
+/* A key light and a dimmer fill, both well off the view axis, so the shadow rays of visible points
+ * cross other spheres: for the cloud above left and to the right of the camera, for the layer low
+ * over its plane, where they graze the neighbours. */
+static bg_status add_lights(bg_scene *scene, diffuse_layout layout)
 {
-    static const double places[2][4] = {{-3.0, 4.0, 4.0, 0.8}, {4.0, 1.5, 2.0, 0.4}};
+    static const double places[2][2][4] = {{{-3.0, 1.0, 0.9, 0.8}, {2.5, 3.0, 1.1, 0.4}},
+                                           {{-3.0, 4.0, 4.0, 0.8}, {4.0, 1.5, 2.0, 0.4}}};
     for (int i = 0; i < 2; i++) {
+        const double *place = places[layout == DIFFUSE_CLOUD][i];
         bg_light l = bg_light_init();
-        l.position = bg_vec3_make(places[i][0], places[i][1], places[i][2]);
-        l.intensity = places[i][3];
+        l.position = bg_vec3_make(place[0], place[1], place[2]);
+        l.intensity = place[3];
         uint32_t light;
         bg_status st = bg_scene_add_light(scene, &l, &light);
         if (st != BG_OK)
@@ -110,26 +125,27 @@ static bg_status add_lights(bg_scene *scene)
     return BG_OK;
 }
 
-/* A little above and to the right, so the cube shows three faces and its depth. */
-static bg_status set_camera(bg_scene *scene)
+/* For the cloud a little above and to the right, so the cube shows three faces and its depth; for
+ * the layer below it and closer, looking up at the square so that it fills most of the image. */
+static bg_status set_camera(bg_scene *scene, diffuse_layout layout)
 {
     bg_camera camera = bg_camera_init();
-    camera.position = bg_vec3_make(1.2, 1.5, 5.5);
+    camera.position = layout == DIFFUSE_CLOUD ? bg_vec3_make(1.2, 1.5, 5.5) : bg_vec3_make(0.4, -1.6, 2.6);
     camera.look_at = bg_vec3_make(0.0, 0.0, 0.0);
     return bg_scene_set_camera(scene, &camera);
 }
 
-bg_status diffuse_spheres_build(bg_scene *scene, int n)
+bg_status diffuse_spheres_build(bg_scene *scene, int n, diffuse_layout layout)
 {
-    if (!scene || n < 1 || n > DIFFUSE_SPHERES_MAX)
+    if (!scene || n < 1 || n > DIFFUSE_SPHERES_MAX || (layout != DIFFUSE_LAYER && layout != DIFFUSE_CLOUD))
         return BG_ERR_INVALID_ARGUMENT;
     uint32_t materials[MATERIAL_COUNT];
     bg_status st = add_materials(scene, materials);
     if (st == BG_OK)
-        st = add_spheres(scene, n, materials);
+        st = add_spheres(scene, n, layout, materials);
     if (st == BG_OK)
-        st = add_lights(scene);
+        st = add_lights(scene, layout);
     if (st == BG_OK)
-        st = set_camera(scene);
+        st = set_camera(scene, layout);
     return st;
 }

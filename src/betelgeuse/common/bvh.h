@@ -87,12 +87,16 @@ void bg_bvh_destroy(bg_bvh *bvh);
  * boxes gives back the built floats bit for bit. */
 bg_status bg_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
 
-/* Writes the tree's node_count nodes into out as seen from origin: every box minus origin, computed
- * in double and rounded outward again (the invariant holds for the shifted boxes), and each leaf's
- * primitive replaced by prim_ids[primitive] when prim_ids is not NULL (ids below 2^24 stay exact).
- * The GPU keeps its world frame at the camera (a float box far from the origin would lose the ray's
- * precision), so it uploads this copy. */
-void bg_bvh_shifted_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out);
+/* Writes the tree's node_count nodes into out as seen from origin, for walks of rays that start
+ * there: every box minus origin, computed in double and rounded outward again (the invariant holds
+ * for the shifted boxes); each interior node's children swapped where the second one's box is nearer
+ * to origin, so that a walk meets nearer boxes first (the layout stays pre-order with miss links);
+ * each leaf's primitive replaced by prim_ids[primitive] when prim_ids is not NULL (ids below 2^24
+ * stay exact). The GPU keeps its world frame at the camera, where a float box far from the origin
+ * would cost the ray its precision, and uploads this copy. Borrows 8 bytes per tree level from the
+ * tree's allocator while it runs: BG_ERR_OUT_OF_MEMORY when they are refused (out then partly
+ * written). */
+bg_status bg_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out);
 
 /* Fills *stats for the tree. */
 void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats);
@@ -110,7 +114,9 @@ typedef struct bg_bvh_walk {
 } bg_bvh_walk;
 
 /* Walks the tree for the ray origin + t direction, t in (t_min, *t_max], in double, calling visit
- * for each entered leaf in pre-order; *t_max is updated by the calls. A box is entered when its
+ * for each entered leaf; *t_max is updated by the calls. Leaves come nearer child first: at each
+ * interior node the child on the ray's near side of the axis that separates the children's centres
+ * most (pre-order, along the miss links, for a tree of depth 128 or more). A box is entered when its
  * slab interval, clipped to [t_min, *t_max], is not empty: inclusive at both ends, so of two
  * primitives at one distance both are visited and the callee applies its tie rule (distance, then
  * lower primitive index). The slab test is conservative and needs no IEEE infinities:

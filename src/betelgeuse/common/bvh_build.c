@@ -462,26 +462,79 @@ void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats)
     stats->sah_cost = sum / root;
 }
 
-/* ---- a moved copy -------------------------------------------------------------------------- */
+/* ---- a copy for one viewpoint ------------------------------------------------------------- */
 
 static double clamp_to_float_range(double x)
 {
     return x < -FLT_MAX ? -FLT_MAX : (x > FLT_MAX ? FLT_MAX : x);
 }
 
-/* Each coordinate's double difference is within half an ulp of a double of the exact one, far below
- * the float step the rounding adds; a box the shifted box should contain is therefore inside it. */
-void bg_bvh_shifted_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
+/* Squared distance from p to the node's box (0 inside it). */
+static double box_distance2(const float *node, const double p[3])
 {
-    for (uint32_t i = 0; i < bvh->node_count; i++) {
-        const float *node = bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
-        float *o = out + (size_t)i * BG_BVH_NODE_FLOATS;
-        for (int a = 0; a < 3; a++) {
-            o[BG_BVH_NODE_MIN + a] = float_down(clamp_to_float_range((double)node[BG_BVH_NODE_MIN + a] - origin[a]));
-            o[BG_BVH_NODE_MAX + a] = float_up(clamp_to_float_range((double)node[BG_BVH_NODE_MAX + a] - origin[a]));
-        }
-        float prim = node[BG_BVH_NODE_PRIM];
-        o[BG_BVH_NODE_PRIM] = prim >= 0.0f && prim_ids ? (float)prim_ids[node_index(node, BG_BVH_NODE_PRIM)] : prim;
-        o[BG_BVH_NODE_MISS] = node[BG_BVH_NODE_MISS];
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double lo = node[BG_BVH_NODE_MIN + a], hi = node[BG_BVH_NODE_MAX + a];
+        double d = p[a] < lo ? lo - p[a] : (p[a] > hi ? p[a] - hi : 0.0);
+        d2 += d * d;
     }
+    return d2;
+}
+
+/* Node old of the tree written at index at of out, shifted by -origin; a subtree keeps its size, so
+ * its miss link is at plus the old span. Each coordinate's double difference is within half an ulp
+ * of a double of the exact one, far below the float step the rounding adds, so a box the shifted
+ * box should contain is inside it. */
+static void write_shifted(const bg_bvh *bvh, uint32_t old, uint32_t at, const double origin[3],
+                          const uint32_t *prim_ids, float *out)
+{
+    const float *node = bvh->nodes + (size_t)old * BG_BVH_NODE_FLOATS;
+    float *o = out + (size_t)at * BG_BVH_NODE_FLOATS;
+    for (int a = 0; a < 3; a++) {
+        o[BG_BVH_NODE_MIN + a] = float_down(clamp_to_float_range((double)node[BG_BVH_NODE_MIN + a] - origin[a]));
+        o[BG_BVH_NODE_MAX + a] = float_up(clamp_to_float_range((double)node[BG_BVH_NODE_MAX + a] - origin[a]));
+    }
+    float prim = node[BG_BVH_NODE_PRIM];
+    o[BG_BVH_NODE_PRIM] = prim >= 0.0f && prim_ids ? (float)prim_ids[node_index(node, BG_BVH_NODE_PRIM)] : prim;
+    o[BG_BVH_NODE_MISS] = (float)(at + (node_index(node, BG_BVH_NODE_MISS) - old));
+}
+
+/* A walk in pre-order meets a subtree's first child first; a ray from the viewpoint that hits
+ * something in the nearer child then skips the farther one's boxes beyond that hit. The order is
+ * chosen per node by the distance from the viewpoint to each child's box, the tree's first child on
+ * a tie. The depth-first order leaves at most one pending subtree per level. */
+bg_status bg_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
+{
+    if (bvh->node_count == 0)
+        return BG_OK;
+    size_t room = (size_t)bvh->depth + 1;
+    uint32_t *pending_old = bg_alloc(&bvh->allocator, 2 * room * sizeof *pending_old);
+    if (!pending_old)
+        return BG_ERR_OUT_OF_MEMORY;
+    uint32_t *pending_at = pending_old + room;
+    size_t n = 0;
+    pending_old[n] = 0;
+    pending_at[n++] = 0;
+    while (n > 0) {
+        n--;
+        uint32_t old = pending_old[n], at = pending_at[n];
+        write_shifted(bvh, old, at, origin, prim_ids, out);
+        const float *node = bvh->nodes + (size_t)old * BG_BVH_NODE_FLOATS;
+        if (node[BG_BVH_NODE_PRIM] >= 0.0f)
+            continue;
+        uint32_t first = old + 1;
+        uint32_t second = node_index(bvh->nodes + (size_t)first * BG_BVH_NODE_FLOATS, BG_BVH_NODE_MISS);
+        uint32_t first_span = second - first;
+        bool swap = box_distance2(bvh->nodes + (size_t)second * BG_BVH_NODE_FLOATS, origin) <
+                    box_distance2(bvh->nodes + (size_t)first * BG_BVH_NODE_FLOATS, origin);
+        uint32_t second_span = node_index(node, BG_BVH_NODE_MISS) - second;
+        uint32_t near = swap ? second : first, far = swap ? first : second;
+        uint32_t near_span = swap ? second_span : first_span;
+        pending_old[n] = far;
+        pending_at[n++] = at + 1 + near_span;
+        pending_old[n] = near;
+        pending_at[n++] = at + 1;
+    }
+    bg_free(&bvh->allocator, pending_old);
+    return BG_OK;
 }

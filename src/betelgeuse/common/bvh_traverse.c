@@ -1,7 +1,10 @@
-/* The stackless walk of the threaded node array in double, as the GPU walks it in float: an
- * entered box sends the walk to the next node, a missed box or a tested leaf to the miss link.
- * Every step moves forward, so a valid tree ends within node_count steps; the bound of twice that
- * turns a corrupt array into an error instead of an endless loop (bvh.h states the slab rules). */
+/* The walks of the node array in double. The threaded one is the GPU's, in float: an entered box
+ * sends the walk to the next node, a missed box or a tested leaf to the miss link. The ordered one
+ * takes each entered node's children nearer first along the ray, keeping the other on a stack of
+ * one entry per level, so that a nearest-hit walk prunes the farther boxes: the CPU reference's
+ * walk, where a stack costs nothing. Either visits each node at most once, so a valid tree ends
+ * within node_count steps; the bound of twice that turns a corrupt array into an error instead of
+ * an endless loop (bvh.h states the slab rules). */
 #include "bvh.h"
 
 #include <float.h>
@@ -71,50 +74,149 @@ static bool ray_finite(const double o[3], const double d[3], double t_min, doubl
     return isfinite(t_min) && isfinite(t_max);
 }
 
-bg_status bg_bvh_traverse(const bg_bvh *bvh, const double origin[3], const double direction[3], double t_min,
-                          double *t_max, bg_bvh_visit_fn visit, void *user, bg_bvh_walk *walk)
+/* The interior node's child the ray should meet first: the one on the near side, along the ray, of
+ * the axis on which the children's box centres lie farthest apart. Any order finds the same
+ * hits; this one lets a nearest-hit walk shorten the ray before it reaches the farther boxes. */
+static bool second_first(const float *first, const float *second, const double d[3])
 {
-    bg_bvh_walk w = {0, 0, false};
-    if (walk)
-        *walk = w;
-    if (!bvh || !origin || !direction || !t_max || !visit || !ray_finite(origin, direction, t_min, *t_max))
+    int axis = 0;
+    double best = -1.0, along = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double c1 = (double)first[BG_BVH_NODE_MIN + a] + first[BG_BVH_NODE_MAX + a];
+        double c2 = (double)second[BG_BVH_NODE_MIN + a] + second[BG_BVH_NODE_MAX + a];
+        if (fabs(c2 - c1) > best) {
+            best = fabs(c2 - c1);
+            axis = a;
+            along = c2 - c1;
+        }
+    }
+    return along * d[axis] < 0.0;
+}
+
+/* The ordered walk keeps the farther child of each entered interior node on its path: a tree
+ * shallower than this needs no more; a deeper one is walked threaded. */
+enum { ORDERED_DEPTH = 128 };
+
+typedef struct walker {
+    const bg_bvh *bvh;
+    const double *o, *d;
+    double t_min, *t_max;
+    bg_bvh_visit_fn visit;
+    void *user;
+    bg_bvh_walk w;
+} walker;
+
+/* One step's common part: counts it (BG_ERR_LIMIT past twice the node count), checks the node's
+ * miss link and tests its box. */
+static bg_status step(walker *k, uint32_t i, uint32_t *miss, bool *entered)
+{
+    const uint32_t count = k->bvh->node_count;
+    if (k->w.nodes_visited >= 2 * (uint64_t)count)
+        return BG_ERR_LIMIT;
+    k->w.nodes_visited++;
+    const float *node = k->bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
+    /* node_count itself is a valid miss link: the end of the walk. */
+    if (!read_index(node[BG_BVH_NODE_MISS], count + 1, miss))
         return BG_ERR_INVALID_ARGUMENT;
-    const uint32_t count = bvh->node_count;
-    const uint64_t step_limit = 2 * (uint64_t)count;
-    bg_status st = BG_OK;
+    *entered = box_entered(node, k->o, k->d, k->t_min, *k->t_max);
+    return BG_OK;
+}
+
+/* A leaf whose box was entered: the visit call; false ends the walk. */
+static bg_status leaf(walker *k, const float *node, bool entered, bool *go_on)
+{
+    uint32_t prim;
+    *go_on = true;
+    if (!read_index(node[BG_BVH_NODE_PRIM], k->bvh->prim_count, &prim))
+        return BG_ERR_INVALID_ARGUMENT;
+    if (entered) {
+        k->w.prims_visited++;
+        if (!k->visit(k->user, prim, k->t_max)) {
+            k->w.stopped = true;
+            *go_on = false;
+        }
+    }
+    return BG_OK;
+}
+
+/* Pre-order along the miss links: no state but the node index. */
+static bg_status walk_threaded(walker *k)
+{
+    const uint32_t count = k->bvh->node_count;
     uint32_t i = 0;
     while (i < count) {
-        if (w.nodes_visited >= step_limit) {
-            st = BG_ERR_LIMIT;
-            break;
-        }
-        w.nodes_visited++;
-        const float *node = bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
-        uint32_t miss, prim;
-        /* node_count itself is a valid miss link: the end of the walk. */
-        if (!read_index(node[BG_BVH_NODE_MISS], count + 1, &miss)) {
-            st = BG_ERR_INVALID_ARGUMENT;
-            break;
-        }
-        bool entered = box_entered(node, origin, direction, t_min, *t_max);
+        uint32_t miss;
+        bool entered, go_on;
+        bg_status st = step(k, i, &miss, &entered);
+        if (st != BG_OK)
+            return st;
+        const float *node = k->bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
         if (node[BG_BVH_NODE_PRIM] < 0.0f) {
             i = entered ? i + 1 : miss;
             continue;
         }
-        if (!read_index(node[BG_BVH_NODE_PRIM], bvh->prim_count, &prim)) {
-            st = BG_ERR_INVALID_ARGUMENT;
-            break;
-        }
-        if (entered) {
-            w.prims_visited++;
-            if (!visit(user, prim, t_max)) {
-                w.stopped = true;
-                break;
-            }
-        }
+        st = leaf(k, node, entered, &go_on);
+        if (st != BG_OK || !go_on)
+            return st;
         i = miss;
     }
+    return BG_OK;
+}
+
+/* Near child first (second_first), the other kept for later; count stands for "take the latest kept". */
+static bg_status walk_ordered(walker *k)
+{
+    const uint32_t count = k->bvh->node_count;
+    uint32_t pending[ORDERED_DEPTH];
+    int n = 0;
+    uint32_t i = 0;
+    for (;;) {
+        if (i == count) {
+            if (n == 0)
+                return BG_OK;
+            i = pending[--n];
+        }
+        uint32_t miss, second;
+        bool entered, go_on;
+        bg_status st = step(k, i, &miss, &entered);
+        if (st != BG_OK)
+            return st;
+        const float *node = k->bvh->nodes + (size_t)i * BG_BVH_NODE_FLOATS;
+        if (node[BG_BVH_NODE_PRIM] >= 0.0f) {
+            /* This walk never follows a leaf's miss link, but a wrong one shows a corrupt array. */
+            if (miss != i + 1)
+                return BG_ERR_INVALID_ARGUMENT;
+            st = leaf(k, node, entered, &go_on);
+            if (st != BG_OK || !go_on)
+                return st;
+            i = count;
+            continue;
+        }
+        if (!entered) {
+            i = count;
+            continue;
+        }
+        /* An interior node's children: the next node and that one's miss link. */
+        const float *first = node + BG_BVH_NODE_FLOATS;
+        if (i + 1 >= count || !read_index(first[BG_BVH_NODE_MISS], count, &second) || n >= ORDERED_DEPTH)
+            return BG_ERR_INVALID_ARGUMENT;
+        bool swap = second_first(first, k->bvh->nodes + (size_t)second * BG_BVH_NODE_FLOATS, k->d);
+        pending[n++] = swap ? i + 1 : second;
+        i = swap ? second : i + 1;
+    }
+}
+
+bg_status bg_bvh_traverse(const bg_bvh *bvh, const double origin[3], const double direction[3], double t_min,
+                          double *t_max, bg_bvh_visit_fn visit, void *user, bg_bvh_walk *walk)
+{
+    bg_bvh_walk none = {0, 0, false};
     if (walk)
-        *walk = w;
+        *walk = none;
+    if (!bvh || !origin || !direction || !t_max || !visit || !ray_finite(origin, direction, t_min, *t_max))
+        return BG_ERR_INVALID_ARGUMENT;
+    walker k = {bvh, origin, direction, t_min, t_max, visit, user, none};
+    bg_status st = bvh->node_count == 0 ? BG_OK : bvh->depth < ORDERED_DEPTH ? walk_ordered(&k) : walk_threaded(&k);
+    if (walk)
+        *walk = k.w;
     return st;
 }

@@ -3,11 +3,11 @@
  *
  * The scene's object tree (common/bvh.h) goes to the GPU as it is, seen from the camera: the GPU's
  * frame is camera-relative (origin.c), so each frame's nodes are the tree's boxes minus the eye,
- * rounded outward again (bg_bvh_shifted_nodes), with each leaf naming its object. Each object's
+ * rounded outward again and ordered near to far (bg_bvh_view_nodes), with each leaf naming its object. Each object's
  * transforms and kinds go in a second texture, indexed by object (bg_fused_tree.glsl gives both
- * layouts). Both are rebuilt on the host every frame and uploaded only when they differ from what
- * the textures hold: a frame after a change of nothing the GPU sees uploads nothing, and one after
- * a material change only the uniforms.
+ * layouts). A frame of the commit they hold touches neither; after another commit both are rebuilt
+ * on the host and uploaded only where they differ from what the textures hold, so a commit that
+ * changes nothing the tree holds (a material value, a light) uploads nothing but uniforms.
  *
  * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
  * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
@@ -56,12 +56,11 @@ bool gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char
 
 /* ---- the host copies ---- */
 
-static void fill_nodes(const bg_scene_state *state, float *out)
+static bg_status fill_nodes(const bg_scene_state *state, float *out)
 {
     const bg_vec3 *eye = &state->camera.camera.position;
     double origin[3] = {eye->x, eye->y, eye->z};
-    if (state->tree && state->tree->node_count)
-        bg_bvh_shifted_nodes(state->tree, origin, state->tree_objects, out);
+    return state->tree ? bg_bvh_view_nodes(state->tree, origin, state->tree_objects, out) : BG_OK;
 }
 
 /* Object i's texels, as bg_fused_tree.glsl reads them. */
@@ -86,17 +85,18 @@ static void fill_object(const bg_scene_state *state, uint32_t i, float *o)
     }
 }
 
-static void fill_objects(const bg_scene_state *state, float *out)
+static bg_status fill_objects(const bg_scene_state *state, float *out)
 {
     for (uint32_t i = 0; i < state->object_count; i++)
         fill_object(state, i, out + (size_t)i * OBJECT_TEXELS * 4);
+    return BG_OK;
 }
 
 /* ---- one texture ---- */
 
 /* Makes *texture hold what fill writes for a width x height texture, uploading only a change. */
 static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, const bg_scene_state *state, int width,
-                                 int height, void (*fill)(const bg_scene_state *, float *), const char *what)
+                                 int height, bg_status (*fill)(const bg_scene_state *, float *), const char *what)
 {
     size_t floats = (size_t)width * (size_t)height * 4;
     if (t->floats != floats || !t->held || !t->scratch) {
@@ -112,7 +112,8 @@ static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, cons
         t->floats = floats;
     }
     memset(t->scratch, 0, floats * sizeof(float));
-    fill(state, t->scratch);
+    if (fill(state, t->scratch) != BG_OK)
+        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the %s", what);
     if (t->texture && memcmp(t->scratch, t->held, floats * sizeof(float)) == 0)
         return BG_OK;
     macs_status ms = MACS_OK;
@@ -148,6 +149,9 @@ static void set_dims(float dims[4], int per_row, int width, int height)
 
 bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
 {
+    if (t->serial != 0 && t->serial == state->serial)
+        return BG_OK; /* the same commit: the textures hold it, nothing to build or compare */
+    t->serial = 0;
     char why[160];
     if (!gpu_fused_tree_fits(r, state, why, sizeof why))
         return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
@@ -161,7 +165,10 @@ bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_sce
         return st;
     geometry(r->limits.max_texture_size, state->object_count, OBJECT_TEXELS, &k, &w, &h);
     set_dims(t->dims.objects, k, w, h);
-    return texture_prepare(r, &t->objects, state, w, h, fill_objects, "tree objects texture");
+    st = texture_prepare(r, &t->objects, state, w, h, fill_objects, "tree objects texture");
+    if (st == BG_OK)
+        t->serial = state->serial;
+    return st;
 }
 
 void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
@@ -169,6 +176,7 @@ void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
     memset(&t->dims, 0, sizeof t->dims);
+    t->serial = 0;
 }
 
 uint64_t gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,

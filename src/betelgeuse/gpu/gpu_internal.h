@@ -499,6 +499,7 @@ typedef struct gpu_fused_tree_texture {
 typedef struct gpu_fused_tree {
     gpu_fused_tree_texture nodes, objects;
     gpu_fused_tree_dims dims; /* of the prepared textures */
+    uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
 } gpu_fused_tree;
 
 /* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */

@@ -4,6 +4,7 @@
  * commit that changes only values allocates nothing. */
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -195,6 +196,18 @@ static void commit_light(const bg_light *in, bg_light *out)
     out->direction = bg_vec3_make(d[0], d[1], d[2]);
 }
 
+/* Scenes may commit on several threads at once; C99 has no atomics. */
+static pthread_mutex_t serial_lock = PTHREAD_MUTEX_INITIALIZER;
+static uint64_t last_serial;
+
+static uint64_t next_serial(void)
+{
+    pthread_mutex_lock(&serial_lock);
+    uint64_t serial = ++last_serial;
+    pthread_mutex_unlock(&serial_lock);
+    return serial;
+}
+
 bg_status bg_scene_commit(bg_scene *scene)
 {
     if (!scene)
@@ -247,6 +260,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->lights = scene->c_lights.data;
     bg_scene_tree_install(scene);
     state->commit_count++;
+    state->serial = next_serial();
     scene->committed = true;
     return BG_OK;
 }

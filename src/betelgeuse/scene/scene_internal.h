@@ -55,6 +55,9 @@ typedef struct bg_scene_state {
     uint32_t tree_count, always_count;
     uint64_t tree_builds, tree_refits; /* commits that rebuilt or refitted the tree */
     uint64_t commit_count;
+    /* A number no other commit in the process had, of this scene or another (never 0): a renderer's
+     * cache keyed by it stays right when a scene is freed and another made at the same address. */
+    uint64_t serial;
 } bg_scene_state;
 
 /* The committed state, or NULL when the scene was never committed successfully. */
