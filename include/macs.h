@@ -172,6 +172,11 @@ void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits
  * (0 for a NULL context). */
 int macs_context_max_uniform_components(const macs_context *ctx);
 
+/* How many programs the context has compiled and linked so far: passes whose source its program
+ * cache already held count nothing (0 for a NULL context). The difference over a frame tells what
+ * the frame compiled. */
+uint64_t macs_context_programs_compiled(const macs_context *ctx);
+
 /* Copies the GL strings read at creation. */
 void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info);
 

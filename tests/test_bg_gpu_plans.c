@@ -208,37 +208,38 @@ static void depths_and_pruning(void **state)
 
 /* ---- re-commits ---- */
 
-/* Renders the glass scene fused after each change, within its thresholds, and returns how many
- * programs the render built. */
-static int fused_render_count(bg_renderer *r, bg_scene *s, bg_image *img, const char *label)
+/* Renders the glass scene with the plan after each change, within its thresholds, and returns how
+ * many programs the render built. */
+static int plan_render_count(bg_renderer *r, bg_scene *s, bg_image *img, bg_gpu_plan plan, const char *label)
 {
-    bg_render_settings set = plan_settings(BG_PLAN_FUSED);
+    bg_render_settings set = plan_settings(plan);
     bg_render_stats st = render(r, s, &set, img, label);
-    assert_int_equal(st.plan, BG_PLAN_FUSED);
+    assert_int_equal(st.plan, plan);
     if (img->format == BG_PIXEL_RGBA8)
         util_expect_within(s, &set, img, SCENE_GLASS, label);
     return st.programs_compiled;
 }
 
-/* Camera, material colour, light, transform, image size and format are values: the fused program
- * stays. A material crossing into another class (glass made opaque: no refraction anywhere) is
+/* Camera, material colour, light, transform, image size and format are values: the plan's programs
+ * stay. A material crossing into another class (glass made opaque: no refraction anywhere) is
  * structure: a new program. */
-static void value_recommits_compile_nothing(void **state)
+static void value_recommits(bg_gpu_plan plan)
 {
-    (void)state;
-    bg_renderer *r = util_renderer(util_fx.ctx);
+    /* A context of its own: its program cache starts empty, so the first render compiles. */
+    macs_context *ctx = util_context(util_fx.headless, NULL);
+    bg_renderer *r = util_renderer(ctx);
     bg_scene *s = util_scene(SCENE_GLASS);
     const bg_scene_state *ss = bg_scene_committed(s);
     unsigned char px[W * H * 4];
     float fpx[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-    assert_true(fused_render_count(r, s, &img, "glass first render") >= 1);
+    assert_true(plan_render_count(r, s, &img, plan, "glass first render") >= 1);
 
     bg_camera cam = ss->camera.camera;
     cam.position = bg_vec3_make(0.8, 1.9, 5.2);
     assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(fused_render_count(r, s, &img, "glass camera moved"), 0);
+    assert_int_equal(plan_render_count(r, s, &img, plan, "glass camera moved"), 0);
 
     /* The last material is the mirror sphere's (scenes.c adds floor, glass, chrome). */
     uint32_t chrome = ss->material_count;
@@ -248,7 +249,7 @@ static void value_recommits_compile_nothing(void **state)
     m.base.reflectance.b = 0.3;
     assert_int_equal(bg_scene_set_material(s, chrome, &m), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(fused_render_count(r, s, &img, "glass mirror tinted"), 0);
+    assert_int_equal(plan_render_count(r, s, &img, plan, "glass mirror tinted"), 0);
 
     bg_light l = ss->lights[0];
     l.position = bg_vec3_make(-2, 7, 3);
@@ -257,22 +258,37 @@ static void value_recommits_compile_nothing(void **state)
     bg_mat4 t = bg_mat4_mul(bg_mat4_translate(1.0, 0.1, -0.6), bg_mat4_scale(0.9, 0.9, 0.9));
     assert_int_equal(bg_scene_set_transform(s, ss->object_count, &t), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(fused_render_count(r, s, &img, "glass light and sphere moved"), 0);
+    assert_int_equal(plan_render_count(r, s, &img, plan, "glass light and sphere moved"), 0);
 
     bg_image smaller = {W / 2, H / 2, BG_PIXEL_RGBA8, 0, px};
-    assert_int_equal(fused_render_count(r, s, &smaller, "glass at half size"), 0);
+    assert_int_equal(plan_render_count(r, s, &smaller, plan, "glass at half size"), 0);
     bg_image as_float = {W, H, BG_PIXEL_RGBA32F, 0, fpx};
-    assert_int_equal(fused_render_count(r, s, &as_float, "glass as float"), 0);
+    assert_int_equal(plan_render_count(r, s, &as_float, plan, "glass as float"), 0);
 
     /* The glass sphere's material comes before the mirror's. */
     m = ss->materials[chrome - 2];
     m.transparency.value = 0.0;
     assert_int_equal(bg_scene_set_material(s, chrome - 1, &m), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_true(fused_render_count(r, s, &img, "glass made opaque") >= 1);
+    assert_true(plan_render_count(r, s, &img, plan, "glass made opaque") >= 1);
 
     bg_scene_destroy(s);
     bg_renderer_destroy(r);
+    macs_context_destroy(ctx);
+}
+
+static void value_recommits_compile_nothing(void **state)
+{
+    (void)state;
+    value_recommits(BG_PLAN_FUSED);
+}
+
+/* The multipass builds its passes anew after any commit, but MACS's program cache still holds the
+ * programs of the old ones while it does. */
+static void multipass_value_recommits_compile_nothing(void **state)
+{
+    (void)state;
+    value_recommits(BG_PLAN_MULTIPASS);
 }
 
 /* ---- choosing ---- */
@@ -520,6 +536,7 @@ int main(void)
         cmocka_unit_test(forced_multipass_is_the_multipass),
         cmocka_unit_test(depths_and_pruning),
         cmocka_unit_test(value_recommits_compile_nothing),
+        cmocka_unit_test(multipass_value_recommits_compile_nothing),
         cmocka_unit_test(auto_falls_back_and_says_why),
         cmocka_unit_test(forced_fused_beyond_limits_fails),
         cmocka_unit_test(plan_setting),

@@ -104,6 +104,7 @@ struct macs_context {
     GLuint vertex_buffer;
     GLuint scratch_fbo;
     macs_program *programs;
+    uint64_t programs_compiled; /* cache misses that compiled and linked */
     macs_texture *textures;
     macs_depth_stencil *depth_stencils;
     macs_pass *passes;

@@ -86,6 +86,7 @@ macs_status macs_program_acquire(macs_context *ctx, const char *source, int inpu
         macs_free(&ctx->allocator, copy);
         return st;
     }
+    ctx->programs_compiled++;
     p->source = copy;
     p->hash = h;
     p->refs = 1;
@@ -118,4 +119,9 @@ void macs_program_cache_destroy(macs_context *ctx)
         macs_free(&ctx->allocator, p->source);
         macs_free(&ctx->allocator, p);
     }
+}
+
+uint64_t macs_context_programs_compiled(const macs_context *ctx)
+{
+    return ctx ? ctx->programs_compiled : 0;
 }

@@ -374,7 +374,7 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
     }
     bool new_scene = !r->key.valid || r->key.scene != scene || r->key.commit_count != key.commit_count ||
                      r->key.fingerprint != key.fingerprint;
-    gpu_passes_release(r);
+    gpu_passes_retire(r);
     memset(&r->key, 0, sizeof r->key);
     gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->features);
     bg_status st = BG_OK;
@@ -386,11 +386,15 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
         st = gpu_targets_prepare(r, width, height);
     if (st == BG_OK)
         st = gpu_passes_build(r, f->state, s);
+    gpu_passes_release_retired(r);
     if (st != BG_OK)
         return st;
     r->key.valid = true;
     return BG_OK;
 }
+
+static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                                  bg_image *image, size_t stride);
 
 bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image)
 {
@@ -413,11 +417,22 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
         return gpu_fail(r, BG_ERR_NOT_COMMITTED, "bg_render_gpu: the scene was never committed");
 
     memset(&r->stats, 0, sizeof r->stats);
+    uint64_t compiled = macs_context_programs_compiled(r->ctx);
     /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
     bool fused = false;
     st = gpu_fused_render(r, state, settings, image, stride, &fused);
-    if (st != BG_OK || fused)
-        return st;
+    if (st == BG_OK && !fused)
+        st = render_multipass(r, scene, settings, image, stride);
+    r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
+    return st;
+}
+
+/* The paper's frame: ray maps, G-buffer, one pass per object batch, light group and ray set. */
+static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                                  bg_image *image, size_t stride)
+{
+    const bg_scene_state *state = bg_scene_committed(scene);
+    bg_status st = BG_OK;
     frame f;
     memset(&f, 0, sizeof f);
     f.r = r;

@@ -326,8 +326,6 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
         *declined = true;
         return decline(r, refused);
     }
-    if (!same)
-        r->stats.programs_compiled += macs_pass_chunk_count(pass);
     macs_pass_destroy(f->pass);
     f->pass = pass;
     f->width = w;

@@ -116,6 +116,7 @@ struct bg_renderer {
     uint32_t texture_count;
     macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
     gpu_passes passes;
+    gpu_passes retired; /* the previous scene's, alive while passes are built (gpu_passes_retire) */
     struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
 };
 
@@ -243,6 +244,11 @@ bg_status gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, cons
 /* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
 bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
 void gpu_passes_release(bg_renderer *r);
+/* Moves the passes aside instead of destroying them, so that while the next ones are built MACS's
+ * program cache still holds every program they share: a commit that changes only values compiles
+ * nothing. gpu_passes_release_retired destroys them once the new passes exist (or failed). */
+void gpu_passes_retire(bg_renderer *r);
+void gpu_passes_release_retired(bg_renderer *r);
 
 /* ---- batch.c ---- */
 /* Plans the intersection batches (first, count) into out (room for every object); returns how many. */

@@ -226,9 +226,8 @@ bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg
     return st;
 }
 
-void gpu_passes_release(bg_renderer *r)
+static void release(bg_renderer *r, gpu_passes *p)
 {
-    gpu_passes *p = &r->passes;
     macs_pass_destroy(p->camera);
     macs_pass_destroy(p->mark);
     macs_pass_destroy(p->background);
@@ -249,4 +248,22 @@ void gpu_passes_release(bg_renderer *r)
     bg_free(&r->allocator, p->caster_blocks);
     bg_free(&r->allocator, p->light);
     memset(p, 0, sizeof *p);
+}
+
+void gpu_passes_release(bg_renderer *r)
+{
+    release(r, &r->passes);
+    release(r, &r->retired);
+}
+
+void gpu_passes_retire(bg_renderer *r)
+{
+    release(r, &r->retired);
+    r->retired = r->passes;
+    memset(&r->passes, 0, sizeof r->passes);
+}
+
+void gpu_passes_release_retired(bg_renderer *r)
+{
+    release(r, &r->retired);
 }
