@@ -1,12 +1,15 @@
-/* The GPU path against an Embree 3 peer (bench/lib/embree_peer.h): the same scenes, camera, lights and
- * BRDF, traced by the CPU kernel people pick today, so the table says where the GPU path stands.
+/* The GPU path against an Embree 3 peer (bench/lib/embree_peer.h), its own multipass plan and the CPU
+ * reference: the same scenes, camera, lights and BRDF, so the table says where the GPU path stands.
  *
  * Usage: bench_embree [out_dir]   (default bench/out; QUICK=1 for fewer runs)
- * Per case: the CPU reference renders once (the image both are compared with, and its time as a
- * hint); the peer builds its BVH (timed on its own, not part of a frame); after one warm-up frame each,
- * the peer and the GPU path are timed in interleaved rounds (round i: one peer frame, one GPU frame), so
- * the drift of a shared machine falls on both alike. Cases whose GPU warm-up takes over BENCH_SLOW_MS
- * get BENCH_SLOW_RUNS rounds, over VERY_SLOW_MS one. Writes out_dir/embree.csv.
+ * Per case: the CPU reference renders first (the image every other is compared with); the peer builds
+ * its BVH (timed on its own, not part of a frame); after one warm-up frame each, four contestants are
+ * timed in interleaved rounds, in this order: one peer frame, one GPU frame (BG_PLAN_AUTO), one
+ * multipass frame (BG_PLAN_MULTIPASS, on a renderer of its own so that each plan keeps its caches), one
+ * CPU reference frame. The drift of a shared machine then falls on all alike, and each ratio is the
+ * median of its per-round ratios. Rounds: a case whose GPU warm-up takes over BENCH_SLOW_MS gets
+ * BENCH_SLOW_RUNS, over VERY_SLOW_MS one (every contestant); the multipass follows its own rules
+ * (MULTIPASS_MAX_OBJECTS, MULTIPASS_SLOW_MS). Writes out_dir/embree.csv.
  * Built only where Embree is installed (Makefile, bench section). */
 #include <embree3/rtcore.h>
 #include <stdlib.h>
@@ -16,10 +19,14 @@
 #include "lib/embree_peer.h"
 #include "scenes/scenes.h"
 
-#define MAX_RUNS 16
-/* A case whose GPU warm-up takes longer than this (many_spheres_1024 on llvmpipe: minutes per frame)
- * gets one round: a median of more would multiply the whole benchmark's time for little. */
+/* A case whose GPU warm-up takes longer than this gets one round: a median of more would multiply the
+ * whole benchmark's time for little. */
 #define VERY_SLOW_MS 60000.0
+/* The multipass draws its intersection and shadow passes per object batch and per ray set, so on
+ * llvmpipe many_spheres costs it about 20 s a frame at 64 spheres and minutes at 1024: it is not run on
+ * more spheres than MULTIPASS_MAX_OBJECTS, and a multipass warm-up over MULTIPASS_SLOW_MS gets one round. */
+#define MULTIPASS_MAX_OBJECTS 64
+#define MULTIPASS_SLOW_MS 10000.0
 
 typedef struct bench_case {
     scene_id id;
@@ -34,78 +41,125 @@ static const bench_case cases[] = {
 };
 #define CASE_COUNT (int)(sizeof cases / sizeof cases[0])
 
-/* What one case measured. */
-typedef struct case_result {
-    bench_times embree, gpu;
-    double cpu_ms, build_ms;
-    bench_error embree_error, gpu_error;
-} case_result;
+/* The contestants, in round order. */
+enum { PEER, GPU, MULTIPASS, CPU, CONTESTANTS };
+static const char *const contestant_names[CONTESTANTS] = {"Embree", "GPU", "multipass", "CPU reference"};
 
-/* The renders of one case, the reference first; false (with the reason on stderr) on any failure. */
-typedef struct case_images {
-    bg_image reference, peer, gpu;
-} case_images;
+/* The peer as a contestant (peer_frame's user). */
+typedef struct peer_job {
+    embree_peer *peer;
+    bg_render_settings settings;
+} peer_job;
 
-static bool peer_frame(embree_peer *peer, const bg_render_settings *settings, bg_image *image, double *ms)
+static bool peer_frame(void *job, bg_image *image)
 {
+    peer_job *p = job;
     char message[512];
-    double t0 = bench_now_ms();
-    bool ok = embree_peer_render(peer, settings, image, message, sizeof message);
-    *ms = bench_now_ms() - t0;
+    bool ok = embree_peer_render(p->peer, &p->settings, image, message, sizeof message);
     if (!ok)
         fprintf(stderr, "%s\n", message);
     return ok;
 }
 
-static bool gpu_frame(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image,
-                      double *ms)
+/* The two GPU renderers: one per plan. */
+typedef struct gpu_pair {
+    bg_renderer *automatic, *multipass;
+} gpu_pair;
+
+/* One case: its contestants with their state and images, and what the rounds measured. */
+typedef struct case_run {
+    bench_contestant c[CONTESTANTS];
+    bg_image images[CONTESTANTS]; /* images[CPU] is the reference */
+    peer_job peer;
+    bench_gpu_job gpu, multipass;
+    bench_cpu_job cpu;
+    double build_ms;
+    bench_error error[CONTESTANTS]; /* against the reference; error[CPU] unused */
+    char note[128];                 /* what the row should say besides its numbers */
+} case_run;
+
+static bool case_setup(case_run *run, embree_peer *peer, const gpu_pair *gpu, bg_scene *scene, int size)
 {
-    double t0 = bench_now_ms();
-    bool ok = bg_render_gpu(renderer, scene, settings, image) == BG_OK;
-    *ms = bench_now_ms() - t0;
-    if (!ok)
-        fprintf(stderr, "GPU render failed: %s\n", bg_renderer_error_message(renderer));
+    memset(run, 0, sizeof *run);
+    bg_render_settings settings = bg_render_settings_init();
+    run->peer = (peer_job){peer, settings};
+    run->gpu.renderer = gpu->automatic;
+    run->multipass.renderer = gpu->multipass;
+    run->gpu.scene = run->multipass.scene = scene;
+    run->gpu.settings = run->multipass.settings = settings;
+    run->multipass.settings.gpu_plan = BG_PLAN_MULTIPASS;
+    run->cpu = (bench_cpu_job){scene, settings};
+    const bench_frame_fn frames[CONTESTANTS] = {peer_frame, bench_gpu_frame, bench_gpu_frame, bench_cpu_frame};
+    void *const jobs[CONTESTANTS] = {&run->peer, &run->gpu, &run->multipass, &run->cpu};
+    bool ok = true;
+    for (int i = 0; i < CONTESTANTS; i++) {
+        ok = ok && bench_image_alloc(&run->images[i], size, size, BG_PIXEL_RGBA8);
+        run->c[i] = (bench_contestant){.name = contestant_names[i], .frame = frames[i], .user = jobs[i],
+                                       .image = &run->images[i]};
+    }
     return ok;
 }
 
-/* The reference image and the BVH, then the warm-up frames; returns the number of rounds to time. */
-static int prepare(embree_peer *peer, bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
-                   case_images *im, int runs, case_result *res)
+/* The multipass's rounds: none on many objects, one after a slow warm-up, else the case's. */
+static void choose_multipass_rounds(case_run *run, const bench_case *c, int case_rounds, int runs)
 {
-    char message[512];
-    double t0 = bench_now_ms(), peer_ms, gpu_ms;
-    if (bg_render_cpu(scene, settings, &im->reference) != BG_OK) {
-        fprintf(stderr, "CPU render failed: %s\n", bg_scene_error_message(scene));
-        return 0;
+    bench_contestant *mp = &run->c[MULTIPASS];
+    if (c->spheres > MULTIPASS_MAX_OBJECTS) {
+        snprintf(run->note, sizeof run->note, "MP not run: minutes per frame (over %d spheres)",
+                 MULTIPASS_MAX_OBJECTS);
+        return;
     }
-    res->cpu_ms = bench_now_ms() - t0;
-    if (!embree_peer_build(peer, scene, message, sizeof message)) {
-        fprintf(stderr, "%s\n", message);
-        return 0;
+    int own = bench_rounds_after(mp->warm_ms, runs);
+    mp->rounds = own < case_rounds ? own : case_rounds;
+    if (mp->warm_ms > MULTIPASS_SLOW_MS) {
+        mp->rounds = 1;
+        snprintf(run->note, sizeof run->note, "MP 1 round: warm-up %.1f s > %.0f s", mp->warm_ms / 1000.0,
+                 MULTIPASS_SLOW_MS / 1000.0);
     }
-    res->build_ms = embree_peer_build_ms(peer);
-    if (!peer_frame(peer, settings, &im->peer, &peer_ms) || !gpu_frame(renderer, scene, settings, &im->gpu, &gpu_ms))
-        return 0;
-    res->embree_error = bench_error_of(&im->reference, &im->peer);
-    res->gpu_error = bench_error_of(&im->reference, &im->gpu);
-    if (gpu_ms > VERY_SLOW_MS)
-        return 1;
-    return gpu_ms > BENCH_SLOW_MS && runs > BENCH_SLOW_RUNS ? BENCH_SLOW_RUNS : runs;
 }
 
-/* Interleaved rounds: one peer frame, then one GPU frame. */
-static bool time_rounds(embree_peer *peer, bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
-                        case_images *im, int runs, const char *label, case_result *res)
+/* The reference, the BVH and every warm-up frame (the multipass's first: it decides its own rounds),
+ * then the rounds each contestant gets. */
+static bool prepare(case_run *run, const bench_case *c, bg_scene *scene, int runs)
 {
-    double te[MAX_RUNS], tg[MAX_RUNS];
-    for (int r = 0; r < runs; r++) {
-        bench_progress("embree: %s, round %d of %d", label, r + 1, runs);
-        if (!peer_frame(peer, settings, &im->peer, &te[r]) || !gpu_frame(renderer, scene, settings, &im->gpu, &tg[r]))
-            return false;
+    char message[512];
+    if (!bench_warm_up(&run->c[CPU]))
+        return false;
+    if (!embree_peer_build(run->peer.peer, scene, message, sizeof message)) {
+        fprintf(stderr, "%s\n", message);
+        return false;
     }
-    res->embree = bench_times_of(te, runs);
-    res->gpu = bench_times_of(tg, runs);
+    run->build_ms = embree_peer_build_ms(run->peer.peer);
+    if (c->spheres <= MULTIPASS_MAX_OBJECTS && !bench_warm_up(&run->c[MULTIPASS]))
+        return false;
+    if (!bench_warm_up(&run->c[PEER]) || !bench_warm_up(&run->c[GPU]))
+        return false;
+    double gpu_ms = run->c[GPU].warm_ms;
+    int rounds = gpu_ms > VERY_SLOW_MS ? 1 : bench_rounds_after(gpu_ms, runs);
+    run->c[PEER].rounds = run->c[GPU].rounds = run->c[CPU].rounds = rounds;
+    choose_multipass_rounds(run, c, rounds, runs);
     return true;
+}
+
+static void measure_errors(case_run *run)
+{
+    for (int i = 0; i < CONTESTANTS; i++)
+        if (i != CPU && run->c[i].rounds > 0)
+            run->error[i] = bench_error_of(&run->images[CPU], &run->images[i]);
+}
+
+/* Appends what the GPU plans did beyond their numbers to the row's note. */
+static void note_gpu_oddities(case_run *run)
+{
+    size_t used = strlen(run->note);
+    if (run->gpu.stats.fallback_pixels > 0)
+        used += (size_t)snprintf(run->note + used, sizeof run->note - used, "%stree fallback %llu px",
+                                 used ? "; " : "", (unsigned long long)run->gpu.stats.fallback_pixels);
+    const bench_gpu_job *jobs[2] = {&run->gpu, &run->multipass};
+    for (int j = 0; j < 2 && used < sizeof run->note; j++)
+        if (jobs[j]->recompiled_frames > 0)
+            used += (size_t)snprintf(run->note + used, sizeof run->note - used, "%s%s compiled in %d timed frames",
+                                     used ? "; " : "", j ? "MP" : "GPU", jobs[j]->recompiled_frames);
 }
 
 static void case_label(const bench_case *c, char *buffer, size_t size)
@@ -116,32 +170,81 @@ static void case_label(const bench_case *c, char *buffer, size_t size)
         snprintf(buffer, size, "%s", scenes_name(c->id));
 }
 
-static void print_row(FILE *csv, const bench_case *c, const case_result *res)
+/* The table's columns: the header and every row share these widths. */
+#define TABLE_FORMAT(x) \
+    "%-19s %5" x " %-10s | %-28s | %-28s | %-28s | %-28s | %7s %7s %7s | %7s | %-16s | %-16s | %-16s | %s\n"
+
+/* A ratio for the table, "-" where the rounds shared none. */
+static char *ratio_text(double ratio, char *buffer, size_t size)
 {
-    char label[64], et[128], gt[128];
+    if (ratio > 0.0)
+        snprintf(buffer, size, "%.2f", ratio);
+    else
+        snprintf(buffer, size, "-");
+    return buffer;
+}
+
+static void print_row(const bench_case *c, const case_run *run)
+{
+    char label[64], cell[CONTESTANTS][64], ratio[3][16], build[16], error[3][32];
     case_label(c, label, sizeof label);
-    printf("%-19s %5d %2d | %8.1f [%7.1f-%7.1f] | %8.1f [%7.1f-%7.1f] | %7.2f | %8.1f | %6.1f | %-47s | %s\n",
-           label, c->size, res->embree.runs, res->embree.median, res->embree.min, res->embree.max, res->gpu.median,
-           res->gpu.min, res->gpu.max, res->gpu.median / res->embree.median, res->cpu_ms, res->build_ms,
-           bench_error_text(&res->embree_error, et, sizeof et), bench_error_text(&res->gpu_error, gt, sizeof gt));
+    for (int i = 0; i < CONTESTANTS; i++)
+        bench_contestant_text(&run->c[i], cell[i], sizeof cell[i]);
+    const int shown[3] = {GPU, MULTIPASS, PEER};
+    for (int e = 0; e < 3; e++) {
+        if (run->c[shown[e]].rounds > 0)
+            bench_error_brief(&run->error[shown[e]], error[e], sizeof error[e]);
+        else
+            snprintf(error[e], sizeof error[e], "-");
+    }
+    snprintf(build, sizeof build, "%.1f", run->build_ms);
+    printf(TABLE_FORMAT("d"), label, c->size, bench_plan_name(run->gpu.stats.plan), cell[PEER], cell[GPU],
+           cell[MULTIPASS], cell[CPU], ratio_text(bench_ratio(&run->c[GPU], &run->c[PEER]), ratio[0], 16),
+           ratio_text(bench_ratio(&run->c[GPU], &run->c[CPU]), ratio[1], 16),
+           ratio_text(bench_ratio(&run->c[MULTIPASS], &run->c[GPU]), ratio[2], 16), build, error[0], error[1],
+           error[2], run->note);
     fflush(stdout);
+}
+
+#define CSV_HEADER                                                                                          \
+    "scene,spheres,size,runs,embree_median_ms,embree_min_ms,embree_max_ms,gpu_median_ms,gpu_min_ms,"        \
+    "gpu_max_ms,gpu_over_embree,cpu_ref_ms,bvh_build_ms," BENCH_ERROR_CSV_NAMED("embree_") ","               \
+    BENCH_ERROR_CSV_NAMED("gpu_") ",plan,gpu_runs,multipass_runs,cpu_runs,multipass_median_ms,"            \
+    "multipass_min_ms,multipass_max_ms,cpu_min_ms,cpu_max_ms,gpu_over_cpu,multipass_over_gpu,"             \
+    "multipass_warm_ms,fallback_pixels," BENCH_ERROR_CSV_NAMED("multipass_")
+
+/* The CSV row: the columns the two-way comparison had (cpu_ref_ms is now the reference's median), then
+ * the new ones; empty fields where the multipass did not run. */
+static void write_row(FILE *csv, const bench_case *c, const case_run *run)
+{
+    const bench_times *e = &run->c[PEER].times, *g = &run->c[GPU].times, *m = &run->c[MULTIPASS].times,
+                      *r = &run->c[CPU].times;
     fprintf(csv, "%s,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.1f,%.3f,", scenes_name(c->id), c->spheres, c->size,
-            res->embree.runs, res->embree.median, res->embree.min, res->embree.max, res->gpu.median, res->gpu.min,
-            res->gpu.max, res->gpu.median / res->embree.median, res->cpu_ms, res->build_ms);
-    bench_error_csv(csv, &res->embree_error);
+            e->runs, e->median, e->min, e->max, g->median, g->min, g->max, bench_ratio(&run->c[GPU], &run->c[PEER]),
+            r->median, run->build_ms);
+    bench_error_csv(csv, &run->error[PEER]);
     fputc(',', csv);
-    bench_error_csv(csv, &res->gpu_error);
+    bench_error_csv(csv, &run->error[GPU]);
+    fprintf(csv, ",%s,%d,%d,%d,", bench_plan_name(run->gpu.stats.plan), g->runs, m->runs, r->runs);
+    bool mp = m->runs > 0;
+    if (mp)
+        fprintf(csv, "%.3f,%.3f,%.3f,", m->median, m->min, m->max);
+    else
+        fputs(",,,", csv);
+    fprintf(csv, "%.3f,%.3f,%.4f,", r->min, r->max, bench_ratio(&run->c[GPU], &run->c[CPU]));
+    if (mp)
+        fprintf(csv, "%.4f,%.1f,", bench_ratio(&run->c[MULTIPASS], &run->c[GPU]), run->c[MULTIPASS].warm_ms);
+    else
+        fputs(",,", csv);
+    fprintf(csv, "%llu,", (unsigned long long)run->gpu.stats.fallback_pixels);
+    if (mp)
+        bench_error_csv(csv, &run->error[MULTIPASS]);
+    else
+        fputs(",,,,", csv);
     fputc('\n', csv);
 }
 
-static void free_images(case_images *im)
-{
-    bench_image_free(&im->reference);
-    bench_image_free(&im->peer);
-    bench_image_free(&im->gpu);
-}
-
-static bool run_case(embree_peer *peer, bench_gpu *gpu, const bench_case *c, int runs, FILE *csv)
+static bool run_case(embree_peer *peer, const gpu_pair *gpu, const bench_case *c, int runs, FILE *csv)
 {
     scene_params params;
     memset(&params, 0, sizeof params);
@@ -149,24 +252,24 @@ static bool run_case(embree_peer *peer, bench_gpu *gpu, const bench_case *c, int
     bg_scene *scene = bench_scene(c->id, &params);
     if (!scene)
         return false;
-    case_images im;
-    memset(&im, 0, sizeof im);
-    bool ok = bench_image_alloc(&im.reference, c->size, c->size, BG_PIXEL_RGBA8) &&
-              bench_image_alloc(&im.peer, c->size, c->size, BG_PIXEL_RGBA8) &&
-              bench_image_alloc(&im.gpu, c->size, c->size, BG_PIXEL_RGBA8);
-    char label[64];
-    case_label(c, label, sizeof label);
-    bench_progress("embree: %s %dx%d: reference, BVH, warm-up", label, c->size, c->size);
-    bg_render_settings settings = bg_render_settings_init();
-    case_result res;
-    memset(&res, 0, sizeof res);
-    int rounds = ok ? prepare(peer, gpu->renderer, scene, &settings, &im, runs, &res) : 0;
-    ok = rounds > 0 && time_rounds(peer, gpu->renderer, scene, &settings, &im, rounds, label, &res);
-    if (ok)
-        print_row(csv, c, &res);
-    else
-        fprintf(stderr, "embree: %s %dx%d failed\n", label, c->size, c->size);
-    free_images(&im);
+    char name[64], label[96];
+    case_label(c, name, sizeof name);
+    snprintf(label, sizeof label, "embree: %s %dx%d", name, c->size, c->size);
+    bench_progress("%s: reference, BVH, warm-up", label);
+    case_run *run = malloc(sizeof *run);
+    bool ok = run && case_setup(run, peer, gpu, scene, c->size) && prepare(run, c, scene, runs);
+    ok = ok && bench_interleave(run->c, CONTESTANTS, label);
+    if (ok) {
+        measure_errors(run);
+        note_gpu_oddities(run);
+        print_row(c, run);
+        write_row(csv, c, run);
+    } else {
+        fprintf(stderr, "embree: %s failed\n", label);
+    }
+    for (int i = 0; run && i < CONTESTANTS; i++)
+        bench_image_free(&run->images[i]);
+    free(run);
     bg_scene_destroy(scene);
     return ok;
 }
@@ -174,16 +277,19 @@ static bool run_case(embree_peer *peer, bench_gpu *gpu, const bench_case *c, int
 static void print_header(const bench_gpu *gpu, const embree_peer *peer, int runs)
 {
     char how[128];
-    printf("== GPU path against an Embree %d.%d.%d peer (same scenes, camera, lights and BRDF), interleaved rounds\n",
+    printf("== GPU path against an Embree %d.%d.%d peer, its multipass plan and the CPU reference (same scenes,\n"
+           "camera, lights and BRDF), interleaved rounds\n",
            RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
     bench_print_setup(stdout, gpu, runs);
-    printf("Embree peer: %s over 8x8 tiles; user geometry with the reference's double\n"
-           "intersection and shading. n: interleaved rounds. GPU/Emb > 1: the peer is faster. CPU ref: one frame\n"
-           "of the CPU reference (the image both are compared with); BVH: the peer's build, not in its frames.\n",
-           embree_peer_describe(peer, how, sizeof how));
-    printf("%-19s %5s %2s | %-26s | %-26s | %7s | %8s | %6s | %-47s | %s\n", "scene", "size", "n",
-           "Embree ms median [min-max]", "GPU ms median [min-max]", "GPU/Emb", "CPU ref", "BVH ms",
-           "Embree error vs CPU", "GPU error vs CPU");
+    printf("Embree peer: %s over 8x8 tiles; user geometry with the reference's double intersection and\n"
+           "shading. Round order: Embree, GPU (BG_PLAN_AUTO; plan: the one it ran), MP (BG_PLAN_MULTIPASS, its own\n"
+           "renderer), CPU reference. Cells: n rounds, ms median [min-max]. Ratios: medians of the per-round\n"
+           "ratios (GPU/Emb > 1: the peer is faster). Errors against the CPU reference's image; BVH: the peer's\n"
+           "build, not in its frames. MP: 1 round when its warm-up exceeds %.0f s, not run over %d spheres.\n",
+           embree_peer_describe(peer, how, sizeof how), MULTIPASS_SLOW_MS / 1000.0, MULTIPASS_MAX_OBJECTS);
+    printf(TABLE_FORMAT("s"), "scene", "size", "plan", "Embree: n ms [min-max]", "GPU: n ms [min-max]",
+           "MP: n ms [min-max]", "CPU ref: n ms [min-max]", "GPU/Emb", "GPU/CPU", "MP/GPU", "BVH ms", "GPU error",
+           "MP error", "Embree error", "note");
 }
 
 int main(int argc, char **argv)
@@ -201,18 +307,18 @@ int main(int argc, char **argv)
         embree_peer_destroy(peer);
         return 1;
     }
-    FILE *csv = bench_csv_open(dir, "embree.csv",
-                               "scene,spheres,size,runs,embree_median_ms,embree_min_ms,embree_max_ms,gpu_median_ms,"
-                               "gpu_min_ms,gpu_max_ms,gpu_over_embree,cpu_ref_ms,bvh_build_ms,"
-                               "embree_psnr_db,embree_max_abs,embree_mean_abs,embree_over_share,embree_interior_max,"
-                               "gpu_psnr_db,gpu_max_abs,gpu_mean_abs,gpu_over_share,gpu_interior_max");
+    bg_renderer_desc desc;
+    memset(&desc, 0, sizeof desc);
+    gpu_pair pair = {gpu.renderer, bench_gpu_renderer(&gpu, desc)};
+    FILE *csv = pair.multipass ? bench_csv_open(dir, "embree.csv", CSV_HEADER) : NULL;
     int status = !csv;
     if (csv) {
         print_header(&gpu, peer, runs);
         for (int i = 0; i < CASE_COUNT && !status; i++)
-            status = !run_case(peer, &gpu, &cases[i], runs, csv);
+            status = !run_case(peer, &pair, &cases[i], runs, csv);
         fclose(csv);
     }
+    bg_renderer_destroy(pair.multipass);
     bench_gpu_close(&gpu);
     embree_peer_destroy(peer);
     return status;

@@ -235,16 +235,6 @@ static bool measure_point(bench_gpu *gpu, const series *s, bg_scene *scene, cons
 
 /* ---- output ---- */
 
-static const char *plan_name(bg_gpu_plan plan)
-{
-    switch (plan) {
-    case BG_PLAN_FUSED: return "fused";
-    case BG_PLAN_FUSED_TREE: return "fused-tree";
-    case BG_PLAN_MULTIPASS: return "multipass";
-    default: return "?";
-    }
-}
-
 /* The table's columns: the header and every row share these widths. */
 #define TABLE_FORMAT(x, number) "%-11s %5" x " %5" x " | %9s %-10s | %-28s | %8" number " | %7s | %-11s | %s\n"
 #define CSV_HEADER                                                                                         \
@@ -273,7 +263,7 @@ static void print_row(const series *s, const point_result *r)
                  PROBE_SIZE, PROBE_SIZE, MULTIPASS_TIMED_OBJECTS);
     }
     printf(TABLE_FORMAT("d", ".1f"), s->name, r->x, r->size, commit,
-           plan_name(r->stats.plan), gpu, r->cpu.median, ratio, counts, error);
+           bench_plan_name(r->stats.plan), gpu, r->cpu.median, ratio, counts, error);
     fflush(stdout);
 }
 
@@ -293,7 +283,7 @@ static void write_row(FILE *csv, const point_result *r)
     } else {
         fputs(",,,,,,,,", csv); /* the four GPU counts and the five error columns */
     }
-    fprintf(csv, ",%s,", plan_name(r->stats.plan));
+    fprintf(csv, ",%s,", bench_plan_name(r->stats.plan));
     if (r->commit_ms >= 0.0)
         fprintf(csv, "%.3f", r->commit_ms);
     fputc('\n', csv);

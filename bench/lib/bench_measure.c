@@ -96,6 +96,15 @@ char *bench_error_text(const bench_error *e, char *buffer, size_t size)
     return buffer;
 }
 
+char *bench_error_brief(const bench_error *e, char *buffer, size_t size)
+{
+    if (e->psnr_db >= IMAGE_METRICS_PSNR_IDENTICAL)
+        snprintf(buffer, size, "identical");
+    else
+        snprintf(buffer, size, "%5.1f dB max %3.0f", e->psnr_db, e->max_abs);
+    return buffer;
+}
+
 int bench_total_passes(const bg_render_stats *stats)
 {
     int passes = 0;
@@ -132,4 +141,102 @@ void bench_print_setup(FILE *f, const bench_gpu *gpu, int runs)
     fprintf(f, "machine: %s, %ld online cores\n", cpu, sysconf(_SC_NPROCESSORS_ONLN));
     fprintf(f, "GL: %s; LP_NUM_THREADS=%s; CPU reference threads = online cores; %d timed runs after a warm-up\n",
             gpu ? gpu->renderer_name : "-", lp ? lp : "(unset)", runs);
+}
+
+bool bench_warm_up(bench_contestant *c)
+{
+    double t0 = bench_now_ms();
+    bool ok = c->frame(c->user, c->image);
+    c->warm_ms = bench_now_ms() - t0;
+    if (!ok)
+        fprintf(stderr, "%s: warm-up failed\n", c->name);
+    return ok;
+}
+
+int bench_rounds_after(double warm_ms, int runs)
+{
+    return warm_ms > BENCH_SLOW_MS && runs > BENCH_SLOW_RUNS ? BENCH_SLOW_RUNS : runs;
+}
+
+static int most_rounds(const bench_contestant *list, int count)
+{
+    int most = 0;
+    for (int i = 0; i < count; i++)
+        if (list[i].rounds > most)
+            most = list[i].rounds;
+    return most;
+}
+
+bool bench_interleave(bench_contestant *list, int count, const char *label)
+{
+    const int rounds = most_rounds(list, count);
+    if (rounds > BENCH_MAX_ROUNDS) {
+        fprintf(stderr, "%s: %d rounds asked, at most %d\n", label, rounds, BENCH_MAX_ROUNDS);
+        return false;
+    }
+    for (int r = 0; r < rounds; r++) {
+        bench_progress("%s, round %d of %d", label, r + 1, rounds);
+        for (int i = 0; i < count; i++) {
+            bench_contestant *c = &list[i];
+            if (r >= c->rounds)
+                continue;
+            double t0 = bench_now_ms();
+            if (!c->frame(c->user, c->image)) {
+                fprintf(stderr, "%s: %s failed in round %d\n", label, c->name, r + 1);
+                return false;
+            }
+            c->ms[r] = bench_now_ms() - t0;
+        }
+    }
+    for (int i = 0; i < count; i++) {
+        double sorted[BENCH_MAX_ROUNDS];
+        memcpy(sorted, list[i].ms, sizeof sorted);
+        list[i].times = bench_times_of(sorted, list[i].rounds);
+    }
+    return true;
+}
+
+double bench_ratio(const bench_contestant *a, const bench_contestant *b)
+{
+    double ratios[BENCH_MAX_ROUNDS];
+    int n = a->rounds < b->rounds ? a->rounds : b->rounds;
+    for (int r = 0; r < n; r++)
+        ratios[r] = a->ms[r] / b->ms[r];
+    return n > 0 ? bench_times_of(ratios, n).median : 0.0;
+}
+
+char *bench_contestant_text(const bench_contestant *c, char *buffer, size_t size)
+{
+    if (c->rounds > 0)
+        snprintf(buffer, size, "%2d %8.1f [%.1f-%.1f]", c->rounds, c->times.median, c->times.min, c->times.max);
+    else
+        snprintf(buffer, size, " -");
+    return buffer;
+}
+
+bool bench_gpu_frame(void *job, bg_image *image)
+{
+    bench_gpu_job *g = job;
+    if (!gpu_once(g->renderer, g->scene, &g->settings, image))
+        return false;
+    bg_renderer_stats(g->renderer, &g->stats);
+    if (g->frames++ > 0 && g->stats.programs_compiled > 0)
+        g->recompiled_frames++;
+    return true;
+}
+
+bool bench_cpu_frame(void *job, bg_image *image)
+{
+    bench_cpu_job *c = job;
+    return cpu_once(c->scene, &c->settings, image);
+}
+
+const char *bench_plan_name(bg_gpu_plan plan)
+{
+    switch (plan) {
+    case BG_PLAN_FUSED: return "fused";
+    case BG_PLAN_FUSED_TREE: return "fused-tree";
+    case BG_PLAN_MULTIPASS: return "multipass";
+    default: return "?";
+    }
 }
