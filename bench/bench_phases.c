@@ -1,5 +1,6 @@
-/* Where a GPU frame's time goes: the renderer's per-phase wall times (settings.gpu_timing) and pass
- * counts, per scene, as medians over several frames.
+/* Where a multipass frame's time goes: the renderer's per-phase wall times (settings.gpu_timing)
+ * and pass counts, per scene, as medians over several frames. The multipass is forced: a fused plan
+ * draws one pass, all of whose time is its intersection phase.
  *
  * Usage: bench_phases [out_dir]   (default bench/out; QUICK=1 for fewer scenes, runs and pixels)
  * Timing waits for the GPU between phases, so a timed frame is slower than an untimed one; both are
@@ -24,6 +25,7 @@ static bool run_scene(bench_gpu *gpu, scene_id id, int size, int runs, FILE *csv
         return false;
     }
     bg_render_settings settings = bg_render_settings_init();
+    settings.gpu_plan = BG_PLAN_MULTIPASS;
     bench_times untimed;
     bool ok = bench_time_gpu(gpu->renderer, scene, &settings, &img, runs, &untimed);
     settings.gpu_timing = true;
@@ -74,7 +76,7 @@ int main(int argc, char **argv)
         bench_gpu_close(&gpu);
         return 1;
     }
-    printf("== Where GPU time goes at %dx%d: medians in ms (phase timing waits for the GPU between phases)\n",
+    printf("== Where multipass GPU time goes at %dx%d: medians in ms (phase timing waits for the GPU between phases)\n",
            size, size);
     bench_print_setup(stdout, &gpu, runs);
     printf("%-19s | %8s | %8s |", "scene", "untimed", "timed");

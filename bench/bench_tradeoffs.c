@@ -1,4 +1,5 @@
-/* Run time against error for every setting that trades one for the other, side by side per scene:
+/* Run time against error for every setting of the multipass plan that trades one for the other,
+ * side by side per scene:
  * 24-bit against 32-bit float depth, RGBA32F against RGBA16F G-buffer slots, dmax automatic against
  * 10x and 1000x looser, and each skip of docs/gpu_pipeline.md switched off.
  *
@@ -64,7 +65,10 @@ static long pixels_changed(const bg_image *a, const bg_image *b)
 /* The settings and renderer options of a variant; dmax_auto is the baseline's largest automatic dmax. */
 static void variant_setup(const variant *var, double dmax_auto, bg_render_settings *settings, bg_renderer_desc *desc)
 {
+    /* Every setting traded here belongs to the multipass plan (docs/gpu_pipeline.md, "Plans"): the
+     * baseline is that plan too, forced, so each ratio compares a multipass with a multipass. */
     *settings = bg_render_settings_init();
+    settings->gpu_plan = BG_PLAN_MULTIPASS;
     memset(desc, 0, sizeof *desc);
     desc->float_depth = var->kind == V_FLOAT_DEPTH;
     desc->half_gbuffer = var->kind == V_HALF_GBUFFER;
