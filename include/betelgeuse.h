@@ -98,10 +98,13 @@ typedef struct bg_image {
     void *pixels;
 } bg_image;
 
-/* Reads only the size of a PNG file (libpng simplified API), so the caller can allocate. */
+/* Reads only the size of a PNG file (its header), so the caller can allocate. */
 bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size);
-/* Reads a PNG into a caller-owned image of exactly its size (RGBA8 stores the file's bytes;
- * RGBA32F stores them divided by 255, still encoded). */
+/* Reads a PNG of any colour type, depth and interlace into a caller-owned image of exactly its size,
+ * keeping the file's encoding (gamma and colour chunks are not applied; grey and palettes become
+ * RGB, no alpha means opaque). RGBA8 stores 8-bit samples as they are, 1-, 2- and 4-bit ones scaled
+ * to 0..255, 16-bit ones as round(v / 257); RGBA32F stores every sample divided by 255 (65535 for
+ * 16-bit files), still encoded. Missing or corrupt files give BG_ERR_IO naming the path and why. */
 bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t message_size);
 /* Writes an image as an 8-bit RGBA PNG; RGBA32F images are clamped to [0, 1] and scaled by 255. */
 bg_status bg_png_save(const char *path, const bg_image *image, char *message, size_t message_size);
@@ -146,22 +149,29 @@ bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera);
 
 typedef enum bg_texture_wrap { BG_WRAP_REPEAT = 0, BG_WRAP_CLAMP } bg_texture_wrap;
 
+/* How a texel is read between texel centres (docs/shading.md 5): bilinear over the four nearest
+ * (GL_LINEAR), or the one texel the point falls in (GL_NEAREST: pixel art, masks, checkers). */
+typedef enum bg_texture_filter { BG_FILTER_LINEAR = 0, BG_FILTER_NEAREST } bg_texture_filter;
+
 typedef enum bg_texture_encoding {
     BG_TEXTURE_SRGB = 0, /* colour data: RGBA8 texels are decoded from sRGB to linear on add */
     BG_TEXTURE_LINEAR    /* data (roughness, masks): texels are used as stored, RGBA8 divided by 255 */
 } bg_texture_encoding;
 
-/* Defaults: repeat, sRGB colour data. RGBA32F images are taken as linear whatever the encoding;
- * their texels must be finite and >= 0. */
+/* Defaults: repeat, sRGB colour data, linear filtering. RGBA32F images are taken as linear whatever
+ * the encoding; their texels must be finite and >= 0. */
 typedef struct bg_texture_desc {
     bg_texture_wrap wrap;
     bg_texture_encoding encoding;
+    bg_texture_filter filter;
 } bg_texture_desc;
 
 /* Copies a caller image into the scene as a texture (stored as linear float); desc may be NULL. */
 bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
                                uint32_t *out_texture);
-/* Loads a PNG file as a texture; missing or corrupt files give BG_ERR_IO naming the path. */
+/* Loads a PNG file as a texture: its samples as bg_png_load keeps them, decoded as desc says like an
+ * RGBA8 image's, except that 16-bit files keep all 16 bits (v / 65535 is decoded); missing or
+ * corrupt files give BG_ERR_IO naming the path and why. */
 bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_texture_desc *desc,
                                     uint32_t *out_texture);
 

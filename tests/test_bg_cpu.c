@@ -347,7 +347,7 @@ static void test_texture_sampling(void **state)
     bg_scene *scene = new_scene();
     unsigned char px[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
     bg_image img = {2, 2, BG_PIXEL_RGBA8, 0, px};
-    bg_texture_desc rep = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR}, clamp = {BG_WRAP_CLAMP, BG_TEXTURE_LINEAR};
+    bg_texture_desc rep = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR, BG_FILTER_LINEAR}, clamp = {BG_WRAP_CLAMP, BG_TEXTURE_LINEAR, BG_FILTER_LINEAR};
     uint32_t tr = 0, tc = 0;
     assert_int_equal(bg_scene_add_texture(scene, &img, &rep, &tr), BG_OK);
     assert_int_equal(bg_scene_add_texture(scene, &img, &clamp, &tc), BG_OK);
@@ -371,6 +371,28 @@ static void test_texture_sampling(void **state)
     assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
     bg_cpu_texture_sample(c, -3.0, 7.0, v); /* far outside: the top-left corner texel */
     assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
+
+    /* GL_NEAREST: the texel whose square holds the point, whatever the distance to its centre. */
+    bg_texture_desc near_rep = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR, BG_FILTER_NEAREST};
+    bg_texture_desc near_clamp = {BG_WRAP_CLAMP, BG_TEXTURE_LINEAR, BG_FILTER_NEAREST};
+    uint32_t nr = 0, nc = 0;
+    bg_scene *ns = new_scene();
+    assert_int_equal(bg_scene_add_texture(ns, &img, &near_rep, &nr), BG_OK);
+    assert_int_equal(bg_scene_add_texture(ns, &img, &near_clamp, &nc), BG_OK);
+    assert_int_equal(bg_scene_commit(ns), BG_OK);
+    const bg_texture_data *n = &bg_scene_committed(ns)->textures[nr - 1];
+    const bg_texture_data *ncl = &bg_scene_committed(ns)->textures[nc - 1];
+    bg_cpu_texture_sample(n, 0.49, 0.01, v); /* bottom-left square: blue, no blend toward white */
+    assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
+    bg_cpu_texture_sample(n, 0.5, 0.5, v); /* a corner belongs to the square above and right: green */
+    assert_true(v[0] == 0.0 && v[1] == 1.0 && v[2] == 0.0);
+    bg_cpu_texture_sample(n, -0.25, 1.75, v); /* REPEAT: (0.75, 0.75), top-right: green */
+    assert_true(v[0] == 0.0 && v[1] == 1.0 && v[2] == 0.0);
+    bg_cpu_texture_sample(ncl, 1.0, 1.0, v); /* CLAMP's upper edge: the last texel, top-right */
+    assert_true(v[0] == 0.0 && v[1] == 1.0 && v[2] == 0.0);
+    bg_cpu_texture_sample(ncl, -2.0, 0.75, v); /* far left: the left column, top row: red */
+    assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
+    bg_scene_destroy(ns);
 
     /* material parameters: constant x texel, scalar from one channel, then clamped */
     bg_material m = bg_material_init();

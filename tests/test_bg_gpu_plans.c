@@ -401,6 +401,72 @@ static void forced_fused_beyond_limits_fails(void **state)
     macs_context_destroy(ctx);
 }
 
+/* GL_NEAREST scene textures (bg_texture_desc.filter): an 8x8 checker on a tilted plane, read as
+ * whole texels by both fused variants and the multipass, within the textured scene's thresholds of
+ * the CPU reference (texel edges count as silhouettes there). */
+static void nearest_textures(void **state)
+{
+    (void)state;
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    unsigned char checker[8 * 8 * 4];
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) {
+            unsigned char *p = checker + (y * 8 + x) * 4;
+            bool light = (x + y) % 2 == 0;
+            p[0] = light ? 230 : 40;
+            p[1] = light ? 200 : 60;
+            p[2] = light ? 90 : 140;
+            p[3] = 255;
+        }
+    bg_image img = {8, 8, BG_PIXEL_RGBA8, 0, checker};
+    bg_texture_desc desc = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB, BG_FILTER_NEAREST};
+    uint32_t tex = 0, mat = 0, id = 0;
+    assert_int_equal(bg_scene_add_texture(s, &img, &desc, &tex), BG_OK);
+    bg_material m = bg_material_init();
+    m.base.reflectance.r = m.base.reflectance.g = m.base.reflectance.b = 1.0;
+    m.base.reflectance.texture = tex;
+    assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
+    bg_object_desc plane = bg_object_desc_init(BG_SHAPE_PLANE, mat);
+    plane.transform = bg_mat4_rotate(bg_vec3_make(1, 0.3, 0), 12.0);
+    plane.uv_scale[0] = plane.uv_scale[1] = 0.37;
+    assert_int_equal(bg_scene_add_object(s, &plane, &id), BG_OK);
+    bg_light l = bg_light_init();
+    l.position = bg_vec3_make(1.0, 4.0, 2.0);
+    assert_int_equal(bg_scene_add_light(s, &l, &id), BG_OK);
+    bg_camera cam = bg_camera_init();
+    cam.position = bg_vec3_make(0.3, 2.2, 4.1);
+    cam.look_at = bg_vec3_make(0.1, 0.0, 0.0);
+    assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    unsigned char px[W * H * 4];
+    bg_image out = {W, H, BG_PIXEL_RGBA8, 0, px};
+    const bg_gpu_plan plans[3] = {BG_PLAN_FUSED, BG_PLAN_FUSED_TREE, BG_PLAN_MULTIPASS};
+    const char *labels[3] = {"nearest checker fused", "nearest checker tree", "nearest checker multipass"};
+    for (int k = 0; k < 3; k++) {
+        bg_render_settings set = plan_settings(plans[k]);
+        assert_int_equal(render(util_fx.renderer, s, &set, &out, labels[k]).plan, plans[k]);
+        util_expect_within(s, &set, &out, SCENE_TEXTURED_ANISO, labels[k]);
+    }
+    /* Not what linear filtering gives: the texels' edges stay sharp. */
+    bg_render_settings set = plan_settings(BG_PLAN_FUSED);
+    unsigned char *nearest = util_cpu_reference(s, &set, W, H);
+    desc.filter = BG_FILTER_LINEAR;
+    assert_int_equal(bg_scene_add_texture(s, &img, &desc, &tex), BG_OK);
+    m.base.reflectance.texture = tex;
+    assert_int_equal(bg_scene_set_material(s, mat, &m), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    unsigned char *linear = util_cpu_reference(s, &set, W, H);
+    size_t differ = 0;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++)
+        differ += nearest[i] != linear[i];
+    if (differ < 1000)
+        fail_msg("nearest and linear checkers differ in only %zu channels", differ);
+    free(nearest);
+    free(linear);
+    bg_scene_destroy(s);
+}
+
 /* The plan is a setting like any other: defaults to automatic, unknown values are refused. */
 static void plan_setting(void **state)
 {
@@ -540,6 +606,7 @@ int main(void)
         cmocka_unit_test(auto_falls_back_and_says_why),
         cmocka_unit_test(forced_fused_beyond_limits_fails),
         cmocka_unit_test(plan_setting),
+        cmocka_unit_test(nearest_textures),
         cmocka_unit_test(refused_program_falls_back),
         cmocka_unit_test(uniform_cap_falls_back),
     };

@@ -539,10 +539,12 @@ static void test_texture_validation(void **state)
     expect_rejected(s, bg_scene_add_texture(s, IMG(1, 1, (bg_pixel_format)9, 0, px), NULL, &id), BG_ERR_INVALID_ARGUMENT, "format = 9");
     expect_rejected(s, bg_scene_add_texture(s, IMG(1, 1, BG_PIXEL_RGBA8, 0, NULL), NULL, &id), BG_ERR_INVALID_ARGUMENT, "pixels");
     expect_rejected(s, bg_scene_add_texture(s, NULL, NULL, &id), BG_ERR_INVALID_ARGUMENT, "image");
-    bg_texture_desc d = {(bg_texture_wrap)5, BG_TEXTURE_SRGB};
+    bg_texture_desc d = {(bg_texture_wrap)5, BG_TEXTURE_SRGB, BG_FILTER_LINEAR};
     expect_rejected(s, bg_scene_add_texture(s, IMG(1, 1, BG_PIXEL_RGBA8, 0, px), &d, &id), BG_ERR_INVALID_ARGUMENT, "wrap = 5");
     d.wrap = BG_WRAP_CLAMP; d.encoding = (bg_texture_encoding)7;
     expect_rejected(s, bg_scene_add_texture(s, IMG(1, 1, BG_PIXEL_RGBA8, 0, px), &d, &id), BG_ERR_INVALID_ARGUMENT, "encoding = 7");
+    d.encoding = BG_TEXTURE_SRGB; d.filter = (bg_texture_filter)3;
+    expect_rejected(s, bg_scene_add_texture(s, IMG(1, 1, BG_PIXEL_RGBA8, 0, px), &d, &id), BG_ERR_INVALID_ARGUMENT, "desc.filter = 3");
     fpx[6] = NAN;
     expect_rejected(s, bg_scene_add_texture(s, IMG(2, 2, BG_PIXEL_RGBA32F, 0, fpx), NULL, &id), BG_ERR_INVALID_ARGUMENT, "pixel (1, 0) channel 2");
     fpx[6] = -1;

@@ -110,7 +110,7 @@ bg_status scenes_add_earth_texture(bg_scene *scene, uint32_t *out_texture)
         return BG_ERR_OUT_OF_MEMORY;
     scenes_earth_pixels(W, H, pixels);
     bg_image image = {W, H, BG_PIXEL_RGBA8, 0, pixels};
-    bg_texture_desc desc = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB};
+    bg_texture_desc desc = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB, BG_FILTER_LINEAR};
     bg_status st = bg_scene_add_texture(scene, &image, &desc, out_texture);
     free(pixels);
     return st;
@@ -424,7 +424,7 @@ static bg_status textured_aniso(bg_scene *scene, const placement *at)
         px[4 * i] = v; px[4 * i + 1] = v; px[4 * i + 2] = v; px[4 * i + 3] = 255;
     }
     bg_image img = {S, S, BG_PIXEL_RGBA8, 0, px};
-    bg_texture_desc lin = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR};
+    bg_texture_desc lin = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR, BG_FILTER_LINEAR};
     TRY(bg_scene_add_texture(scene, &img, &lin, &stripes));
 
     bg_material m = coated(1, 1, 1);

@@ -1,4 +1,4 @@
-/* GL_LINEAR texture sampling and the evaluation of (textured) material parameters
+/* GL_LINEAR and GL_NEAREST texture sampling and the evaluation of (textured) material parameters
  * (docs/shading.md section 5). */
 #include <string.h>
 
@@ -22,8 +22,28 @@ static double wrap_coord(double s, bg_texture_wrap wrap)
     return s - floor(s);
 }
 
+/* GL_NEAREST: the texel whose square holds the point, floor(s size) after the wrap; s = 1 (CLAMP's
+ * upper edge) falls on the last texel, as in GL. */
+static int nearest_index(double s, int size, bg_texture_wrap wrap)
+{
+    double x = floor(wrap_coord(s, wrap) * size);
+    return wrap_index(x >= size ? size - 1 : (int)x, size, wrap);
+}
+
+static void sample_nearest(const bg_texture_data *texture, double u, double v, double rgba[4])
+{
+    int i = nearest_index(u, texture->width, texture->wrap), j = nearest_index(v, texture->height, texture->wrap);
+    const float *t = texture->texels + ((size_t)j * (size_t)texture->width + (size_t)i) * 4;
+    for (int c = 0; c < 4; c++)
+        rgba[c] = t[c];
+}
+
 void bg_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4])
 {
+    if (texture->filter == BG_FILTER_NEAREST) {
+        sample_nearest(texture, u, v, rgba);
+        return;
+    }
     int w = texture->width, h = texture->height;
     double x = wrap_coord(u, texture->wrap) * w - 0.5;
     double y = wrap_coord(v, texture->wrap) * h - 0.5;

@@ -115,6 +115,7 @@ uint64_t gpu_scene_fingerprint(const bg_scene_state *state)
         mix(&s, (uint64_t)t->width);
         mix(&s, (uint64_t)t->height);
         mix(&s, (uint64_t)t->wrap);
+        mix(&s, (uint64_t)t->filter);
         size_t n = (size_t)t->width * (size_t)t->height * 4;
         for (size_t k = 0; k + 1 < n; k += 2) {
             uint32_t a, b;

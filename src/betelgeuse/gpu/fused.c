@@ -87,7 +87,6 @@ static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fu
 {
     int comps = gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
     int units = l->sampler_count + (gpu_fused_layout_walks(l) ? 2 : 0);
-    uint32_t unrolled = l->object_count - l->tree_count;
     if (l->tree && !gpu_fused_tree_fits(r, state, why, size))
         return false;
     if (gpu_fused_layout_walks(l) && l->walk_budget < MIN_WALK_BUDGET)
@@ -101,9 +100,9 @@ static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fu
     else if (units > r->limits.max_texture_units)
         snprintf(why, size, "the fused shader samples %d textures, GL has %d texture units", units,
                  r->limits.max_texture_units);
-    else if (!forced && unrolled > AUTO_MAX_OBJECTS)
-        snprintf(why, size, "%u objects outside the object tree, more than the %d the fused plan unrolls", unrolled,
-                 AUTO_MAX_OBJECTS);
+    else if (!forced && l->unrolled_count > AUTO_MAX_OBJECTS)
+        snprintf(why, size, "%u objects outside the object tree, more than the %d the fused plan unrolls",
+                 l->unrolled_count, AUTO_MAX_OBJECTS);
     else if (!forced && l->light_count > AUTO_MAX_LIGHTS)
         snprintf(why, size, "%u lights, more than the %d the fused plan was measured with", l->light_count,
                  AUTO_MAX_LIGHTS);
@@ -141,7 +140,7 @@ static uint64_t texture_hash(const bg_scene_state *state, const gpu_fused_layout
     uint64_t h = 1469598103934665603ull;
     for (int k = 0; k < l->sampler_count; k++) {
         const bg_texture_data *t = &state->textures[l->samplers[k] - 1];
-        int head[3] = {t->width, t->height, (int)t->wrap};
+        int head[4] = {t->width, t->height, (int)t->wrap, (int)t->filter};
         h = hash_bytes(h, &l->samplers[k], sizeof l->samplers[k]);
         h = hash_bytes(h, head, sizeof head);
         h = hash_bytes(h, t->texels, (size_t)t->width * (size_t)t->height * 4 * sizeof(float));

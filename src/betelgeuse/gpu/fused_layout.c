@@ -187,7 +187,8 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     l.objects = bg_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.objects);
     l.materials = bg_alloc(a, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
     l.samplers = bg_alloc(a, (state->texture_count ? state->texture_count : 1) * sizeof *l.samplers);
-    if (!l.objects || !l.materials || !l.samplers) {
+    l.unrolled = bg_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.unrolled);
+    if (!l.objects || !l.materials || !l.samplers || !l.unrolled) {
         gpu_fused_layout_free(a, &l);
         return false;
     }
@@ -200,9 +201,11 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     l.tree = tree;
     for (uint32_t i = 0; i < state->tree_count && tree; i++)
         l.objects[state->tree_objects[i]].in_tree = true;
-    for (uint32_t j = 0, slot = 0; j < l.object_count; j++)
-        if (!l.objects[j].in_tree)
-            l.objects[j].slot = slot++;
+    for (uint32_t j = 0; j < l.object_count; j++)
+        if (!l.objects[j].in_tree) {
+            l.objects[j].slot = l.unrolled_count;
+            l.unrolled[l.unrolled_count++] = j;
+        }
     bool bounce = false;
     for (uint32_t k = 0; k < l.material_count; k++) {
         gpu_fused_material *m = &l.materials[k];
@@ -236,6 +239,7 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
 void gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *l)
 {
     bg_free(a, l->objects);
+    bg_free(a, l->unrolled);
     bg_free(a, l->materials);
     bg_free(a, l->samplers);
     memset(l, 0, sizeof *l);

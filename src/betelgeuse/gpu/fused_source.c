@@ -101,14 +101,6 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
 
 /* ---- generated functions ---- */
 
-/* Objects tested one by one with their own uniforms: those outside the tree. */
-static uint32_t unrolled_count(const gpu_fused_layout *l)
-{
-    uint32_t n = 0;
-    for (uint32_t j = 0; j < l->object_count; j++)
-        n += l->objects[j].in_tree ? 0 : 1;
-    return n;
-}
 
 static bool tree_casts(const gpu_fused_layout *l)
 {
@@ -246,7 +238,7 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
                        "out vec3 n_obj, out bool first_root)\n{\n"
                        "    t = 0.0;\n    win = -1.0;\n    p_obj = vec3(0.0);\n    n_obj = vec3(0.0, 1.0, 0.0);\n"
                        "    first_root = true;\n");
-    if (unrolled_count(l) > 0)
+    if (l->unrolled_count > 0)
         gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
     int emitted = 0;
     for (uint32_t j = 0; j < l->object_count; j++) {
@@ -393,7 +385,7 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
                        "out vec4 nrm, out vec4 base, out vec4 coat, out vec4 tangent, out vec3 once, out vec2 xparent)\n{\n"
                        "    bool entering = true;\n    vec3 n = -d;\n    float mat = 0.0;\n    vec2 uv = vec2(0.0);\n"
                        "    vec3 dpdu = vec3(0.0);\n    vec3 tg = -d;\n    code = 0.0;\n");
-    int cases = (int)unrolled_count(l) + (gpu_fused_layout_walks(l) ? 1 : 0), position = 0;
+    int cases = (int)l->unrolled_count + (gpu_fused_layout_walks(l) ? 1 : 0), position = 0;
     for (uint32_t j = 0; j < l->object_count; j++) {
         if (l->objects[j].in_tree)
             continue;

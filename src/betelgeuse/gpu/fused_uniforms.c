@@ -248,10 +248,18 @@ static const row rows[GPU_FUSED_ROW_COUNT] = {
 #undef PARAM_ROW_
 };
 
-/* How many objects or materials a row is repeated for (1 for frame and light rows). */
+/* How many objects or materials a row is repeated for (1 for frame and light rows): an object row
+ * for the unrolled objects only, so that a frame of the tree variant never visits its tree's
+ * thousands of objects here. */
 static uint32_t repeats(const gpu_fused_layout *l, const row *w)
 {
-    return w->scope == GPU_FUSED_OBJECT ? l->object_count : w->scope == GPU_FUSED_MATERIAL ? l->material_count : 1;
+    return w->scope == GPU_FUSED_OBJECT ? l->unrolled_count : w->scope == GPU_FUSED_MATERIAL ? l->material_count : 1;
+}
+
+/* The object or material of a row's k-th repeat. */
+static uint32_t repeat_index(const gpu_fused_layout *l, const row *w, uint32_t k)
+{
+    return w->scope == GPU_FUSED_OBJECT ? l->unrolled[k] : k;
 }
 
 /* Array length of a row's uniform: the light rows hold one element per light; 0 = not an array. */
@@ -301,9 +309,11 @@ typedef bool (*visit_fn)(void *user, int r, uint32_t i);
 static bool each_uniform(const gpu_fused_layout *l, visit_fn fn, void *user)
 {
     for (int r = 0; r < GPU_FUSED_ROW_COUNT; r++)
-        for (uint32_t i = 0; i < repeats(l, &rows[r]); i++)
+        for (uint32_t k = 0; k < repeats(l, &rows[r]); k++) {
+            uint32_t i = repeat_index(l, &rows[r], k);
             if (gpu_fused_uniform_present(l, r, i) && !fn(user, r, i))
                 return false;
+        }
     return true;
 }
 

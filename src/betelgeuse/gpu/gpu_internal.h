@@ -455,6 +455,8 @@ typedef struct gpu_fused_layout {
     int loop_rays;       /* the trace loop's bound: every ray of the full tree, within GPU_FUSED_MAX_LOOP */
     double rays_needed;  /* the most rays a pixel can follow, min_weight's pruning counted */
     bool tree;           /* BG_PLAN_FUSED_TREE: the bounded objects are walked from the tree's textures */
+    uint32_t *unrolled;  /* the objects outside the tree, ascending (unrolled_count of them) */
+    uint32_t unrolled_count;
     uint32_t tree_count; /* objects in the tree (not part of the program) */
     gpu_fused_tree_kinds kinds;
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */

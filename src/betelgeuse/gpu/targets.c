@@ -218,7 +218,7 @@ bg_status gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, mac
     d.width = t->width;
     d.height = t->height;
     d.format = MACS_FORMAT_RGBA32F;
-    d.filter = MACS_FILTER_LINEAR; /* no mipmaps: docs/shading.md 5 */
+    d.filter = t->filter == BG_FILTER_NEAREST ? MACS_FILTER_NEAREST : MACS_FILTER_LINEAR; /* no mipmaps: docs/shading.md 5 */
     d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
     d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
     macs_status ms = macs_texture_create(r->ctx, &d, out);

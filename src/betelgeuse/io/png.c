@@ -1,5 +1,7 @@
-/* PNG files through libpng's simplified API (png_image): size, load, save, and textures.
- * libpng keeps its message in the png_image the caller owns and never prints from here. */
+/* PNG files: size, load, save, and textures. Loading goes through one reader (png_read.h) that
+ * keeps the file's encoding; 16-bit samples are reduced to 8 bits here, or kept as floats. Saving
+ * goes through libpng's simplified API (png_image), which keeps its message in the png_image the
+ * caller owns and never prints from here. */
 #include <math.h>
 #include <png.h>
 #include <stdio.h>
@@ -7,7 +9,9 @@
 
 #include "../common/alloc.h"
 #include "../common/image.h"
+#include "../common/srgb.h"
 #include "../scene/scene_private.h"
+#include "png_read.h"
 
 static bg_status io_fail(const char *path, const png_image *png, const char *what,
                          char *message, size_t size)
@@ -45,53 +49,78 @@ static bg_status check_file_and_image(const char *fn, const char *path, const bg
     return BG_OK;
 }
 
-/* Opens path and reads its header into png; on failure png is already freed by libpng. */
-static bg_status begin_read(const char *path, png_image *png, char *message, size_t size)
-{
-    memset(png, 0, sizeof *png);
-    png->version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(png, path))
-        return io_fail(path, png, "cannot read PNG header", message, size);
-    if (png->width == 0 || png->height == 0 || png->width > BG_MAX_IMAGE_SIDE ||
-        png->height > BG_MAX_IMAGE_SIDE) {
-        char buf[BG_MESSAGE_SIZE];
-        snprintf(buf, sizeof buf, "%s: PNG size %ux%u is outside [1, %d] per side", path,
-                 (unsigned)png->width, (unsigned)png->height, BG_MAX_IMAGE_SIDE);
-        png_image_free(png);
-        bg_message_copy(message, size, buf);
-        return BG_ERR_IO;
-    }
-    png->format = PNG_FORMAT_RGBA;
-    return BG_OK;
-}
-
 bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size)
 {
     bg_message_copy(message, message_size, "");
     if (!path || !width || !height)
         return arg_fail("bg_png_size: path, width and height must not be NULL", message, message_size);
-    png_image png;
-    bg_status st = begin_read(path, &png, message, message_size);
+    bg_png_reader r;
+    bg_status st = bg_png_reader_open(&r, path, message, message_size);
     if (st != BG_OK)
         return st;
-    *width = (int)png.width;
-    *height = (int)png.height;
-    png_image_free(&png);
+    *width = r.width;
+    *height = r.height;
+    bg_png_reader_close(&r);
     return BG_OK;
 }
 
-/* Reads the whole file as 8-bit RGBA into pixels with the given byte stride (GL order is not
- * applied here: row 0 is the top of the file, as in bg_image). */
-static bg_status finish_read(const char *path, png_image *png, void *pixels, size_t stride,
-                             char *message, size_t size)
+/* Reads the opened file's samples into a new tightly packed buffer from a (row 0 is the top of the
+ * file, as in bg_image); the reader is closed whatever happens. */
+static bg_status read_samples(bg_png_reader *r, const bg_allocator *a, unsigned char **out, char *message,
+                              size_t size)
 {
-    if (!png_image_finish_read(png, NULL, pixels, (png_int_32)stride, NULL)) {
-        bg_status st = io_fail(path, png, "cannot read PNG data", message, size);
-        png_image_free(png);
-        return st;
+    size_t row = bg_png_reader_row_bytes(r);
+    *out = bg_alloc(a, row * (size_t)r->height);
+    if (!*out) {
+        char buf[BG_MESSAGE_SIZE];
+        snprintf(buf, sizeof buf, "%s: out of memory for %dx%d %d-bit RGBA samples", r->path, r->width,
+                 r->height, r->bits);
+        bg_message_copy(message, size, buf);
+        bg_png_reader_close(r);
+        return BG_ERR_OUT_OF_MEMORY;
     }
-    png_image_free(png);
-    return BG_OK;
+    bg_status st = bg_png_reader_read(r, *out, row, message, size);
+    bg_png_reader_close(r);
+    if (st != BG_OK) {
+        bg_free(a, *out);
+        *out = NULL;
+    }
+    return st;
+}
+
+/* A 16-bit sample as the file stores it (big-endian). */
+static unsigned sample_16(const unsigned char *p)
+{
+    return (unsigned)p[0] << 8 | p[1];
+}
+
+/* A 16-bit sample to 8 bits: round(v / 257). Since 65535 = 255 * 257, this is the 8-bit code at the
+ * same place in the file's range, so the file's encoding (sRGB, another gamma, or linear) is kept
+ * and only its precision is reduced. v / 257 is never halfway between two integers, so there is no
+ * tie to break, and (v + 128) / 257 in integers is exactly that rounding. */
+static unsigned char byte_from_16(unsigned v)
+{
+    return (unsigned char)((v + 128) / 257);
+}
+
+/* The samples (bits per channel, tightly packed) into the caller's image: RGBA8 takes 16-bit
+ * samples reduced to 8 bits, RGBA32F takes every sample over its depth's largest value (255 or
+ * 65535), still encoded. An RGBA8 image of an 8-bit file is read in place and never comes here. */
+static void store_samples(const unsigned char *samples, int bits, const bg_image *image, size_t stride)
+{
+    size_t count = (size_t)image->width * 4, bytes = (size_t)(bits / 8);
+    double max = bits == 16 ? 65535.0 : 255.0;
+    for (int y = 0; y < image->height; y++) {
+        const unsigned char *src = samples + (size_t)y * count * bytes;
+        unsigned char *dst = (unsigned char *)image->pixels + (size_t)y * stride;
+        for (size_t i = 0; i < count; i++) {
+            unsigned v = bits == 16 ? sample_16(src + 2 * i) : src[i];
+            if (image->format == BG_PIXEL_RGBA8)
+                dst[i] = byte_from_16(v);
+            else
+                ((float *)dst)[i] = (float)(v / max);
+        }
+    }
 }
 
 bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t message_size)
@@ -100,38 +129,29 @@ bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t m
     bg_status st = check_file_and_image("bg_png_load", path, image, &stride, message, message_size);
     if (st != BG_OK)
         return st;
-    char buf[BG_MESSAGE_SIZE];
-    png_image png;
-    if ((st = begin_read(path, &png, message, message_size)) != BG_OK)
+    bg_png_reader r;
+    if ((st = bg_png_reader_open(&r, path, message, message_size)) != BG_OK)
         return st;
-    if ((int)png.width != image->width || (int)png.height != image->height) {
-        snprintf(buf, sizeof buf, "bg_png_load: %s is %ux%u but image is %dx%d", path,
-                 (unsigned)png.width, (unsigned)png.height, image->width, image->height);
-        png_image_free(&png);
+    if (r.width != image->width || r.height != image->height) {
+        char buf[BG_MESSAGE_SIZE];
+        snprintf(buf, sizeof buf, "bg_png_load: %s is %dx%d but image is %dx%d", path, r.width, r.height,
+                 image->width, image->height);
+        bg_png_reader_close(&r);
         return arg_fail(buf, message, message_size);
     }
-    if (image->format == BG_PIXEL_RGBA8)
-        return finish_read(path, &png, image->pixels, stride, message, message_size);
-
-    /* RGBA32F: read the bytes, then store them divided by 255 (still encoded, as documented). */
+    if (image->format == BG_PIXEL_RGBA8 && r.bits == 8) {
+        st = bg_png_reader_read(&r, image->pixels, stride, message, message_size);
+        bg_png_reader_close(&r);
+        return st;
+    }
     static const bg_allocator heap = {NULL, NULL, NULL, NULL};
-    size_t row = (size_t)image->width * 4;
-    unsigned char *tmp = bg_alloc(&heap, row * (size_t)image->height);
-    if (!tmp) {
-        png_image_free(&png);
-        bg_message_copy(message, message_size, "bg_png_load: out of memory");
-        return BG_ERR_OUT_OF_MEMORY;
-    }
-    st = finish_read(path, &png, tmp, row, message, message_size);
-    if (st == BG_OK) {
-        for (int y = 0; y < image->height; y++) {
-            float *dst = (float *)((unsigned char *)image->pixels + (size_t)y * stride);
-            for (size_t i = 0; i < row; i++)
-                dst[i] = (float)(tmp[(size_t)y * row + i] / 255.0);
-        }
-    }
-    bg_free(&heap, tmp);
-    return st;
+    int bits = r.bits;
+    unsigned char *samples;
+    if ((st = read_samples(&r, &heap, &samples, message, message_size)) != BG_OK)
+        return st;
+    store_samples(samples, bits, image, stride);
+    bg_free(&heap, samples);
+    return BG_OK;
 }
 
 /* Clamped to [0, 1], scaled by 255 and rounded to nearest; NaN becomes 0. */
@@ -186,6 +206,34 @@ bg_status bg_png_save(const char *path, const bg_image *image, char *message, si
     return BG_OK;
 }
 
+/* A 16-bit file as the linear float RGBA image bg_texture_add takes, keeping all 16 bits: colour as
+ * desc's encoding says (the sRGB EOTF of v / 65535, or v / 65535 as it is), alpha always v / 65535.
+ * That is bg_texture_add's rule for 8-bit texels, at the file's precision; any encoding other than
+ * sRGB is read as linear here and then rejected by bg_texture_add if it is not a valid one. */
+static bg_status texels_from_16(bg_scene *scene, const unsigned char *samples, const bg_texture_desc *desc,
+                                bg_image *image)
+{
+    size_t count = (size_t)image->width * (size_t)image->height * 4;
+    float *texels = bg_alloc(&scene->allocator, count * sizeof(float));
+    float *decode = bg_alloc(&scene->allocator, 65536 * sizeof(float));
+    if (!texels || !decode) {
+        bg_free(&scene->allocator, texels);
+        bg_free(&scene->allocator, decode);
+        return BG_ERR_OUT_OF_MEMORY;
+    }
+    bool srgb = !desc || desc->encoding == BG_TEXTURE_SRGB;
+    for (unsigned v = 0; v < 65536; v++)
+        decode[v] = (float)(srgb ? bg_srgb_to_linear(v / 65535.0) : v / 65535.0);
+    for (size_t i = 0; i < count; i++) {
+        unsigned v = sample_16(samples + 2 * i);
+        texels[i] = i % 4 == 3 ? (float)(v / 65535.0) : decode[v];
+    }
+    bg_free(&scene->allocator, decode);
+    image->format = BG_PIXEL_RGBA32F;
+    image->pixels = texels;
+    return BG_OK;
+}
+
 bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_texture_desc *desc,
                                     uint32_t *out_texture)
 {
@@ -197,22 +245,22 @@ bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_
     if (!out_texture)
         return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_texture is NULL", where);
     char msg[BG_MESSAGE_SIZE];
-    png_image png;
-    bg_status st = begin_read(path, &png, msg, sizeof msg);
+    bg_png_reader r;
+    unsigned char *samples;
+    bg_status st = bg_png_reader_open(&r, path, msg, sizeof msg);
+    if (st == BG_OK)
+        st = read_samples(&r, &scene->allocator, &samples, msg, sizeof msg);
     if (st != BG_OK)
         return bg_scene_fail(scene, st, "%s: %s", where, msg);
-    bg_image image = {(int)png.width, (int)png.height, BG_PIXEL_RGBA8, 0, NULL};
-    size_t bytes = (size_t)image.width * (size_t)image.height * 4;
-    image.pixels = bg_alloc(&scene->allocator, bytes);
-    if (!image.pixels) {
-        png_image_free(&png);
+    /* 8-bit samples are an RGBA8 image as they stand; 16-bit ones become linear floats. */
+    bg_image image = {r.width, r.height, BG_PIXEL_RGBA8, 0, samples};
+    if (r.bits == 16 && texels_from_16(scene, samples, desc, &image) != BG_OK) {
+        bg_free(&scene->allocator, samples);
         return bg_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: %s: out of memory", where, path);
     }
-    st = finish_read(path, &png, image.pixels, (size_t)image.width * 4, msg, sizeof msg);
-    if (st != BG_OK)
-        bg_scene_fail(scene, st, "%s: %s", where, msg);
-    else
-        st = bg_texture_add(scene, where, &image, desc, out_texture);
+    if (image.pixels != samples)
+        bg_free(&scene->allocator, samples);
+    st = bg_texture_add(scene, where, &image, desc, out_texture);
     bg_free(&scene->allocator, image.pixels);
     return st;
 }

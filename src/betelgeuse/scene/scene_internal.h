@@ -11,6 +11,7 @@
 typedef struct bg_texture_data {
     int width, height;
     bg_texture_wrap wrap;
+    bg_texture_filter filter;
     float *texels; /* width * height * 4 */
 } bg_texture_data;
 

@@ -17,11 +17,14 @@ bg_status bg_texture_add(bg_scene *scene, const char *where, const bg_image *ima
     bg_status st = bg_image_check(image, &stride, msg, sizeof msg);
     if (st != BG_OK)
         return bg_scene_fail(scene, st, "%s: %s", where, msg);
-    bg_texture_desc d = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB};
+    bg_texture_desc d = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB, BG_FILTER_LINEAR};
     if (desc)
         d = *desc;
     if ((int)d.wrap < 0 || d.wrap > BG_WRAP_CLAMP)
         return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.wrap = %d is not a bg_texture_wrap", where, (int)d.wrap);
+    if ((int)d.filter < 0 || d.filter > BG_FILTER_NEAREST)
+        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.filter = %d is not a bg_texture_filter", where,
+                             (int)d.filter);
     if ((int)d.encoding < 0 || d.encoding > BG_TEXTURE_LINEAR)
         return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.encoding = %d is not a bg_texture_encoding",
                              where, (int)d.encoding);
@@ -66,6 +69,7 @@ bg_status bg_texture_add(bg_scene *scene, const char *where, const bg_image *ima
     t->width = w;
     t->height = h;
     t->wrap = d.wrap;
+    t->filter = d.filter;
     t->texels = texels;
     *out_texture = scene->textures.count;
     return BG_OK;
