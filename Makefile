@@ -185,7 +185,7 @@ valgrind: $(VALGRIND_TESTS)
 # on stderr.
 BENCH_OUT ?= bench/out
 BENCH_ENV := $(TEST_ENV) QUICK=$(QUICK)
-BENCH_PROGRAMS := bench_paper bench_scaling bench_tradeoffs bench_phases $(if $(EMBREE_LIBS),bench_embree)
+BENCH_PROGRAMS := bench_paper bench_scaling bench_tradeoffs bench_phases bench_recommit $(if $(EMBREE_LIBS),bench_embree)
 # The benchmark programs built but not run: CI checks that they still compile.
 bench-programs: all $(BENCH_BIN)
 
@@ -213,10 +213,13 @@ install: all
 	ln -sf libbetelgeuse.so.$(SOVERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse.so
 	install -m 644 $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc $(DESTDIR)$(LIBDIR)/pkgconfig/
 
+# The pkgconfig folder goes too when nothing else is left in it (install made it where it was
+# missing); lib and include stay: they are the prefix's own (Debian ships /usr/local/include empty).
 uninstall:
 	rm -f $(DESTDIR)$(INCDIR)/macs.h $(DESTDIR)$(INCDIR)/betelgeuse.h
 	rm -f $(DESTDIR)$(LIBDIR)/libmacs.* $(DESTDIR)$(LIBDIR)/libbetelgeuse.*
 	rm -f $(DESTDIR)$(LIBDIR)/pkgconfig/macs.pc $(DESTDIR)$(LIBDIR)/pkgconfig/betelgeuse.pc
+	rmdir $(DESTDIR)$(LIBDIR)/pkgconfig 2>/dev/null || true
 
 clean:
 	rm -rf build

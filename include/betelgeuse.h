@@ -480,8 +480,9 @@ typedef struct bg_render_stats {
                                         BG_PASS_BACKGROUND for a scene without objects); it keeps no
                                         ray sets, levels, dmax, G-buffer or depth buffer, so those
                                         fields stay 0 */
-    int programs_compiled;           /* shader programs this render built (0 when every pass it needed
-                                        was cached); counted by the fused plans only so far */
+    int programs_compiled;           /* shader programs this render compiled, in any plan (0 when every
+                                        program it needed was cached: a re-commit that changes only
+                                        camera, lights, transforms or material values compiles none) */
     uint64_t fallback_pixels;        /* BG_PLAN_FUSED_TREE: pixels whose tree walks would have run past
                                         the shader's loop limit, rendered by the CPU reference instead */
 } bg_render_stats;

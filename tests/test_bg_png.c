@@ -186,8 +186,14 @@ static void test_png_argument_errors(void **state)
     assert_non_null(strstr(msg, "path"));
     assert_int_equal(bg_png_save("/tmp/bg_png_test_no_such_dir/x.png", &ok, msg, sizeof msg), BG_ERR_IO);
     assert_non_null(strstr(msg, "/tmp/bg_png_test_no_such_dir/x.png"));
-    int w;
+    int w, h;
     assert_int_equal(bg_png_size("/tmp/x.png", &w, NULL, msg, sizeof msg), BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(msg, "height is NULL"));
+    /* Each NULL argument is named alone, not in a list of three. */
+    assert_int_equal(bg_png_size(NULL, &w, &h, msg, sizeof msg), BG_ERR_INVALID_ARGUMENT);
+    assert_string_equal(msg, "bg_png_size: path is NULL");
+    assert_int_equal(bg_png_size("/tmp/x.png", NULL, &h, msg, sizeof msg), BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(msg, "width is NULL"));
 }
 
 /* ---- files of every colour type, depth and interlace, written here with libpng's write API ---- */

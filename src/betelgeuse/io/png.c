@@ -52,8 +52,12 @@ static bg_status check_file_and_image(const char *fn, const char *path, const bg
 bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size)
 {
     bg_message_copy(message, message_size, "");
-    if (!path || !width || !height)
-        return arg_fail("bg_png_size: path, width and height must not be NULL", message, message_size);
+    if (!path)
+        return arg_fail("bg_png_size: path is NULL", message, message_size);
+    if (!width || !height)
+        return arg_fail(!width ? "bg_png_size: width is NULL (it receives the image width)"
+                               : "bg_png_size: height is NULL (it receives the image height)",
+                        message, message_size);
     bg_png_reader r;
     bg_status st = bg_png_reader_open(&r, path, message, message_size);
     if (st != BG_OK)
