@@ -63,21 +63,43 @@ typedef struct macs_allocator {
 /* ---------------------------------------------------------------------------------------------- */
 /* Headless OpenGL contexts                                                                        */
 
-/* Which headless backend to use; DEFAULT tries OSMesa first and EGL surfaceless second. */
+/* Which headless backend to use. DEFAULT tries, in this order, and keeps the first that gives a
+ * context: EGL_DEVICE on each device EGL lists (a GPU, where its driver runs headless, as NVIDIA's and
+ * Mesa's do; Mesa lists its software device last), EGL surfaceless, then OSMesa (always software). */
 typedef enum macs_headless_backend {
     MACS_HEADLESS_DEFAULT = 0,
     MACS_HEADLESS_OSMESA,
-    MACS_HEADLESS_EGL
+    MACS_HEADLESS_EGL,        /* EGL surfaceless (EGL_MESA_platform_surfaceless) */
+    MACS_HEADLESS_EGL_DEVICE  /* EGL device platform (EGL_EXT_platform_device), device desc.device_index */
 } macs_headless_backend;
 
-/* Defaults: backend DEFAULT (OSMesa, else EGL surfaceless), libc allocator, no logger.
- * The library never reads environment variables to choose the backend. */
+/* Defaults: backend DEFAULT (the order above); device_index 0; libc allocator; no logger.
+ * device_index picks an EGL device in the order eglQueryDevicesEXT lists them (0 = the first): with
+ * EGL_DEVICE only that device is tried; with DEFAULT, 0 tries every device in turn and n > 0 tries
+ * device n only, before EGL surfaceless and OSMesa. An index beyond the devices EGL lists is refused
+ * (MACS_ERR_INVALID_ARGUMENT, naming the index and the count), never replaced by another device or
+ * backend; where EGL has no device platform or lists no device, DEFAULT moves on. OSMesa and EGL
+ * surfaceless take only 0. The logger gets one info line saying what the context runs on.
+ * The library never reads environment variables to choose the backend or the device. */
 typedef struct macs_headless_desc {
     macs_headless_backend backend;
     macs_allocator allocator;
     macs_log_fn logger;
     void *logger_user;
+    int device_index;
 } macs_headless_desc;
+
+/* What a headless context runs on, found at creation; the strings belong to the headless context,
+ * live as long as it and are never NULL. */
+typedef struct macs_headless_info {
+    macs_headless_backend backend; /* the backend created (never DEFAULT, but for a NULL context) */
+    int device_index;              /* EGL_DEVICE: the device's index in EGL's list; else -1 */
+    int device_count;              /* EGL_DEVICE: how many devices EGL lists; else 0 */
+    const char *device_name;       /* EGL_DEVICE: "software" (EGL_MESA_device_software), the DRM device
+                                      file or render node, or the device's renderer name; else "" */
+    const char *device_extensions; /* EGL_DEVICE: the device's extension string (EGL_EXT_device_query); else "" */
+    const char *renderer;          /* GL_RENDERER of the context ("" where GL gives none) */
+} macs_headless_info;
 
 /* An OpenGL 2.1 (compatibility) context without a window, current on the creating thread. */
 typedef struct macs_headless macs_headless;
@@ -94,6 +116,9 @@ macs_status macs_headless_make_current(macs_headless *headless);
 
 /* Returns the backend that was actually created. */
 macs_headless_backend macs_headless_backend_used(const macs_headless *headless);
+
+/* Copies what the headless context runs on: backend, EGL device and GL renderer (NULL: DEFAULT, -1, ""). */
+void macs_headless_describe(const macs_headless *headless, macs_headless_info *info);
 
 /* Returns the get_proc_address matching this backend (OSMesaGetProcAddress or eglGetProcAddress). */
 macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *headless);

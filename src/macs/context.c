@@ -87,25 +87,29 @@ static macs_status create_fail(macs_context *ctx, macs_status st, char *message,
     return st;
 }
 
-/* Refuses a descriptor before anything is allocated: there is no context yet to hold the message. */
+/* Refuses a descriptor before anything is allocated: there is no context yet to hold the message.
+ * Each fault is named on its own, so the message says which argument to fix. */
 static macs_status check_desc(const macs_context_desc *desc, macs_context **out, char *message, size_t size)
 {
-    if (!desc || !out || !desc->get_proc_address) {
-        macs_report(desc ? desc->logger : NULL, desc ? desc->logger_user : NULL, message, size,
-                    MACS_ERR_INVALID_ARGUMENT, "desc, out and desc->get_proc_address are required");
-        return MACS_ERR_INVALID_ARGUMENT;
-    }
-    if (!macs_allocator_valid(&desc->allocator)) {
-        macs_report(desc->logger, desc->logger_user, message, size, MACS_ERR_INVALID_ARGUMENT,
-                    "allocator: set alloc, realloc and free together or leave all NULL");
-        return MACS_ERR_INVALID_ARGUMENT;
-    }
-    char text[MACS_MESSAGE_SIZE];
-    if (macs_limits_check_caps(&desc->caps, text, sizeof text) != MACS_OK) {
-        macs_report(desc->logger, desc->logger_user, message, size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
-        return MACS_ERR_INVALID_ARGUMENT;
-    }
-    return MACS_OK;
+    macs_log_fn logger = desc ? desc->logger : NULL;
+    void *user = desc ? desc->logger_user : NULL;
+    char text[MACS_MESSAGE_SIZE] = "";
+    if (!desc)
+        snprintf(text, sizeof text, "macs_context_create: desc is NULL");
+    else if (!desc->get_proc_address)
+        snprintf(text, sizeof text, "macs_context_create: desc.get_proc_address is NULL: it is required, the "
+                 "loader of the current GL context (macs_headless_get_proc_address for a headless one)");
+    else if (!out)
+        snprintf(text, sizeof text, "macs_context_create: out is NULL");
+    else if (!macs_allocator_valid(&desc->allocator))
+        snprintf(text, sizeof text, "macs_context_create: desc.allocator: set alloc, realloc and free together "
+                 "or leave all NULL");
+    else
+        macs_limits_check_caps(&desc->caps, text, sizeof text);
+    if (!text[0])
+        return MACS_OK;
+    macs_report(logger, user, message, size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
+    return MACS_ERR_INVALID_ARGUMENT;
 }
 
 /* A zeroed context holding the descriptor's allocator, logger and options. */

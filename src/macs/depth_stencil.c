@@ -95,10 +95,12 @@ macs_status macs_depth_stencil_create(macs_context *ctx, const macs_depth_stenci
     if (!ctx)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: desc and out are required");
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: %s is NULL",
+                         desc ? "out" : "desc");
     if (desc->format != 0 && desc->format != MACS_DEPTH24_STENCIL8 && desc->format != MACS_DEPTH32F_STENCIL8)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: format %d is unknown",
-                         (int)desc->format);
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: desc.format %d is not a "
+                         "macs_depth_format (0, %d or %d)",
+                         (int)desc->format, (int)MACS_DEPTH24_STENCIL8, (int)MACS_DEPTH32F_STENCIL8);
     return create(ctx, desc->width, desc->height, false, desc->format != MACS_DEPTH24_STENCIL8, out);
 }
 

@@ -8,15 +8,27 @@ struct macs_headless {
     macs_headless_backend backend;
     macs_allocator allocator;
     void *impl; /* the backend's own state */
+    /* What macs_headless_describe reports; NULL strings read as "". */
+    int device_index; /* EGL_DEVICE: the device used; else -1 */
+    int device_count; /* EGL_DEVICE: how many devices EGL listed; else 0 */
+    char *device_name;
+    char *device_extensions;
+    char *renderer;
 };
 
-/* Each backend fills impl and makes its context current, or writes why not into message. */
+/* Each backend fills impl and makes its context current, or writes why not into message: status
+ * MACS_ERR_CONTEXT where the next backend of the default order may still succeed, any other status
+ * where it should not be tried (out of memory, a device index that does not exist). */
 macs_status macs_osmesa_create(macs_headless *h, char *message, size_t size);
 void macs_osmesa_destroy(macs_headless *h);
 macs_status macs_osmesa_make_current(macs_headless *h);
 void *macs_osmesa_get_proc_address(const char *name, void *user);
 
-macs_status macs_egl_create(macs_headless *h, char *message, size_t size);
+/* The EGL backends share one context type, so destroy, make current and get_proc_address are one. */
+macs_status macs_egl_surfaceless_create(macs_headless *h, char *message, size_t size);
+/* index < 0: every device in the order EGL lists them, the first that gives a context; else that
+ * device only. Fills the device fields of h. */
+macs_status macs_egl_device_create(macs_headless *h, int index, char *message, size_t size);
 void macs_egl_destroy(macs_headless *h);
 macs_status macs_egl_make_current(macs_headless *h);
 void *macs_egl_get_proc_address(const char *name, void *user);

@@ -1,11 +1,9 @@
-/* EGL backend: Mesa's surfaceless platform, a desktop GL context made current without a surface. */
+/* EGL contexts: a desktop GL context made current without a surface on a display of any platform
+ * (the surfaceless and device backends each find their display, then come here). */
 #include <stdio.h>
 #include <string.h>
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-
-#include "headless.h"
+#include "headless_egl.h"
 #include "internal.h"
 
 typedef struct egl_state {
@@ -13,54 +11,74 @@ typedef struct egl_state {
     EGLContext context;
 } egl_state;
 
-static bool has_token(const char *list, const char *name)
+bool macs_egl_client_has(const char *extension)
 {
-    return macs_gl_has_extension(list, name);
+    /* NULL where EGL lacks EGL_EXT_client_extensions: then no extension is there. */
+    return macs_gl_has_extension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), extension);
 }
 
-macs_status macs_egl_create(macs_headless *h, char *message, size_t size)
+__eglMustCastToProperFunctionPointerType macs_egl_proc(const char *name)
 {
-    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_token(client, "EGL_MESA_platform_surfaceless") || !has_token(client, "EGL_EXT_platform_base")) {
-        snprintf(message, size, "EGL_MESA_platform_surfaceless or EGL_EXT_platform_base missing");
+    return eglGetProcAddress(name);
+}
+
+macs_status macs_egl_platform_display(EGLenum platform, void *native, EGLDisplay *out, char *message, size_t size)
+{
+    if (!macs_egl_client_has("EGL_EXT_platform_base")) {
+        snprintf(message, size, "EGL_EXT_platform_base is missing from the client extensions");
         return MACS_ERR_CONTEXT;
     }
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_display = NULL;
-    __eglMustCastToProperFunctionPointerType fn = eglGetProcAddress("eglGetPlatformDisplayEXT");
+    __eglMustCastToProperFunctionPointerType fn = macs_egl_proc("eglGetPlatformDisplayEXT");
     memcpy(&get_display, &fn, sizeof fn);
     if (!get_display) {
         snprintf(message, size, "eglGetPlatformDisplayEXT not found");
         return MACS_ERR_CONTEXT;
     }
-    EGLDisplay display = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    EGLDisplay display = get_display(platform, native, NULL);
     EGLint major = 0, minor = 0;
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) {
-        snprintf(message, size, "no surfaceless EGL display (error 0x%04x)", (unsigned)eglGetError());
+        snprintf(message, size, "no EGL display (error 0x%04x)", (unsigned)eglGetError());
         return MACS_ERR_CONTEXT;
     }
-    /* The display is shared by every user of this platform in the process; it is never terminated
-     * here, so that destroying one headless context cannot pull the display from under another. */
+    *out = display;
+    return MACS_OK;
+}
+
+/* A config only where the driver needs one: no surface will ever exist, so any config that renders
+ * desktop GL will do, whatever surfaces it could have had (the default asks for windows, which no
+ * headless platform has). */
+static macs_status choose_config(EGLDisplay display, const char *display_ext, EGLConfig *config, char *message,
+                                 size_t size)
+{
+    static const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_DONT_CARE,
+                                            EGL_NONE};
+    *config = EGL_NO_CONFIG_KHR;
+    if (macs_gl_has_extension(display_ext, "EGL_KHR_no_config_context"))
+        return MACS_OK;
+    EGLint count = 0;
+    if (!eglChooseConfig(display, config_attribs, config, 1, &count) || count < 1) {
+        snprintf(message, size, "no EGL config renders desktop OpenGL");
+        return MACS_ERR_CONTEXT;
+    }
+    return MACS_OK;
+}
+
+macs_status macs_egl_create_on(macs_headless *h, EGLDisplay display, char *message, size_t size)
+{
     const char *display_ext = eglQueryString(display, EGL_EXTENSIONS);
-    if (!has_token(display_ext, "EGL_KHR_surfaceless_context")) {
-        snprintf(message, size, "EGL_KHR_surfaceless_context missing");
+    if (!macs_gl_has_extension(display_ext, "EGL_KHR_surfaceless_context")) {
+        snprintf(message, size, "EGL_KHR_surfaceless_context is missing from the display's extensions");
         return MACS_ERR_CONTEXT;
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
         snprintf(message, size, "eglBindAPI(EGL_OPENGL_API) failed: no desktop OpenGL");
         return MACS_ERR_CONTEXT;
     }
-    /* No surface will ever exist, so no config is needed where the driver allows that; otherwise any
-     * config that renders desktop GL, whatever surfaces it could have had (the default asks for windows,
-     * which the surfaceless platform has none of). */
-    static const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_DONT_CARE,
-                                            EGL_NONE};
-    EGLConfig config = EGL_NO_CONFIG_KHR;
-    EGLint count = 1;
-    if (!has_token(display_ext, "EGL_KHR_no_config_context") &&
-        (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count < 1)) {
-        snprintf(message, size, "no EGL config renders desktop OpenGL");
-        return MACS_ERR_CONTEXT;
-    }
+    EGLConfig config;
+    macs_status st = choose_config(display, display_ext, &config, message, size);
+    if (st != MACS_OK)
+        return st;
     egl_state *s = macs_calloc(&h->allocator, 1, sizeof *s);
     if (!s) {
         snprintf(message, size, "out of memory");

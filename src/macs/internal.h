@@ -168,6 +168,9 @@ macs_status macs_query_begin(macs_pass *pass);
 void macs_query_end(macs_pass *pass);
 void macs_query_destroy(macs_pass *pass);
 
+/* pass_validate.c: refuses a pass description, naming the bad argument and the rule it breaks. */
+macs_status macs_pass_validate(macs_context *ctx, const macs_pass_desc *desc);
+
 /* pass.c: detaching destroyed objects from passes */
 void macs_pass_forget_texture(macs_context *ctx, const macs_texture *texture);
 void macs_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);

@@ -30,23 +30,28 @@ void macs_limits_query(macs_context *ctx)
     if (r->max_color_attachments < 1) r->max_color_attachments = 1;
 }
 
+/* Every field of macs_limits, for the checks and copies that treat them all alike. */
+#define MACS_LIMIT_FIELDS(X) \
+    X(max_draw_buffers) X(max_color_attachments) X(max_texture_units) X(max_texture_size) X(max_uniform_components)
+
 macs_status macs_limits_check_caps(const macs_limits *caps, char *message, size_t size)
 {
-    if (caps->max_draw_buffers < 0 || caps->max_color_attachments < 0 || caps->max_texture_units < 0 ||
-        caps->max_texture_size < 0 || caps->max_uniform_components < 0) {
-        snprintf(message, size, "caps must be 0 (no override) or positive");
-        return MACS_ERR_INVALID_ARGUMENT;
+#define MACS_CHECK_CAP_(field) \
+    if (caps->field < 0) { \
+        snprintf(message, size, "macs_context_create: desc.caps." #field " %d: a cap must be 0 (no override) " \
+                 "or positive", caps->field); \
+        return MACS_ERR_INVALID_ARGUMENT; \
     }
+    MACS_LIMIT_FIELDS(MACS_CHECK_CAP_)
+#undef MACS_CHECK_CAP_
     return MACS_OK;
 }
 
 void macs_apply_caps(macs_context *ctx, const macs_limits *caps)
 {
-    ctx->effective.max_draw_buffers = capped(ctx->real.max_draw_buffers, caps->max_draw_buffers);
-    ctx->effective.max_color_attachments = capped(ctx->real.max_color_attachments, caps->max_color_attachments);
-    ctx->effective.max_texture_units = capped(ctx->real.max_texture_units, caps->max_texture_units);
-    ctx->effective.max_texture_size = capped(ctx->real.max_texture_size, caps->max_texture_size);
-    ctx->effective.max_uniform_components = capped(ctx->real.max_uniform_components, caps->max_uniform_components);
+#define MACS_APPLY_CAP_(field) ctx->effective.field = capped(ctx->real.field, caps->field);
+    MACS_LIMIT_FIELDS(MACS_APPLY_CAP_)
+#undef MACS_APPLY_CAP_
 }
 
 int macs_outputs_per_chunk(const macs_context *ctx)

@@ -1,93 +1,9 @@
-/* Render passes: validation of the description, chunk programs and framebuffers, inputs, outputs
- * and uniforms that change between runs. */
+/* Render passes: chunk programs and framebuffers, and the inputs, outputs and uniforms that change
+ * between runs (pass_validate.c refuses a bad description first). */
 #include <stdio.h>
 #include <string.h>
 
 #include "internal.h"
-
-static bool valid_identifier(const char *s)
-{
-    if (!s || !((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || *s == '_'))
-        return false;
-    /* gl_ and macs_ belong to GL and to the generated code; "__" is reserved by GLSL. */
-    if (strncmp(s, "gl_", 3) == 0 || strncmp(s, "macs_", 5) == 0 || strstr(s, "__"))
-        return false;
-    size_t n = 0;
-    for (const char *p = s; *p; p++, n++)
-        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '_'))
-            return false;
-    return n <= 128;
-}
-
-static bool name_taken(const macs_pass_desc *d, int inputs, int uniforms, const char *name)
-{
-    for (int i = 0; i < inputs; i++)
-        if (strcmp(d->inputs[i].name, name) == 0)
-            return true;
-    for (int i = 0; i < uniforms; i++)
-        if (strcmp(d->uniforms[i].name, name) == 0)
-            return true;
-    return false;
-}
-
-static macs_status validate(macs_context *ctx, const macs_pass_desc *d)
-{
-#define BAD(...) return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: " __VA_ARGS__)
-    if (d->output_count < 1 || !d->outputs || !d->output_textures)
-        BAD("at least one output, with outputs and output_textures, is required");
-    if (d->input_count < 0 || (d->input_count > 0 && !d->inputs))
-        BAD("input_count %d without inputs", d->input_count);
-    if (d->uniform_count < 0 || (d->uniform_count > 0 && !d->uniforms))
-        BAD("uniform_count %d without uniforms", d->uniform_count);
-    const macs_texture *first = d->output_textures[0];
-    for (int i = 0; i < d->output_count; i++) {
-        const macs_texture *t = d->output_textures[i];
-        if (!valid_identifier(d->outputs[i].name) || !d->outputs[i].value)
-            BAD("output %d needs an identifier name and a value expression", i);
-        if (!t || t->ctx != ctx)
-            BAD("output %d (%s) has no texture of this context", i, d->outputs[i].name);
-        if (t->width != first->width || t->height != first->height)
-            BAD("output %d (%s) is %dx%d but output 0 is %dx%d", i, d->outputs[i].name, t->width, t->height,
-                first->width, first->height);
-        for (int j = 0; j < i; j++)
-            if (d->output_textures[j] == t)
-                BAD("outputs %d and %d are the same texture", j, i);
-    }
-    for (int i = 0; i < d->input_count; i++) {
-        if (!valid_identifier(d->inputs[i].name) || name_taken(d, i, 0, d->inputs[i].name))
-            BAD("input %d: name is missing, not an identifier, reserved or used twice", i);
-        const macs_texture *t = d->input_textures ? d->input_textures[i] : NULL;
-        if (t && t->ctx != ctx)
-            BAD("input %d (%s) is a texture of another context", i, d->inputs[i].name);
-        for (int j = 0; t && j < d->output_count; j++)
-            if (d->output_textures[j] == t)
-                BAD("input %d (%s) is also output %d", i, d->inputs[i].name, j);
-    }
-    for (int i = 0; i < d->uniform_count; i++) {
-        const macs_uniform_desc *u = &d->uniforms[i];
-        if (!valid_identifier(u->name) || name_taken(d, d->input_count, i, u->name))
-            BAD("uniform %d: name is missing, not an identifier, reserved or used twice", i);
-        if (u->type < MACS_UNIFORM_FLOAT || u->type > MACS_UNIFORM_MAT4 || u->count < 0 || u->count > 65536)
-            BAD("uniform %d (%s): unknown type or bad count", i, u->name);
-    }
-    if (d->depth_stencil && (d->depth_stencil->ctx != ctx || d->depth_stencil->internal))
-        BAD("depth_stencil belongs to another context");
-    if (d->depth_stencil && (d->depth_stencil->width != first->width || d->depth_stencil->height != first->height))
-        BAD("depth_stencil is %dx%d but the outputs are %dx%d", d->depth_stencil->width, d->depth_stencil->height,
-            first->width, first->height);
-    if ((d->depth.test || d->stencil.test) && !d->depth_stencil)
-        BAD("a depth or stencil test needs a depth_stencil object");
-    if ((unsigned)d->depth.func > MACS_COMPARE_ALWAYS || (unsigned)d->stencil.func > MACS_COMPARE_ALWAYS ||
-        (unsigned)d->stencil.fail > MACS_STENCIL_OP_INVERT || (unsigned)d->stencil.depth_fail > MACS_STENCIL_OP_INVERT ||
-        (unsigned)d->stencil.pass > MACS_STENCIL_OP_INVERT || (unsigned)d->blend > MACS_BLEND_MULTIPLY ||
-        d->color_mask > 31)
-        BAD("unknown compare function, stencil op, blend mode or colour mask");
-#undef BAD
-    if (d->input_count > ctx->effective.max_texture_units)
-        return macs_fail(ctx, MACS_ERR_LIMIT, "macs_pass_create: %d inputs but only %d texture units",
-                         d->input_count, ctx->effective.max_texture_units);
-    return MACS_OK;
-}
 
 static void free_pass(macs_pass *p)
 {
@@ -193,8 +109,9 @@ macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs
     if (!ctx)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc and out are required");
-    macs_status st = validate(ctx, desc);
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s is NULL",
+                         desc ? "out" : "desc");
+    macs_status st = macs_pass_validate(ctx, desc);
     if (st != MACS_OK)
         return st;
     int per_chunk = macs_outputs_per_chunk(ctx);

@@ -54,7 +54,7 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     if (!ctx)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc and out are required");
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: %s is NULL", desc ? "out" : "desc");
     if (desc->width <= 0 || desc->height <= 0)
         return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: size %dx%d must be positive",
                          desc->width, desc->height);
@@ -62,9 +62,15 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     if (desc->width > max || desc->height > max)
         return macs_fail(ctx, MACS_ERR_LIMIT, "macs_texture_create: size %dx%d exceeds the maximum %d",
                          desc->width, desc->height, max);
-    if ((unsigned)desc->format > MACS_FORMAT_RGBA8 || (unsigned)desc->filter > MACS_FILTER_LINEAR ||
-        (unsigned)desc->wrap > MACS_WRAP_REPEAT)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: unknown format, filter or wrap");
+    if ((unsigned)desc->format > MACS_FORMAT_RGBA8)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.format %d is not a macs_format "
+                         "(0 .. %d)", (int)desc->format, (int)MACS_FORMAT_RGBA8);
+    if ((unsigned)desc->filter > MACS_FILTER_LINEAR)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.filter %d is not a macs_filter "
+                         "(0 .. %d)", (int)desc->filter, (int)MACS_FILTER_LINEAR);
+    if ((unsigned)desc->wrap > MACS_WRAP_REPEAT)
+        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.wrap %d is not a macs_wrap "
+                         "(0 .. %d)", (int)desc->wrap, (int)MACS_WRAP_REPEAT);
     macs_texture *t = macs_calloc(&ctx->allocator, 1, sizeof *t);
     if (!t)
         return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "macs_texture_create: allocating the texture");
