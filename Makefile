@@ -1,5 +1,5 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries), check, examples, bench, stress, install, uninstall, clean.
+# Targets: all (libraries), check, check-examples, examples, bench, stress, install, uninstall, clean.
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
 VERSION   := 0.1.0
@@ -81,7 +81,7 @@ STATIC_LINK := $(BG_A) $(MACS_A) $(BG_LIBS) $(MACS_LIBS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check examples bench bench-programs stress install uninstall clean glsl-check valgrind
+.PHONY: FORCE all check check-examples examples bench bench-programs stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
@@ -165,7 +165,30 @@ TEST_ENV := MESA_GL_VERSION_OVERRIDE=2.1 MESA_GLSL_VERSION_OVERRIDE=110 MESA_SHA
 # Suites that also run on EGL surfaceless and on softpipe (smoke subset).
 SMOKE_TESTS ?= $(filter $(BUILD)/tests/test_smoke%,$(TEST_BIN))
 
-check: all glsl-check $(TEST_BIN)
+# The self-contained examples (examples/standalone_*.c) built as a user builds them: against a staged
+# `make install` with `pkg-config betelgeuse` only (no -Iinclude, -Isrc or examples/scenes), linked to
+# the staged shared libraries; then every example is run by tests/check_examples.sh (command line,
+# and a PNG from each standalone one). The .pc files record PREFIX without DESTDIR, so
+# PKG_CONFIG_SYSROOT_DIR puts the stage in front of their -I and -L paths. Under SANITIZE the
+# programs also link the LSan hook of examples/scenes, as every other sanitized program does.
+STAGE := $(abspath $(BUILD)/stage)
+STAGE_PKG_CONFIG := PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig PKG_CONFIG_SYSROOT_DIR=$(STAGE) pkg-config
+STANDALONE_SRC := $(sort $(wildcard examples/standalone_*.c))
+check-examples: all $(EXAMPLE_BIN)
+	@echo "== examples: standalone ones against a staged install (pkg-config betelgeuse), every one's command line"
+	@rm -rf $(STAGE) $(BUILD)/installed && mkdir -p $(BUILD)/installed
+	@$(MAKE) --no-print-directory -s install BUILD=$(BUILD) DESTDIR=$(STAGE) PREFIX=/usr/local \
+	  LIBDIR=/usr/local/lib INCDIR=/usr/local/include >/dev/null
+	@for s in $(STANDALONE_SRC); do \
+	  flags=$$($(STAGE_PKG_CONFIG) --cflags --libs betelgeuse) || exit 1; \
+	  cmd="$(CC) $(WARN) $(OPT) $(SANFLAGS) $(CFLAGS) -o $(BUILD)/installed/$$(basename $$s .c) $$s $(ALL_LDFLAGS) \
+	    $(if $(SANFLAGS),examples/scenes/lsan_suppressions.c) $$flags"; \
+	  echo $$cmd; $$cmd || exit 1; \
+	done
+	@LD_LIBRARY_PATH=$(STAGE)/usr/local/lib TEST_ENV="$(TEST_ENV)" sh tests/check_examples.sh \
+	  "$(STANDALONE_SRC:examples/%.c=$(BUILD)/installed/%)" "$(EXAMPLE_BIN)"
+
+check: all glsl-check check-examples $(TEST_BIN)
 	@TEST_ENV="$(TEST_ENV)" sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
 # valgrind over the MACS suites and the GPU renderer's error and smoke suites (renderer create/destroy

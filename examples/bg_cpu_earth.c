@@ -1,29 +1,30 @@
 /* Renders the paper's second scene (an earth-textured sphere in front of a white plane, two point
  * lights) with the CPU reference renderer and writes it as a PNG.
  *
- * Usage: bg_cpu_earth [output.png [size]]
- *   output.png  default bg_cpu_earth.png in the current folder
- *   size        image width and height in pixels, default 512
+ * Usage: bg_cpu_earth [out.png [size]]   (-h, --help: the usage)
+ *   out.png     default bg_cpu_earth.png in the current folder
+ *   size        image width and height in pixels, 1..16384, default 512
+ * The scene comes from examples/scenes; standalone_cpu.c builds its own with the scene API, against
+ * the installed library alone.
  */
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "betelgeuse.h"
+#include "scenes/example_args.h"
 #include "scenes/scenes.h"
 
 int main(int argc, char **argv)
 {
-    const char *path = argc > 1 ? argv[1] : "bg_cpu_earth.png";
-    int size = 512;
-    if (argc > 2) {
-        char *end = NULL;
-        long v = strtol(argv[2], &end, 10);
-        if (!end || *end != '\0' || v < 1 || v > 16384) {
-            fprintf(stderr, "bg_cpu_earth: size must be an integer in 1..16384\n");
-            return 2;
-        }
-        size = (int)v;
-    }
+    example_args args;
+    int exit_now = example_args_parse(argc, argv, "bg_cpu_earth",
+                                      "Ray traces the paper's figure 2 (an earth-textured sphere casting its "
+                                      "shadow on a white plane) with the CPU reference renderer.",
+                                      &args);
+    if (exit_now >= 0)
+        return exit_now;
+    const char *path = args.path;
+    int size = args.size;
 
     bg_scene *scene = NULL;
     bg_status st = bg_scene_create(NULL, &scene);

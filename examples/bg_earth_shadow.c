@@ -2,14 +2,19 @@
  * its shadow, two point lights (SCENE_PAPER_EARTH_SHADOW), on the GPU through a headless OpenGL 2.1
  * context, and writes it as a PNG.
  *
- * Usage: bg_earth_shadow [output.png [size]]
- *   output.png  default bg_earth_shadow.png in the current folder
+ * Usage: bg_earth_shadow [out.png [size]]   (-h, --help: the usage)
+ *   out.png     default bg_earth_shadow.png in the current folder
  *   size        image width and height in pixels, 1..16384, default 512
  * Example: make examples && build/release/examples/bg_earth_shadow /tmp/bg_earth_shadow.png 1024
+ * The scene comes from examples/scenes and the calls from gpu_example.c; standalone_gpu.c shows
+ * every call of a GPU render in one file, built against the installed library alone.
  */
 #include "scenes/gpu_example.h"
 
 int main(int argc, char **argv)
 {
-    return gpu_example_main(argc, argv, "bg_earth_shadow", SCENE_PAPER_EARTH_SHADOW);
+    return gpu_example_main(argc, argv, "bg_earth_shadow",
+                            "Ray traces the paper's figure 2 on the GPU: "
+                            "the earth-textured sphere casting its shadow on a white plane.",
+                            SCENE_PAPER_EARTH_SHADOW);
 }

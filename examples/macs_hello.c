@@ -1,7 +1,9 @@
 /* macs_hello: compute a Mandelbrot image with one MACS pass on a headless context and save it as PNG.
- * Usage: macs_hello [output.png]   (default: macs_hello.png in the current folder) */
+ * Usage: macs_hello [out.png]   (default: macs_hello.png in the current folder; -h, --help: the usage)
+ * It needs only macs.h, libpng and libc. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <png.h>
 
@@ -9,9 +11,41 @@
 
 enum { WIDTH = 512, HEIGHT = 384 };
 
+/* Reads "[out.png]" into *path. Returns -1 to go on, else the exit status: 0 after --help, 2 after
+ * naming an unknown option or a second argument. */
+static int parse_command_line(int argc, char **argv, const char **path)
+{
+    int positional = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+            printf("usage: macs_hello [out.png]\n"
+                   "Computes a Mandelbrot image (%dx%d) with one MACS pass on a headless OpenGL context.\n"
+                   "\n"
+                   "  out.png     where to write the PNG (default macs_hello.png in the current folder)\n"
+                   "  -h, --help  print this help and exit\n",
+                   WIDTH, HEIGHT);
+            return 0;
+        }
+        if (argv[i][0] == '-') {
+            fprintf(stderr, "macs_hello: unknown option '%s' (try --help)\n", argv[i]);
+            return 2;
+        }
+        if (positional++ > 0) {
+            fprintf(stderr, "macs_hello: too many arguments ('%s'): at most out.png (try --help)\n", argv[i]);
+            return 2;
+        }
+        *path = argv[i];
+    }
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
-    const char *path = argc > 1 ? argv[1] : "macs_hello.png";
+    const char *path = "macs_hello.png";
+    int exit_now = parse_command_line(argc, argv, &path);
+    if (exit_now >= 0)
+        return exit_now;
+
     char message[1024];
 
     /* 1. An OpenGL context without a window (a GLFW or SDL user passes its own loader instead). */

@@ -523,6 +523,33 @@ static void creation_failures_say_why(void **state)
 
 /* ---- GPU out of memory ---- */
 
+/* A caller who forgot to make the GL context current hears that, not "a shader failed to compile"
+ * with an empty log; once it is current again the same renderer renders. */
+static void no_current_context(void **state)
+{
+    macs_headless *h = *state;
+    macs_context *ctx = util_context(h, NULL);
+    bg_renderer *r = util_renderer(ctx);
+    bg_scene *s = small_scene();
+    unsigned char px[32 * 24 * 4];
+    bg_image img = {32, 24, BG_PIXEL_RGBA8, 0, px};
+    bg_render_settings set = bg_render_settings_init();
+    util_release_current();
+    bg_status st = bg_render_gpu(r, s, &set, &img);
+    assert_int_equal(macs_headless_make_current(h), MACS_OK);
+    assert_int_not_equal(st, BG_OK);
+    const char *msg = bg_renderer_error_message(r);
+    if (!strstr(msg, "no OpenGL context is current"))
+        fail_msg("unclear message without a current context: \"%s\"", msg);
+    bg_renderer_clear_error(r);
+    macs_context_clear_error(ctx);
+    render_ok(r, s, &set, &img);
+    assert_centre_drawn(px, 32, 24);
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+    macs_context_destroy(ctx);
+}
+
 static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
 {
     enum { W = 48, H = 32 };
@@ -582,6 +609,7 @@ int main(void)
         cmocka_unit_test(renderers_do_not_leak),
         cmocka_unit_test(renderer_allocation_failure),
         cmocka_unit_test(creation_failures_say_why),
+        cmocka_unit_test(no_current_context),
         cmocka_unit_test(gpu_out_of_memory_is_reported_and_recoverable),
     };
     return cmocka_run_group_tests(tests, util_group_setup, util_group_teardown);

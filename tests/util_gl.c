@@ -7,9 +7,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <EGL/egl.h>
+#include <GL/osmesa.h>
 #include <cmocka.h>
 
 #include "util_gl.h"
+
+void util_release_current(void)
+{
+    if (eglGetCurrentContext() != EGL_NO_CONTEXT)
+        assert_true(eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT));
+    else
+        OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+}
 
 bool util_quick(void)
 {

@@ -16,6 +16,10 @@ macs_headless *util_headless(void);
 /* Creates a MACS context on the current headless context with optional caps; fails the test on error. */
 macs_context *util_context(macs_headless *headless, const macs_limits *caps);
 
+/* Leaves the calling thread with no current GL context (EGL or OSMesa, whichever is current), as a
+ * caller who forgot to make one current would; macs_headless_make_current restores it. */
+void util_release_current(void);
+
 /* cmocka group fixtures: *state becomes a macs_headless. */
 int util_group_setup(void **state);
 int util_group_teardown(void **state);

@@ -2,6 +2,8 @@
  * on success and on every failure alike. */
 #include "gpu_example.h"
 
+#include "example_args.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -82,25 +84,14 @@ static bool example_render(example *e, scene_id id, int size)
     return true;
 }
 
-int gpu_example_main(int argc, char **argv, const char *name, scene_id id)
+int gpu_example_main(int argc, char **argv, const char *name, const char *what, scene_id id)
 {
-    if (argc > 3) {
-        fprintf(stderr, "usage: %s [output.png [size]]\n", name);
-        return 2;
-    }
-    char default_path[256];
-    snprintf(default_path, sizeof default_path, "%s.png", name);
-    const char *path = argc > 1 ? argv[1] : default_path;
-    int size = 512;
-    if (argc > 2) {
-        char *end = NULL;
-        long v = strtol(argv[2], &end, 10);
-        if (!end || end == argv[2] || *end != '\0' || v < 1 || v > 16384) {
-            fprintf(stderr, "%s: size must be an integer in 1..16384\n", name);
-            return 2;
-        }
-        size = (int)v;
-    }
+    example_args args;
+    int exit_now = example_args_parse(argc, argv, name, what, &args);
+    if (exit_now >= 0)
+        return exit_now;
+    const char *path = args.path;
+    int size = args.size;
 
     example e = {name, NULL, NULL, NULL, NULL, NULL};
     bool ok = example_render(&e, id, size);

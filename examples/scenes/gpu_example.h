@@ -6,10 +6,11 @@
 
 #include "scenes.h"
 
-/* Runs "<name> [output.png [size]]" for one shared scene with the default render settings: writes
- * <name>.png in the current folder unless a path is given, size x size pixels (default 512, at most
- * 16384). Returns the process exit status: 0 on success, 1 when something failed (the reason goes to
- * stderr), 2 for a bad command line. */
-int gpu_example_main(int argc, char **argv, const char *name, scene_id id);
+/* Runs "<name> [out.png [size]]" (example_args.h) for one shared scene with the default render
+ * settings: writes <name>.png in the current folder unless a path is given, size x size pixels
+ * (default 512). what is the line --help prints about the image. Returns the process exit status:
+ * 0 on success and after --help, 1 when something failed (the reason goes to stderr), 2 for a bad
+ * command line. */
+int gpu_example_main(int argc, char **argv, const char *name, const char *what, scene_id id);
 
 #endif

@@ -82,6 +82,20 @@ void macs_gl_drain(macs_context *ctx)
         ;
 }
 
+macs_status macs_gl_current(macs_context *ctx, const char *where)
+{
+    /* Without a current context every GL call does nothing and names come back 0: a shader then
+     * "fails to compile" with an empty log. GL_VERSION is NULL exactly then (GL 2.1 section 6.1.11
+     * defines it for every context), so one cheap query tells the caller what is really wrong. */
+    if (ctx->gl.GetString(GL_VERSION))
+        return MACS_OK;
+    return macs_fail(ctx, MACS_ERR_CONTEXT,
+                     "%s: no OpenGL context is current on this thread (glGetString(GL_VERSION) is NULL): make the "
+                     "context this MACS context was created on current (macs_headless_make_current, or your "
+                     "toolkit's call) before using it",
+                     where);
+}
+
 static const char *gl_error_name(GLenum e)
 {
     switch (e) {

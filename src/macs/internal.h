@@ -131,6 +131,8 @@ void macs_report(macs_log_fn logger, void *user, char *message, size_t size, mac
     ;
 void macs_log(const macs_context *ctx, int level, const char *message);
 void macs_gl_drain(macs_context *ctx);
+/* MACS_ERR_CONTEXT, naming where, when no GL context is current on the calling thread. */
+macs_status macs_gl_current(macs_context *ctx, const char *where);
 macs_status macs_gl_check(macs_context *ctx, const char *what);
 
 /* gl_load.c: filling the GL table. */

@@ -116,6 +116,8 @@ macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs
         return st;
     int per_chunk = macs_outputs_per_chunk(ctx);
     st = macs_split_check_state(ctx, &desc->stencil, (desc->output_count + per_chunk - 1) / per_chunk);
+    if (st == MACS_OK)
+        st = macs_gl_current(ctx, "macs_pass_create");
     if (st != MACS_OK)
         return st;
     macs_gl_drain(ctx);

@@ -114,6 +114,8 @@ macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run)
     macs_context *ctx = pass->ctx;
     const macs_gl *gl = &ctx->gl;
     macs_status st = validate_run(pass, run);
+    if (st == MACS_OK)
+        st = macs_gl_current(ctx, "macs_pass_run");
     if (st != MACS_OK)
         return st;
     macs_gl_drain(ctx);

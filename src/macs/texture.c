@@ -71,6 +71,9 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     if ((unsigned)desc->wrap > MACS_WRAP_REPEAT)
         return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.wrap %d is not a macs_wrap "
                          "(0 .. %d)", (int)desc->wrap, (int)MACS_WRAP_REPEAT);
+    macs_status current = macs_gl_current(ctx, "macs_texture_create");
+    if (current != MACS_OK)
+        return current;
     macs_texture *t = macs_calloc(&ctx->allocator, 1, sizeof *t);
     if (!t)
         return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "macs_texture_create: allocating the texture");
