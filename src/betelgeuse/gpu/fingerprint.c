@@ -55,7 +55,7 @@ static void mix_layer(hasher *s, const bg_schlick_layer *l)
     mix_scalar(s, &l->isotropy);
 }
 
-uint64_t gpu_scene_fingerprint(const bg_scene_state *state)
+uint64_t gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures)
 {
     hasher s = {0x243f6a8885a308d3ull};
     const bg_camera_data *c = &state->camera;
@@ -109,6 +109,13 @@ uint64_t gpu_scene_fingerprint(const bg_scene_state *state)
         mix_double(&s, l->spot_cutoff_degrees);
         mix_double(&s, l->spot_exponent);
     }
+    mix(&s, textures);
+    return s.h;
+}
+
+uint64_t gpu_textures_fingerprint(const bg_scene_state *state)
+{
+    hasher s = {0x13198a2e03707344ull};
     mix(&s, state->texture_count);
     for (uint32_t i = 0; i < state->texture_count; i++) {
         const bg_texture_data *t = &state->textures[i];

@@ -353,7 +353,8 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
     memset(&key, 0, sizeof key);
     key.scene = scene;
     key.commit_count = f->state->commit_count;
-    key.fingerprint = gpu_scene_fingerprint(f->state);
+    key.textures = gpu_textures_fingerprint(f->state);
+    key.fingerprint = gpu_scene_fingerprint(f->state, key.textures);
     key.width = width;
     key.height = height;
     key.disable_skips = s->gpu_disable_skips;
@@ -372,13 +373,13 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
         }
         return BG_OK;
     }
-    bool new_scene = !r->key.valid || r->key.scene != scene || r->key.commit_count != key.commit_count ||
-                     r->key.fingerprint != key.fingerprint;
+    /* Scene textures are uploaded again only when what they hold changed, not on every commit. */
+    bool new_textures = !r->key.valid || r->key.textures != key.textures;
     gpu_passes_retire(r);
     memset(&r->key, 0, sizeof r->key);
     gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->features);
     bg_status st = BG_OK;
-    if (new_scene || !r->white)
+    if (new_textures || !r->white)
         st = gpu_scene_textures_prepare(r, f->state);
     r->key = key;
     r->key.valid = false;

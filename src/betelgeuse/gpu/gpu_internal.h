@@ -78,6 +78,7 @@ typedef struct gpu_cache_key {
     const bg_scene *scene;
     uint64_t commit_count;
     uint64_t fingerprint; /* gpu_scene_fingerprint of the committed state */
+    uint64_t textures;    /* gpu_textures_fingerprint of it */
     int width, height;
     unsigned disable_skips;
     bg_output_encoding encoding;
@@ -183,7 +184,10 @@ void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features
 
 /* ---- fingerprint.c ---- */
 /* A hash of every committed value the renderer's passes and textures depend on. */
-uint64_t gpu_scene_fingerprint(const bg_scene_state *state);
+uint64_t gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures);
+/* The part of it that the uploaded scene textures depend on (sizes, modes, texels), which the
+ * fingerprint takes as its textures argument: a commit that leaves it alone keeps the uploads. */
+uint64_t gpu_textures_fingerprint(const bg_scene_state *state);
 
 /* ---- bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
