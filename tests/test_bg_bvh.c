@@ -784,12 +784,19 @@ static void test_empty_tree(void **state)
     bg_bvh_destroy(&zero);
 }
 
+/* Eight unit-high boxes along x, half a unit long and half a unit apart: the ray (-1, 0.5, 0.5) +
+ * t (1, 0, 0) meets every one, the first at t = 1. */
+static void boxes_in_a_row(bg_bvh_box boxes[8])
+{
+    for (int i = 0; i < 8; i++)
+        boxes[i] = make_box(i, 0, 0, i + 0.5, 1, 1);
+}
+
 static void test_bad_rays_and_refits(void **state)
 {
     (void)state;
     bg_bvh_box boxes[8];
-    for (int i = 0; i < 8; i++)
-        boxes[i] = make_box(i, 0, 0, i + 0.5, 1, 1);
+    boxes_in_a_row(boxes);
     bg_bvh bvh = build_ok(boxes, 8);
     const double o[3] = {-1, 0.5, 0.5}, d[3] = {1, 0, 0}, nan_o[3] = {NAN, 0, 0}, inf_d[3] = {INFINITY, 0, 0};
     double t_max = DBL_MAX;
@@ -832,8 +839,7 @@ static void test_corrupt_nodes(void **state)
 {
     (void)state;
     bg_bvh_box boxes[8];
-    for (int i = 0; i < 8; i++)
-        boxes[i] = make_box(i, 0, 0, i + 0.5, 1, 1);
+    boxes_in_a_row(boxes);
     bg_bvh bvh = build_ok(boxes, 8);
     const double o[3] = {-1, 0.5, 0.5}, d[3] = {1, 0, 0};
     uint32_t last = bvh.node_count - 1, calls = 0;
@@ -878,8 +884,7 @@ static void test_stop_early(void **state)
 {
     (void)state;
     bg_bvh_box boxes[8];
-    for (int i = 0; i < 8; i++)
-        boxes[i] = make_box(i, 0, 0, i + 0.5, 1, 1);
+    boxes_in_a_row(boxes);
     bg_bvh bvh = build_ok(boxes, 8);
     const double o[3] = {-1, 0.5, 0.5}, d[3] = {1, 0, 0};
     double t_max = DBL_MAX;

@@ -143,17 +143,21 @@ static int shape_count(const bool present[BG_SHAPE_COUNT_])
     return n;
 }
 
-/* The loops of one walk of the tree: `done` (a GLSL condition) ends it early, `t_max` bounds the
- * ray for the box tests, `leaf` is the code run for an entered leaf (object lo.w, its transform m).
- * Every step spends one of the pixel's bg_tree_left steps, so the pixel's walks together stay
- * within what llvmpipe's loop limit leaves them (gpu_fused_layout.walk_budget); the inner loop is
- * at most 255 long, the limit of one loop on SM3-class hardware. A walk that stops before its
- * end marks the pixel (bg_tree_short), which the CPU reference then renders (fused_tree.c). */
+/* The loops of one walk of the tree: `found` (a GLSL bool the leaf code sets, or NULL) ends it
+ * early, `t_max` bounds the ray for the box tests, `leaf` is the code run for an entered leaf
+ * (object lo.w, its transform m); the walk takes leaf over, and its failure. Every step spends one
+ * of the pixel's bg_tree_left steps, so the pixel's walks together stay within what llvmpipe's loop
+ * limit leaves them (gpu_fused_layout.walk_budget); the inner loop is at most 255 long, the limit
+ * of one loop on SM3-class hardware. A walk that stops before its end without having found what it
+ * looks for marks the pixel (bg_tree_short), which the CPU reference then renders (fused_tree.c). */
 static void emit_walk(const gpu_fused_layout *l, gpu_text *t, const char *origin, const char *direction,
-                      const char *t_max, const char *done, const char *leaf_test, const char *leaf)
+                      const char *t_max, const char *found, const char *leaf_test, gpu_text *leaf)
 {
     enum { INNER = 255 };
     int outer = (l->walk_budget + INNER - 1) / INNER;
+    char done[64] = "";
+    if (found)
+        snprintf(done, sizeof done, " || %s", found);
     gpu_text_printf(t, "    vec3 inv = bg_tree_inverse(%s);\n    float node = 0.0;\n", direction);
     const char *stop = "node >= bg_tree_count || bg_tree_left <= 0.0";
     gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
@@ -165,9 +169,16 @@ static void emit_walk(const gpu_fused_layout *l, gpu_text *t, const char *origin
     gpu_text_printf(t, "            if (entered && lo.w >= 0.0%s) {\n"
                        "                mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, lo.w);\n",
                     leaf_test);
-    gpu_text_append(t, leaf);
+    gpu_text_append(t, leaf->s ? leaf->s : "");
+    if (leaf->failed)
+        t->failed = true;
+    gpu_text_free(leaf);
     gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 1.0 : hi.w;\n        }\n");
     gpu_text_printf(t, "        if (%s%s)\n            break;\n    }\n", stop, done);
+    if (found)
+        gpu_text_printf(t, "    if (!%s && node < bg_tree_count)\n        bg_tree_short = 1.0;\n", found);
+    else
+        gpu_text_append(t, "    if (node < bg_tree_count)\n        bg_tree_short = 1.0;\n");
 }
 
 /* The nearest root over the tree's objects, after the unrolled ones (docs/shading.md 2.7): of two
@@ -187,11 +198,8 @@ static void emit_tree_nearest(const gpu_fused_layout *l, gpu_text *t)
     gpu_text_append(&leaf, "                if (h && (win < 0.0 || tj < t || (tj == t && lo.w < win))) {\n"
                            "                    t = tj;\n                    win = lo.w;\n                    p_obj = pj;\n"
                            "                    n_obj = nj;\n                    first_root = fj;\n                }\n");
-    emit_walk(l, t, "ro.xyz", "rd.xyz", "win >= 0.0 ? t : 1e38", "", "", leaf.s ? leaf.s : "");
-    if (leaf.failed)
-        t->failed = true;
-    gpu_text_free(&leaf);
-    gpu_text_append(t, "    if (node < bg_tree_count)\n        bg_tree_short = 1.0;\n}\n");
+    emit_walk(l, t, "ro.xyz", "rd.xyz", "win >= 0.0 ? t : 1e38", NULL, "", &leaf);
+    gpu_text_append(t, "}\n");
 }
 
 /* Whether a caster of the tree other than `self` meets the shadow segment (docs/shading.md 2.8). */
@@ -210,11 +218,8 @@ static void emit_tree_blocked(const gpu_fused_layout *l, gpu_text *t)
                         "blocked = bg_segment_blocked_", "(p, l, dist, m);");
     if (ask)
         gpu_text_append(&leaf, "                }\n");
-    emit_walk(l, t, "p", "l", "dist < 0.0 ? 1e38 : dist", " || blocked", " && lo.w != self", leaf.s ? leaf.s : "");
-    if (leaf.failed)
-        t->failed = true;
-    gpu_text_free(&leaf);
-    gpu_text_append(t, "    if (!blocked && node < bg_tree_count)\n        bg_tree_short = 1.0;\n    return blocked;\n}\n");
+    emit_walk(l, t, "p", "l", "dist < 0.0 ? 1e38 : dist", "blocked", " && lo.w != self", &leaf);
+    gpu_text_append(t, "    return blocked;\n}\n");
 }
 
 /* The walks and the per-pixel step count they share. */
