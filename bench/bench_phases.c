@@ -36,7 +36,7 @@ static bool run_scene(bench_gpu *gpu, scene_id id, int size, int runs, FILE *csv
     memset(&stats, 0, sizeof stats);
     for (int r = 0; r < runs && ok; r++) {
         ok = bg_render_gpu(gpu->renderer, scene, &settings, &img) == BG_OK;
-        bg_renderer_stats(gpu->renderer, &stats);
+        bg_renderer_get_stats(gpu->renderer, &stats);
         ok = ok && stats.timed;
         for (int p = 0; p < BG_PHASE_COUNT_ && ok; p++)
             phase[p][r] = stats.phase_ms[p];

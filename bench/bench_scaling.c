@@ -203,7 +203,7 @@ static bool gpu_frame_worth_timing(bench_gpu *gpu, const series *s, int x, bg_sc
     bool ok = bg_render_gpu(gpu->renderer, scene, settings, &probe) == BG_OK;
     if (!ok)
         fprintf(stderr, "GPU probe failed: %s\n", bg_renderer_error_message(gpu->renderer));
-    bg_renderer_stats(gpu->renderer, &r->stats);
+    bg_renderer_get_stats(gpu->renderer, &r->stats);
     r->gpu_measured = r->stats.plan != BG_PLAN_MULTIPASS;
     bench_image_free(&probe);
     return ok;
@@ -223,7 +223,7 @@ static bool measure_point(bench_gpu *gpu, const series *s, bg_scene *scene, cons
     bool ok = gpu_frame_worth_timing(gpu, s, r->x, scene, settings, r);
     if (ok && r->gpu_measured) {
         ok = bench_time_gpu(gpu->renderer, scene, settings, &gi, gpu_runs, &r->gpu);
-        bg_renderer_stats(gpu->renderer, &r->stats);
+        bg_renderer_get_stats(gpu->renderer, &r->stats);
     }
     ok = ok && bench_time_cpu(scene, settings, &ci, cpu_runs, &r->cpu);
     if (ok && r->gpu_measured)

@@ -82,7 +82,7 @@ static void variant_setup(const variant *var, double dmax_auto, bg_render_settin
 static double largest_dmax(bg_renderer *r)
 {
     bg_render_stats stats;
-    bg_renderer_stats(r, &stats);
+    bg_renderer_get_stats(r, &stats);
     double d = 0.0;
     for (int l = 0; l <= stats.levels && l < BG_STATS_MAX_LEVELS; l++)
         if (stats.dmax[l] > d)
@@ -143,7 +143,7 @@ static bool run_scene(bench_gpu *gpu, scene_id id, int size, int runs, FILE *csv
         variant_result *res = &results[v];
         ok = bg_render_gpu(renderer[v], scene, &res->settings, &img) == BG_OK;
         res->times = bench_times_of(times[v], runs);
-        bg_renderer_stats(renderer[v], &res->stats);
+        bg_renderer_get_stats(renderer[v], &res->stats);
         res->error = bench_error_of(&ref, &img);
         res->changed = pixels_changed(&base, &img);
     }

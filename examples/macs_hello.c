@@ -65,9 +65,9 @@ int main(int argc, char **argv)
     }
     /* The limits that decide how passes are split (caps in the descriptor can only lower them). */
     macs_limits real, effective;
-    macs_context_limits(ctx, &real, &effective);
+    macs_context_get_limits(ctx, &real, &effective);
     macs_gl_info info;
-    macs_context_gl_info(ctx, &info);
+    macs_context_get_gl_info(ctx, &info);
     printf("macs_hello: %s, GL %s: %d draw buffers, %d colour attachments, %d texture units, "
            "texture size %d (effective %d / %d / %d / %d)\n",
            info.renderer ? info.renderer : "?", info.version ? info.version : "?", real.max_draw_buffers,

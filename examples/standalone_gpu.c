@@ -253,7 +253,7 @@ int main(int argc, char **argv)
     bool ok = create_gpu(&p) && build_scene(&p) && render_and_save(&p, size, path);
     if (ok) {
         macs_gl_info info;
-        macs_context_gl_info(p.context, &info);
+        macs_context_get_gl_info(p.context, &info);
         printf(NAME ": wrote %s (%dx%d) on %s\n", path, size, size, info.renderer ? info.renderer : "an unnamed GL");
     }
     release(&p);

@@ -50,10 +50,17 @@ const char *bg_status_string(bg_status status);
 
 /* ---- logging and allocation ---------------------------------------------------------------- */
 
+/* Severity of a logged message; the same values as MACS's macs_log_level. */
 typedef enum bg_log_level { BG_LOG_ERROR = 0, BG_LOG_WARNING, BG_LOG_INFO, BG_LOG_DEBUG } bg_log_level;
 
-/* Receives diagnostics; the library never prints on its own. */
+/* Receives diagnostics; the library never prints on its own. message lives for the call only. */
 typedef void (*bg_log_fn)(bg_log_level level, const char *message, void *user);
+
+/* Where diagnostics go: func NULL (the default) drops them; user is passed through. */
+typedef struct bg_logger {
+    bg_log_fn func;
+    void *user;
+} bg_logger;
 
 /* Allocation hooks; all NULL means the C library's malloc, realloc and free. Otherwise alloc and
  * free must both be set; realloc is optional (without it the library allocates, copies, frees). */
@@ -115,8 +122,7 @@ typedef struct bg_scene bg_scene;
 
 /* Defaults: no logger, the C library's allocator. */
 typedef struct bg_scene_desc {
-    bg_log_fn log;
-    void *log_user;
+    bg_logger logger;
     bg_allocator allocator;
 } bg_scene_desc;
 
@@ -403,8 +409,7 @@ typedef struct bg_renderer_desc {
                               bandwidth; the hit position and the ambient/emission/ior target stay
                               RGBA32F. Probed once at creation: where GL cannot render to RGBA16F the
                               renderer logs a warning and keeps RGBA32F (bg_render_stats says which) */
-    bg_log_fn log;
-    void *log_user;
+    bg_logger logger;
     bg_allocator allocator;
 } bg_renderer_desc;
 
@@ -488,7 +493,7 @@ typedef struct bg_render_stats {
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */
-void bg_renderer_stats(const bg_renderer *renderer, bg_render_stats *stats);
+void bg_renderer_get_stats(const bg_renderer *renderer, bg_render_stats *stats);
 
 #ifdef __cplusplus
 }

@@ -18,23 +18,26 @@ extern "C" {
 
 /* Every status with its message, in one list so that codes and strings never disagree. */
 #define MACS_STATUS_LIST(X) \
-    X(MACS_OK, "no error") \
-    X(MACS_ERR_INVALID_ARGUMENT, "invalid argument") \
-    X(MACS_ERR_OUT_OF_MEMORY, "out of memory") \
-    X(MACS_ERR_GL_UNSUPPORTED, "the OpenGL implementation lacks a required version, extension or function") \
-    X(MACS_ERR_CONTEXT, "could not create or make current a headless OpenGL context") \
-    X(MACS_ERR_SHADER_COMPILE, "a shader failed to compile") \
-    X(MACS_ERR_SHADER_LINK, "a shader program failed to link") \
-    X(MACS_ERR_LIMIT, "an implementation or configured limit was exceeded") \
-    X(MACS_ERR_FRAMEBUFFER, "a framebuffer is incomplete") \
-    X(MACS_ERR_GPU_OUT_OF_MEMORY, "the OpenGL implementation ran out of memory") \
-    X(MACS_ERR_GL, "unexpected OpenGL error") \
-    X(MACS_ERR_NO_RESULT, "no result is available yet")
+    X(MACS_OK, 0, "ok") \
+    X(MACS_ERR_INVALID_ARGUMENT, 1, "invalid argument") \
+    X(MACS_ERR_OUT_OF_MEMORY, 2, "out of memory") \
+    X(MACS_ERR_GL_UNSUPPORTED, 3, "the OpenGL implementation lacks a required version, extension or function") \
+    X(MACS_ERR_CONTEXT, 4, "could not create or make current a headless OpenGL context") \
+    X(MACS_ERR_SHADER_COMPILE, 5, "a shader failed to compile") \
+    X(MACS_ERR_SHADER_LINK, 6, "a shader program failed to link") \
+    X(MACS_ERR_LIMIT, 7, "an implementation or configured limit was exceeded") \
+    X(MACS_ERR_FRAMEBUFFER, 8, "a framebuffer is incomplete") \
+    X(MACS_ERR_GPU_OUT_OF_MEMORY, 9, "the OpenGL implementation ran out of memory") \
+    X(MACS_ERR_GL, 10, "unexpected OpenGL error") \
+    X(MACS_ERR_NO_RESULT, 11, "no result is available yet")
 
-#define MACS_STATUS_ENUM_ENTRY_(name, message) name,
 /* Result of every fallible call; MACS_OK is 0. */
-typedef enum macs_status { MACS_STATUS_LIST(MACS_STATUS_ENUM_ENTRY_) MACS_STATUS_COUNT } macs_status;
-#undef MACS_STATUS_ENUM_ENTRY_
+typedef enum macs_status {
+#define MACS_STATUS_ENUM_(name, value, message) name = value,
+    MACS_STATUS_LIST(MACS_STATUS_ENUM_)
+#undef MACS_STATUS_ENUM_
+    MACS_STATUS_COUNT_
+} macs_status;
 
 /* Returns the fixed English message of a status ("unknown status" for values outside the list). */
 const char *macs_status_string(macs_status status);
@@ -42,14 +45,36 @@ const char *macs_status_string(macs_status status);
 /* ---------------------------------------------------------------------------------------------- */
 /* Logging, allocation, GL loading                                                                 */
 
-/* Severity of a logged message. */
-typedef enum macs_log_level { MACS_LOG_ERROR = 1, MACS_LOG_WARNING = 2, MACS_LOG_INFO = 3 } macs_log_level;
+/* Severity of a logged message; the same values as Betelgeuse's bg_log_level. */
+typedef enum macs_log_level { MACS_LOG_ERROR = 0, MACS_LOG_WARNING, MACS_LOG_INFO, MACS_LOG_DEBUG } macs_log_level;
 
-/* Receives diagnostics (level is a macs_log_level); the library itself never prints. */
-typedef void (*macs_log_fn)(int level, const char *message, void *user);
+/* Receives diagnostics; the library itself never prints. message lives for the call only. */
+typedef void (*macs_log_fn)(macs_log_level level, const char *message, void *user);
 
-/* Returns the address of a GL function by name (NULL if absent); user is passed through. */
-typedef void *(*macs_get_proc_address_fn)(const char *name, void *user);
+/* Where diagnostics go: func NULL (the default) drops them; user is passed through. */
+typedef struct macs_logger {
+    macs_log_fn func;
+    void *user;
+} macs_logger;
+
+/* Any GL entry point, as the loaders return it; MACS casts it to the function's real type (a cast
+ * between function pointer types is defined in ISO C, one from void * is not). */
+typedef void (*macs_gl_proc)(void);
+
+/* Returns the address of a GL function by name (NULL if absent); user is passed through.
+ * The usual loaders need a one-line adapter each, with no cast through void *:
+ *   EGL:   static macs_gl_proc egl_proc(const char *n, void *u) { (void)u; return (macs_gl_proc)eglGetProcAddress(n); }
+ *   GLX:   static macs_gl_proc glx_proc(const char *n, void *u) { (void)u; return (macs_gl_proc)glXGetProcAddressARB((const GLubyte *)n); }
+ *   WGL:   static macs_gl_proc wgl_proc(const char *n, void *u) { (void)u; return (macs_gl_proc)wglGetProcAddress(n); }
+ *          (wglGetProcAddress knows no GL 1.1 function: fall back to GetProcAddress(opengl32_module, n),
+ *          the module passed as user)
+ *   GLFW:  static macs_gl_proc glfw_proc(const char *n, void *u) { (void)u; return (macs_gl_proc)glfwGetProcAddress(n); }
+ *   SDL 3: static macs_gl_proc sdl_proc(const char *n, void *u) { (void)u; return (macs_gl_proc)SDL_GL_GetProcAddress(n); }
+ *   SDL 2 returns void *, so its adapter needs the conversion POSIX (not ISO C) defines:
+ *          static macs_gl_proc sdl2_proc(const char *n, void *u)
+ *          { macs_gl_proc f; void *p = SDL_GL_GetProcAddress(n); (void)u; memcpy(&f, &p, sizeof f); return f; }
+ * A headless context gives its own: macs_headless_get_proc_address(). */
+typedef macs_gl_proc (*macs_get_proc_address_fn)(const char *name, void *user);
 
 /* Defaults: all NULL = malloc, realloc and free of the C library.
  * Set alloc, realloc and free together or none of them. */
@@ -84,8 +109,7 @@ typedef enum macs_headless_backend {
 typedef struct macs_headless_desc {
     macs_headless_backend backend;
     macs_allocator allocator;
-    macs_log_fn logger;
-    void *logger_user;
+    macs_logger logger;
     int device_index;
 } macs_headless_desc;
 
@@ -118,7 +142,7 @@ macs_status macs_headless_make_current(macs_headless *headless);
 macs_headless_backend macs_headless_backend_used(const macs_headless *headless);
 
 /* Copies what the headless context runs on: backend, EGL device and GL renderer (NULL: DEFAULT, -1, ""). */
-void macs_headless_describe(const macs_headless *headless, macs_headless_info *info);
+void macs_headless_get_info(const macs_headless *headless, macs_headless_info *info);
 
 /* Returns the get_proc_address matching this backend (OSMesaGetProcAddress or eglGetProcAddress). */
 macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *headless);
@@ -144,8 +168,7 @@ typedef struct macs_limits {
 typedef struct macs_context_desc {
     macs_get_proc_address_fn get_proc_address;
     void *get_proc_address_user;
-    macs_log_fn logger;
-    void *logger_user;
+    macs_logger logger;
     macs_allocator allocator;
     macs_limits caps;
     bool allow_float_depth; /* use DEPTH32F_STENCIL8 when ARB_depth_buffer_float is present */
@@ -191,7 +214,7 @@ const char *macs_context_error_message(const macs_context *ctx);
 void macs_context_clear_error(macs_context *ctx);
 
 /* Copies the limits GL reports (real) and the ones passes obey after caps (effective); either may be NULL. */
-void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
+void macs_context_get_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
 
 /* The effective max_uniform_components (after caps), for callers that size generated shaders by it
  * (0 for a NULL context). */
@@ -203,10 +226,10 @@ int macs_context_max_uniform_components(const macs_context *ctx);
 uint64_t macs_context_programs_compiled(const macs_context *ctx);
 
 /* Copies the GL strings read at creation. */
-void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info);
+void macs_context_get_gl_info(const macs_context *ctx, macs_gl_info *info);
 
 /* Copies which optional extensions were found. */
-void macs_context_features(const macs_context *ctx, macs_features *features);
+void macs_context_get_features(const macs_context *ctx, macs_features *features);
 
 /* Waits until GL has finished every command issued so far (glFinish): for timing, not correctness. */
 void macs_context_finish(macs_context *ctx);

@@ -25,7 +25,7 @@ static float *render(macs_headless *h, const macs_limits *caps, scene_id id, bg_
     macs_context *ctx = util_context(h, caps);
     if (caps) {
         macs_limits real, eff;
-        macs_context_limits(ctx, &real, &eff);
+        macs_context_get_limits(ctx, &real, &eff);
         if (caps->max_draw_buffers && eff.max_draw_buffers != (caps->max_draw_buffers < real.max_draw_buffers
                                                                     ? caps->max_draw_buffers
                                                                     : real.max_draw_buffers))
@@ -42,7 +42,7 @@ static float *render(macs_headless *h, const macs_limits *caps, scene_id id, bg_
         fail_msg("%s, caps draw buffers %d, attachments %d, texture units %d: %s: %s", scenes_name(id),
                  caps ? caps->max_draw_buffers : 0, caps ? caps->max_color_attachments : 0,
                  caps ? caps->max_texture_units : 0, bg_status_string(st), bg_renderer_error_message(r));
-    bg_renderer_stats(r, stats);
+    bg_renderer_get_stats(r, stats);
     bg_scene_destroy(s);
     bg_renderer_destroy(r);
     macs_context_destroy(ctx);

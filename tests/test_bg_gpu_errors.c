@@ -130,7 +130,7 @@ static void image_sizes(void **state)
     caps.max_texture_size = 64;
     macs_context *ctx = util_context(*state, &caps);
     macs_limits eff;
-    macs_context_limits(ctx, NULL, &eff);
+    macs_context_get_limits(ctx, NULL, &eff);
     assert_int_equal(eff.max_texture_size, 64);
     bg_renderer *r = util_renderer(ctx);
     bg_scene *s = small_scene();
@@ -217,7 +217,7 @@ static void bad_settings(void **state)
     b.dmax = 100.0;
     render_ok(r, s, &b, &img);
     bg_render_stats st;
-    bg_renderer_stats(r, &st);
+    bg_renderer_get_stats(r, &st);
     assert_true(st.dmax[0] == 100.0);
     assert_centre_drawn(px, 8, 8);
     bg_scene_destroy(s);
@@ -276,7 +276,7 @@ static void empty_scene_is_background(void **state)
             fail_msg("pixel (%d, %d) is (%g, %g, %g, %g), not the background", i % W, i / W, (double)f[4 * i],
                      (double)f[4 * i + 1], (double)f[4 * i + 2], (double)f[4 * i + 3]);
     bg_render_stats st;
-    bg_renderer_stats(r, &st);
+    bg_renderer_get_stats(r, &st);
     assert_int_equal(st.passes[BG_PASS_INTERSECT], 0);
     assert_int_equal(st.levels, 0);
     /* the RGBA8 output is the CPU's encoding of the same colour */
@@ -345,7 +345,7 @@ static void unlit_scene_matches_cpu(void **state)
     if (!gpu_threshold_check(gpu_threshold_of(SCENE_PAPER_EARTH), &met, why, sizeof why))
         fail_msg("unlit scene: %s", why);
     bg_render_stats st;
-    bg_renderer_stats(r, &st);
+    bg_renderer_get_stats(r, &st);
     assert_int_equal(st.passes[BG_PASS_SHADOW], 0);
     bg_scene_destroy(s);
     bg_renderer_destroy(r);
@@ -475,8 +475,8 @@ static void assert_create_fails(const bg_renderer_desc *d, bool with_out, bg_sta
     bg_renderer_desc copy = {0};
     if (d) {
         copy = *d;
-        copy.log = record_log;
-        copy.log_user = &log;
+        copy.logger.func = record_log;
+        copy.logger.user = &log;
     }
     char message[256] = "unchanged";
     bg_renderer *r = (bg_renderer *)message; /* must be reset to NULL on failure */

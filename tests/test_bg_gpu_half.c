@@ -71,8 +71,8 @@ static bg_renderer *renderer_on(macs_context *ctx, bool half_gbuffer, log_record
     bg_renderer_desc d = {0};
     d.context = ctx;
     d.half_gbuffer = half_gbuffer;
-    d.log = record_log;
-    d.log_user = log;
+    d.logger.func = record_log;
+    d.logger.user = log;
     bg_renderer *r = NULL;
     assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_OK);
     assert_int_equal(bg_renderer_error(r), BG_OK);
@@ -118,9 +118,9 @@ static void check_scene(scene_id id)
 
     util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &fi8, name);
     bg_render_stats full_stats, half_stats;
-    bg_renderer_stats(util_fx.renderer, &full_stats);
+    bg_renderer_get_stats(util_fx.renderer, &full_stats);
     util_render_gpu(half, util_fx.ctx, s, &set, &hi8, name);
-    bg_renderer_stats(half, &half_stats);
+    bg_renderer_get_stats(half, &half_stats);
 
     /* Every slot but HIT and ONCE (both always written) is half; the default renderer has none. */
     assert_int_equal(full_stats.gbuffer_half_targets, 0);
@@ -190,7 +190,7 @@ static void split_passes_give_the_same_bits(void **state)
     util_render_gpu(half, util_fx.ctx, s, &set, &ai, "uncapped");
     util_render_gpu(r, ctx, s, &set, &bi, "one draw buffer");
     bg_render_stats stats;
-    bg_renderer_stats(r, &stats);
+    bg_renderer_get_stats(r, &stats);
     assert_int_equal(stats.gbuffer_half_targets, stats.gbuffer_targets - 2);
     assert_true(stats.chunks > stats.passes[BG_PASS_INTERSECT] * stats.gbuffer_targets - 1);
     assert_memory_equal(a, b, n * sizeof(float));
@@ -236,23 +236,17 @@ static unsigned no16_get_error(void)
     return e ? e : no16.get_error();
 }
 
-static void *no16_loader(const char *name, void *user)
+static macs_gl_proc no16_loader(const char *name, void *user)
 {
     (void)user;
-    void *p = no16.real(name, no16.real_user);
-    void *fake = NULL;
-    /* Function and data pointers meet through memcpy: C99 has no cast between them. */
+    macs_gl_proc p = no16.real(name, no16.real_user);
     if (p && strcmp(name, "glTexImage2D") == 0) {
-        tex_image_fn f = no16_tex_image;
-        memcpy(&no16.tex_image, &p, sizeof p);
-        memcpy(&fake, &f, sizeof fake);
-        return fake;
+        no16.tex_image = (tex_image_fn)p;
+        return (macs_gl_proc)no16_tex_image;
     }
     if (p && strcmp(name, "glGetError") == 0) {
-        get_error_fn f = no16_get_error;
-        memcpy(&no16.get_error, &p, sizeof p);
-        memcpy(&fake, &f, sizeof fake);
-        return fake;
+        no16.get_error = (get_error_fn)p;
+        return (macs_gl_proc)no16_get_error;
     }
     return p;
 }
@@ -289,7 +283,7 @@ static void fallback_without_rgba16f(void **state)
     util_render_gpu(r, ctx, s, &set, &ai, "fallback");
     util_render_gpu(full, ctx, s, &set, &bi, "default");
     bg_render_stats stats;
-    bg_renderer_stats(r, &stats);
+    bg_renderer_get_stats(r, &stats);
     assert_true(stats.gbuffer_targets >= 4);
     assert_int_equal(stats.gbuffer_half_targets, 0);
     assert_memory_equal(a, b, n * sizeof(float));

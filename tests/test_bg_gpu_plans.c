@@ -53,8 +53,8 @@ static bg_renderer *logging_renderer(info_log *log)
 {
     bg_renderer_desc d = {0};
     d.context = util_fx.ctx;
-    d.log = capture_info;
-    d.log_user = log;
+    d.logger.func = capture_info;
+    d.logger.user = log;
     bg_renderer *r = NULL;
     char message[512];
     if (bg_renderer_create(&d, &r, message, sizeof message) != BG_OK)
@@ -74,7 +74,7 @@ static bg_render_stats render(bg_renderer *r, bg_scene *s, const bg_render_setti
 {
     util_render_gpu(r, util_fx.ctx, s, set, img, label);
     bg_render_stats stats;
-    bg_renderer_stats(r, &stats);
+    bg_renderer_get_stats(r, &stats);
     return stats;
 }
 
@@ -517,17 +517,13 @@ static void nofused_shader_source(unsigned shader, int count, const char *const 
     nofused.shader_source(shader, count, strings, lengths);
 }
 
-static void *nofused_loader(const char *name, void *user)
+static macs_gl_proc nofused_loader(const char *name, void *user)
 {
     (void)user;
-    void *p = nofused.real(name, nofused.real_user);
+    macs_gl_proc p = nofused.real(name, nofused.real_user);
     if (p && strcmp(name, "glShaderSource") == 0) {
-        /* Function and data pointers meet through memcpy: C99 has no cast between them. */
-        shader_source_fn f = nofused_shader_source;
-        void *fake = NULL;
-        memcpy(&nofused.shader_source, &p, sizeof p);
-        memcpy(&fake, &f, sizeof fake);
-        return fake;
+        nofused.shader_source = (shader_source_fn)p;
+        return (macs_gl_proc)nofused_shader_source;
     }
     return p;
 }
@@ -539,8 +535,8 @@ static void auto_falls_back_to_the_same_image(macs_context *ctx, scene_id id, co
     info_log log = {"", 0};
     bg_renderer_desc d = {0};
     d.context = ctx;
-    d.log = capture_info;
-    d.log_user = &log;
+    d.logger.func = capture_info;
+    d.logger.user = &log;
     bg_renderer *r = NULL;
     char message[512];
     if (bg_renderer_create(&d, &r, message, sizeof message) != BG_OK)
@@ -553,7 +549,7 @@ static void auto_falls_back_to_the_same_image(macs_context *ctx, scene_id id, co
     bg_render_settings set = plan_settings(BG_PLAN_AUTO);
     util_render_gpu(r, ctx, s, &set, &ia, label);
     bg_render_stats st;
-    bg_renderer_stats(r, &st);
+    bg_renderer_get_stats(r, &st);
     assert_int_equal(st.plan, BG_PLAN_MULTIPASS);
     if (log.count < 1 || !strstr(log.last, why))
         fail_msg("%s: no reason naming \"%s\" logged (%d messages, last \"%s\")", label, why, log.count, log.last);
@@ -594,7 +590,7 @@ static void uniform_cap_falls_back(void **state)
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
     macs_limits eff;
-    macs_context_limits(ctx, NULL, &eff);
+    macs_context_get_limits(ctx, NULL, &eff);
     assert_int_equal(eff.max_uniform_components, 256);
     assert_int_equal(macs_context_max_uniform_components(ctx), 256);
     auto_falls_back_to_the_same_image(ctx, SCENE_MANY_LIGHTS, "uniform components", "uniform cap");

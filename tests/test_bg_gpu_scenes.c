@@ -100,7 +100,7 @@ static void check_scene(scene_id id)
     memset(gpu, 0xCD, (size_t)W * H * 4);
     util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &gi, name);
     bg_render_stats stats;
-    bg_renderer_stats(util_fx.renderer, &stats);
+    bg_renderer_get_stats(util_fx.renderer, &stats);
 
     image_metrics m;
     assert_true(image_metrics_compare(&ci, &gi, GPU_SILHOUETTE_THRESHOLD, &m));
@@ -174,7 +174,7 @@ static void float_depth(void **state)
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
     macs_features feats;
-    macs_context_features(ctx, &feats);
+    macs_context_get_features(ctx, &feats);
     bg_renderer_desc rd = {0};
     rd.context = ctx;
     rd.float_depth = true;
@@ -192,7 +192,7 @@ static void float_depth(void **state)
         if (bg_render_gpu(r, s, &set, &gi) != BG_OK)
             fail_msg("%s: %s", scenes_name(ids[k]), bg_renderer_error_message(r));
         bg_render_stats stats;
-        bg_renderer_stats(r, &stats);
+        bg_renderer_get_stats(r, &stats);
         assert_int_equal(stats.depth_bits, feats.depth_buffer_float ? 32 : 24);
         image_metrics m;
         char line[512], why[256];

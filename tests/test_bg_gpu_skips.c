@@ -38,7 +38,7 @@ static run render(bg_scene *s, unsigned disable, bool timing, int max_depth)
     char label[32];
     snprintf(label, sizeof label, "skips 0x%x off", disable);
     util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &img, label);
-    bg_renderer_stats(util_fx.renderer, &r.stats);
+    bg_renderer_get_stats(util_fx.renderer, &r.stats);
     assert_int_equal(r.stats.timed, timing);
     return r;
 }

@@ -39,7 +39,7 @@ static bg_render_stats render(bg_renderer *r, bg_scene *s, const bg_render_setti
 {
     util_render_gpu(r, util_fx.ctx, s, set, img, label);
     bg_render_stats stats;
-    bg_renderer_stats(r, &stats);
+    bg_renderer_get_stats(r, &stats);
     return stats;
 }
 

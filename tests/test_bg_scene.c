@@ -266,8 +266,8 @@ static void test_logger_and_sticky_error(void **state)
     (void)state;
     log_record rec = {0, BG_LOG_DEBUG, ""};
     bg_scene_desc d = {0};
-    d.log = t_log;
-    d.log_user = &rec;
+    d.logger.func = t_log;
+    d.logger.user = &rec;
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(&d, &s), BG_OK);
     uint32_t id;

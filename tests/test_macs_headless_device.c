@@ -109,7 +109,7 @@ static void every_listed_device_gives_a_context(void **state)
         worked++;
         assert_int_equal(macs_headless_backend_used(h), MACS_HEADLESS_EGL_DEVICE);
         macs_headless_info info;
-        macs_headless_describe(h, &info);
+        macs_headless_get_info(h, &info);
         assert_int_equal(info.backend, MACS_HEADLESS_EGL_DEVICE);
         assert_int_equal(info.device_index, i);
         assert_int_equal(info.device_count, probe.count);
@@ -140,7 +140,7 @@ static void software_device_gives_a_context(void **state)
     if (st != MACS_OK)
         fail_msg("software device %d: %s", probe.software_index, message);
     macs_headless_info info;
-    macs_headless_describe(h, &info);
+    macs_headless_get_info(h, &info);
     assert_int_equal(info.backend, MACS_HEADLESS_EGL_DEVICE);
     assert_string_equal(info.device_name, "software");
     assert_true(info.renderer[0] != '\0');
@@ -154,7 +154,7 @@ typedef struct info_log {
     char last[1024];
 } info_log;
 
-static void keep_info(int level, const char *message, void *user)
+static void keep_info(macs_log_level level, const char *message, void *user)
 {
     info_log *log = user;
     if (level == MACS_LOG_INFO) {
@@ -174,15 +174,15 @@ static void default_order_prefers_a_device(void **state)
     }
     info_log log = {0, ""};
     macs_headless_desc d = {0};
-    d.logger = keep_info;
-    d.logger_user = &log;
+    d.logger.func = keep_info;
+    d.logger.user = &log;
     macs_headless *h = NULL;
     char message[1024];
     if (macs_headless_create(&d, &h, message, sizeof message) != MACS_OK)
         fail_msg("default headless context: %s", message);
     assert_int_equal(macs_headless_backend_used(h), MACS_HEADLESS_EGL_DEVICE);
     macs_headless_info info;
-    macs_headless_describe(h, &info);
+    macs_headless_get_info(h, &info);
     assert_true(info.device_index >= 0 && info.device_index < probe.count);
     assert_true(info.renderer[0] != '\0');
     assert_int_equal(log.count, 1);
@@ -297,17 +297,17 @@ static void every_allocation_is_checked(void **state)
 static void describe_reports_the_other_backends(void **state)
 {
     macs_headless_info info;
-    macs_headless_describe(*state, &info);
+    macs_headless_get_info(*state, &info);
     assert_int_equal(info.backend, macs_headless_backend_used(*state));
     assert_int_equal(info.device_index, -1);
     assert_int_equal(info.device_count, 0);
     assert_string_equal(info.device_name, "");
     assert_string_equal(info.device_extensions, "");
     assert_true(info.renderer[0] != '\0');
-    macs_headless_describe(NULL, &info);
+    macs_headless_get_info(NULL, &info);
     assert_int_equal(info.backend, MACS_HEADLESS_DEFAULT);
     assert_string_equal(info.renderer, "");
-    macs_headless_describe(*state, NULL); /* ignored */
+    macs_headless_get_info(*state, NULL); /* ignored */
 }
 
 int main(void)

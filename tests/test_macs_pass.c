@@ -329,7 +329,7 @@ static void texture_unit_caps(void **state)
         macs_limits caps = {0}, real, eff;
         caps.max_texture_units = cap;
         macs_context *ctx = util_context(*state, &caps);
-        macs_context_limits(ctx, &real, &eff);
+        macs_context_get_limits(ctx, &real, &eff);
         assert_int_equal(eff.max_texture_units, real.max_texture_units < cap ? real.max_texture_units : cap);
         float sum = 0.0f;
         assert_int_equal(sum_inputs(ctx, eff.max_texture_units, &sum), MACS_OK);

@@ -51,7 +51,7 @@ static macs_context *capped_context(void **state, int c)
 static int expected_chunks(macs_context *ctx, int outputs_n)
 {
     macs_limits e;
-    macs_context_limits(ctx, NULL, &e);
+    macs_context_get_limits(ctx, NULL, &e);
     int per = e.max_draw_buffers < e.max_color_attachments ? e.max_draw_buffers : e.max_color_attachments;
     return (outputs_n + per - 1) / per;
 }

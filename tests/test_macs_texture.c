@@ -149,7 +149,7 @@ static void sizes_are_checked(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
     macs_limits eff;
-    macs_context_limits(ctx, NULL, &eff);
+    macs_context_get_limits(ctx, NULL, &eff);
     macs_texture *t = NULL;
     macs_texture_desc d = {0};
     d.width = 0;
@@ -205,7 +205,7 @@ static void depth_stencil_reports_its_format(void **state)
     cd.allow_float_depth = true;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
     macs_features f;
-    macs_context_features(ctx, &f);
+    macs_context_get_features(ctx, &f);
     d.width = 8;
     assert_int_equal(macs_depth_stencil_create(ctx, &d, &ds), MACS_OK);
     assert_int_equal(macs_depth_stencil_format(ds),

@@ -52,16 +52,15 @@ static const unsigned char *fake_get_string(unsigned name)
     return (const unsigned char *)filtered;
 }
 
-static void *hiding_loader(const char *name, void *user)
+static macs_gl_proc hiding_loader(const char *name, void *user)
 {
     (void)user;
     if (hide.hidden_function && strcmp(name, hide.hidden_function) == 0)
         return NULL;
-    void *p = hide.real(name, hide.real_user);
+    macs_gl_proc p = hide.real(name, hide.real_user);
     if (strcmp(name, "glGetString") == 0) {
-        memcpy(&real_get_string, &p, sizeof p);
-        const unsigned char *(*f)(unsigned) = fake_get_string;
-        memcpy(&p, &f, sizeof p);
+        real_get_string = (const unsigned char *(*)(unsigned))p;
+        p = (macs_gl_proc)fake_get_string;
     }
     return p;
 }
@@ -128,7 +127,7 @@ static void ext_framebuffer_object_fallback_works(void **state)
     if (st != MACS_OK)
         fail_msg("%s", message);
     macs_features f;
-    macs_context_features(ctx, &f);
+    macs_context_get_features(ctx, &f);
     assert_false(f.arb_framebuffer_object);
     /* A split pass with depth and stencil through the EXT entry points. */
     macs_texture *out[3];

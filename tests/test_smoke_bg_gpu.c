@@ -41,7 +41,7 @@ static void check_scene(macs_headless *h, scene_id id)
     assert_true(image_metrics_compare(&ci, &gi, GPU_SILHOUETTE_THRESHOLD, &m));
     char line[512], why[256];
     macs_gl_info info;
-    macs_context_gl_info(ctx, &info);
+    macs_context_get_gl_info(ctx, &info);
     print_message("%-19s %s: %s\n", name, info.renderer ? info.renderer : "?",
                   image_metrics_format(&m, line, sizeof line));
     if (!gpu_threshold_check(gpu_threshold_of(id), &m, why, sizeof why))

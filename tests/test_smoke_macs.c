@@ -15,9 +15,9 @@ static void context_reports_limits(void **state)
 {
     macs_context *ctx = util_context(*state, NULL);
     macs_limits real, eff;
-    macs_context_limits(ctx, &real, &eff);
+    macs_context_get_limits(ctx, &real, &eff);
     macs_gl_info info;
-    macs_context_gl_info(ctx, &info);
+    macs_context_get_gl_info(ctx, &info);
     print_message("%s / %s: draw buffers %d, colour attachments %d, texture units %d, texture size %d\n",
                   info.renderer ? info.renderer : "?", info.version ? info.version : "?", real.max_draw_buffers,
                   real.max_color_attachments, real.max_texture_units, real.max_texture_size);
@@ -30,7 +30,7 @@ static void context_reports_limits(void **state)
     caps.max_draw_buffers = 1;
     caps.max_texture_units = 1000; /* a cap never raises */
     ctx = util_context(*state, &caps);
-    macs_context_limits(ctx, &real, &eff);
+    macs_context_get_limits(ctx, &real, &eff);
     assert_int_equal(eff.max_draw_buffers, 1);
     assert_int_equal(eff.max_texture_units, real.max_texture_units);
     macs_context_destroy(ctx);

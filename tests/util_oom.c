@@ -62,36 +62,29 @@ static unsigned fake_get_error(void)
     return oom.get_error();
 }
 
-/* Function and data pointers are converted through memcpy: C99 has no cast between them. */
-static void *wrap(void *real, void *real_slot, void *fake_fn_ptr)
-{
-    void *fake = NULL;
-    memcpy(real_slot, &real, sizeof real);
-    memcpy(&fake, fake_fn_ptr, sizeof fake);
-    return fake;
-}
-
-static void *oom_loader(const char *name, void *user)
+/* The real entry point is kept in its own type and the fake handed out in the loader's: both are
+ * casts between function pointer types, which C99 defines. */
+static macs_gl_proc oom_loader(const char *name, void *user)
 {
     (void)user;
-    void *p = oom.real(name, oom.real_user);
+    macs_gl_proc p = oom.real(name, oom.real_user);
     if (!p)
         return p;
     if (strcmp(name, "glTexImage2D") == 0) {
-        tex_image_fn f = fake_tex_image;
-        return wrap(p, &oom.tex_image, &f);
+        oom.tex_image = (tex_image_fn)p;
+        return (macs_gl_proc)fake_tex_image;
     }
     if (strcmp(name, "glRenderbufferStorage") == 0) {
-        storage_fn f = fake_storage;
-        return wrap(p, &oom.storage, &f);
+        oom.storage = (storage_fn)p;
+        return (macs_gl_proc)fake_storage;
     }
     if (strcmp(name, "glRenderbufferStorageEXT") == 0) {
-        storage_fn f = fake_storage_ext;
-        return wrap(p, &oom.storage_ext, &f);
+        oom.storage_ext = (storage_fn)p;
+        return (macs_gl_proc)fake_storage_ext;
     }
     if (strcmp(name, "glGetError") == 0) {
-        get_error_fn f = fake_get_error;
-        return wrap(p, &oom.get_error, &f);
+        oom.get_error = (get_error_fn)p;
+        return (macs_gl_proc)fake_get_error;
     }
     return p;
 }

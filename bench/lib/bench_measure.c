@@ -219,7 +219,7 @@ bool bench_gpu_frame(void *job, bg_image *image)
     bench_gpu_job *g = job;
     if (!gpu_once(g->renderer, g->scene, &g->settings, image))
         return false;
-    bg_renderer_stats(g->renderer, &g->stats);
+    bg_renderer_get_stats(g->renderer, &g->stats);
     if (g->frames++ > 0 && g->stats.programs_compiled > 0)
         g->recompiled_frames++;
     return true;

@@ -59,7 +59,7 @@ bool bench_gpu_open(bench_gpu *gpu)
         return false;
     }
     macs_gl_info info;
-    macs_context_gl_info(gpu->context, &info);
+    macs_context_get_gl_info(gpu->context, &info);
     snprintf(gpu->renderer_name, sizeof gpu->renderer_name, "%s", info.renderer ? info.renderer : "?");
     bg_renderer_desc rd;
     memset(&rd, 0, sizeof rd);

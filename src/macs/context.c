@@ -91,8 +91,8 @@ static macs_status create_fail(macs_context *ctx, macs_status st, char *message,
  * Each fault is named on its own, so the message says which argument to fix. */
 static macs_status check_desc(const macs_context_desc *desc, macs_context **out, char *message, size_t size)
 {
-    macs_log_fn logger = desc ? desc->logger : NULL;
-    void *user = desc ? desc->logger_user : NULL;
+    static const macs_logger none = {0};
+    macs_logger logger = desc ? desc->logger : none;
     char text[MACS_MESSAGE_SIZE] = "";
     if (!desc)
         snprintf(text, sizeof text, "macs_context_create: desc is NULL");
@@ -108,7 +108,7 @@ static macs_status check_desc(const macs_context_desc *desc, macs_context **out,
         macs_limits_check_caps(&desc->caps, text, sizeof text);
     if (!text[0])
         return MACS_OK;
-    macs_report(logger, user, message, size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
+    macs_report(logger, message, size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
     return MACS_ERR_INVALID_ARGUMENT;
 }
 
@@ -117,13 +117,12 @@ static macs_status allocate_context(const macs_context_desc *desc, macs_context 
 {
     macs_context *ctx = macs_calloc(&desc->allocator, 1, sizeof *ctx);
     if (!ctx) {
-        macs_report(desc->logger, desc->logger_user, message, size, MACS_ERR_OUT_OF_MEMORY,
+        macs_report(desc->logger, message, size, MACS_ERR_OUT_OF_MEMORY,
                     "allocating the context");
         return MACS_ERR_OUT_OF_MEMORY;
     }
     ctx->allocator = desc->allocator;
     ctx->logger = desc->logger;
-    ctx->logger_user = desc->logger_user;
     ctx->allow_float_depth = desc->allow_float_depth;
     *out = ctx;
     return MACS_OK;
@@ -132,10 +131,10 @@ static macs_status allocate_context(const macs_context_desc *desc, macs_context 
 /* The few functions needed to decide what to load come first. */
 static macs_status load_query_functions(macs_context *ctx, const macs_context_desc *desc)
 {
-    void *p = desc->get_proc_address("glGetString", desc->get_proc_address_user);
-    memcpy(&ctx->gl.GetString, &p, sizeof p);
-    void *q = desc->get_proc_address("glGetError", desc->get_proc_address_user);
-    memcpy(&ctx->gl.GetError, &q, sizeof q);
+    macs_gl_proc p = desc->get_proc_address("glGetString", desc->get_proc_address_user);
+    ctx->gl.GetString = (const GLubyte *(GLAPIENTRY *)(GLenum))p;
+    macs_gl_proc q = desc->get_proc_address("glGetError", desc->get_proc_address_user);
+    ctx->gl.GetError = (GLenum(GLAPIENTRY *)(void))q;
     if (!p || !q)
         return macs_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "get_proc_address gave no glGetString or glGetError");
     return MACS_OK;
@@ -192,7 +191,7 @@ static macs_status load_gl_table(macs_context *ctx, const macs_context_desc *des
     return MACS_OK;
 }
 
-/* Keeps the vendor, renderer, version and GLSL version strings for macs_context_gl_info. */
+/* Keeps the vendor, renderer, version and GLSL version strings for macs_context_get_gl_info. */
 static macs_status copy_gl_strings(macs_context *ctx)
 {
     bool oom = false;
@@ -291,7 +290,7 @@ void macs_context_destroy(macs_context *ctx)
     macs_free(&a, ctx);
 }
 
-void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info)
+void macs_context_get_gl_info(const macs_context *ctx, macs_gl_info *info)
 {
     if (!ctx || !info)
         return;
@@ -301,7 +300,7 @@ void macs_context_gl_info(const macs_context *ctx, macs_gl_info *info)
     info->shading_language_version = ctx->gl_strings[3];
 }
 
-void macs_context_features(const macs_context *ctx, macs_features *features)
+void macs_context_get_features(const macs_context *ctx, macs_features *features)
 {
     if (ctx && features)
         *features = ctx->features;

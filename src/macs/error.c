@@ -7,7 +7,7 @@
 
 const char *macs_status_string(macs_status status)
 {
-#define MACS_STATUS_CASE_(name, message) case name: return message;
+#define MACS_STATUS_CASE_(name, value, message) case name: return message;
     switch (status) {
         MACS_STATUS_LIST(MACS_STATUS_CASE_)
     default:
@@ -17,10 +17,10 @@ const char *macs_status_string(macs_status status)
     return "unknown status";
 }
 
-void macs_log(const macs_context *ctx, int level, const char *message)
+void macs_log(const macs_context *ctx, macs_log_level level, const char *message)
 {
-    if (ctx->logger)
-        ctx->logger(level, message, ctx->logger_user);
+    if (ctx->logger.func)
+        ctx->logger.func(level, message, ctx->logger.user);
 }
 
 /* Every MACS message starts with its status's message: "<status message>: <details>". The status
@@ -44,7 +44,7 @@ macs_status macs_fail(macs_context *ctx, macs_status status, const char *format,
     return status;
 }
 
-void macs_report(macs_log_fn logger, void *user, char *message, size_t size, macs_status status,
+void macs_report(macs_logger logger, char *message, size_t size, macs_status status,
                  const char *format, ...)
 {
     char prefix[PREFIX_SIZE], buffer[MACS_MESSAGE_SIZE];
@@ -53,8 +53,8 @@ void macs_report(macs_log_fn logger, void *user, char *message, size_t size, mac
     macs_message_vformat(buffer, status_prefix(prefix, status), format, args);
     va_end(args);
     macs_message_give(message, size, buffer);
-    if (logger)
-        logger(MACS_LOG_ERROR, buffer, user);
+    if (logger.func)
+        logger.func(MACS_LOG_ERROR, buffer, logger.user);
 }
 
 macs_status macs_context_error(const macs_context *ctx)

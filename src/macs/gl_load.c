@@ -19,10 +19,9 @@ bool macs_gl_has_extension(const char *extensions, const char *name)
     return false;
 }
 
-/* Object and function pointers do not convert in ISO C; copying the representation is the portable
- * idiom every GL loader relies on (POSIX guarantees they have the same size). */
-#define MACS_SET_FN_(dst, ptr) memcpy(&(dst), &(ptr), sizeof(ptr))
-typedef char macs_fn_size_check_[sizeof(void *) == sizeof(void (*)(void)) ? 1 : -1];
+/* The loader gives every entry point as a macs_gl_proc; converting it to the function's own pointer
+ * type is a cast ISO C defines (between function pointer types), and calls go through that type. */
+#define MACS_SET_FN_(dst, ret, params, proc) ((dst) = (ret (GLAPIENTRY *) params)(proc))
 
 static void note_missing(char *missing, size_t size, const char *name)
 {
@@ -38,19 +37,19 @@ macs_status macs_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user, 
     char name[64];
     missing[0] = '\0';
 #define MACS_LOAD_CORE_(ret, fn, params) \
-    { void *p_ = gpa("gl" #fn, user); MACS_SET_FN_(gl->fn, p_); \
+    { macs_gl_proc p_ = gpa("gl" #fn, user); MACS_SET_FN_(gl->fn, ret, params, p_); \
       if (!p_) { ok = false; note_missing(missing, missing_size, "gl" #fn); } }
     MACS_GL_CORE(MACS_LOAD_CORE_)
 #undef MACS_LOAD_CORE_
 #define MACS_LOAD_FBO_(ret, fn, params) \
     { snprintf(name, sizeof name, "gl%s%s", #fn, ext_fbo ? "EXT" : ""); \
-      void *p_ = gpa(name, user); MACS_SET_FN_(gl->fn, p_); \
+      macs_gl_proc p_ = gpa(name, user); MACS_SET_FN_(gl->fn, ret, params, p_); \
       if (!p_) { ok = false; note_missing(missing, missing_size, name); } }
     MACS_GL_FBO(MACS_LOAD_FBO_)
 #undef MACS_LOAD_FBO_
     /* Optional functions may stay NULL; their extension string entry decides whether they are called. */
 #define MACS_LOAD_OPTIONAL_(ret, fn, params) \
-    { void *p_ = gpa("gl" #fn, user); MACS_SET_FN_(gl->fn, p_); }
+    { macs_gl_proc p_ = gpa("gl" #fn, user); MACS_SET_FN_(gl->fn, ret, params, p_); }
     MACS_GL_OPTIONAL(MACS_LOAD_OPTIONAL_)
 #undef MACS_LOAD_OPTIONAL_
     return ok ? MACS_OK : MACS_ERR_GL_UNSUPPORTED;

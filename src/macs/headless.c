@@ -93,9 +93,7 @@ static macs_status create_first_that_works(macs_headless *h, const macs_headless
 static macs_status copy_renderer(macs_headless *h)
 {
     typedef const GLubyte *(GLAPIENTRY * get_string_fn)(GLenum name);
-    void *p = macs_headless_get_proc_address(h)("glGetString", h->impl);
-    get_string_fn get_string = NULL;
-    memcpy(&get_string, &p, sizeof p);
+    get_string_fn get_string = (get_string_fn)macs_headless_get_proc_address(h)("glGetString", h->impl);
     const GLubyte *renderer = get_string ? get_string(GL_RENDERER) : NULL;
     h->renderer = macs_strdup(&h->allocator, renderer ? (const char *)renderer : "");
     return h->renderer ? MACS_OK : MACS_ERR_OUT_OF_MEMORY;
@@ -122,7 +120,7 @@ static void destroy_backend(macs_headless *h)
 /* One info line: what the context runs on, and why the backends before it were passed over. */
 static void log_created(const macs_headless_desc *d, const macs_headless *h, const char *reasons)
 {
-    if (!d->logger)
+    if (!d->logger.func)
         return;
     char line[MACS_MESSAGE_SIZE], device[256] = "";
     if (h->backend == MACS_HEADLESS_EGL_DEVICE)
@@ -130,7 +128,7 @@ static void log_created(const macs_headless_desc *d, const macs_headless *h, con
                  h->device_name[0] ? " (" : "", h->device_name, h->device_name[0] ? ")" : "");
     snprintf(line, sizeof line, "headless context on %s%s, GL_RENDERER \"%s\"%s%s", backend_name(h->backend), device,
              h->renderer, reasons[0] ? "; passed over: " : "", reasons);
-    d->logger(MACS_LOG_INFO, line, d->logger_user);
+    d->logger.func(MACS_LOG_INFO, line, d->logger.user);
 }
 
 macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless **out, char *message,
@@ -145,12 +143,12 @@ macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless *
     if (!desc)
         desc = &defaults;
     if (!check_desc(desc, out, text, sizeof text)) {
-        macs_report(desc->logger, desc->logger_user, message, message_size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
+        macs_report(desc->logger, message, message_size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
         return MACS_ERR_INVALID_ARGUMENT;
     }
     macs_headless *h = macs_calloc(&desc->allocator, 1, sizeof *h);
     if (!h) {
-        macs_report(desc->logger, desc->logger_user, message, message_size, MACS_ERR_OUT_OF_MEMORY,
+        macs_report(desc->logger, message, message_size, MACS_ERR_OUT_OF_MEMORY,
                     "macs_headless_create: allocating a headless context");
         return MACS_ERR_OUT_OF_MEMORY;
     }
@@ -165,7 +163,7 @@ macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless *
         }
     }
     if (st != MACS_OK) {
-        macs_report(desc->logger, desc->logger_user, message, message_size, st, "macs_headless_create: %s", text);
+        macs_report(desc->logger, message, message_size, st, "macs_headless_create: %s", text);
         free_headless(h);
         return st;
     }
@@ -194,7 +192,7 @@ macs_headless_backend macs_headless_backend_used(const macs_headless *h)
     return h ? h->backend : MACS_HEADLESS_DEFAULT;
 }
 
-void macs_headless_describe(const macs_headless *h, macs_headless_info *info)
+void macs_headless_get_info(const macs_headless *h, macs_headless_info *info)
 {
     if (!info)
         return;

@@ -8,7 +8,7 @@ struct macs_headless {
     macs_headless_backend backend;
     macs_allocator allocator;
     void *impl; /* the backend's own state */
-    /* What macs_headless_describe reports; NULL strings read as "". */
+    /* What macs_headless_get_info reports; NULL strings read as "". */
     int device_index; /* EGL_DEVICE: the device used; else -1 */
     int device_count; /* EGL_DEVICE: how many devices EGL listed; else 0 */
     char *device_name;
@@ -22,7 +22,7 @@ struct macs_headless {
 macs_status macs_osmesa_create(macs_headless *h, char *message, size_t size);
 void macs_osmesa_destroy(macs_headless *h);
 macs_status macs_osmesa_make_current(macs_headless *h);
-void *macs_osmesa_get_proc_address(const char *name, void *user);
+macs_gl_proc macs_osmesa_get_proc_address(const char *name, void *user);
 
 /* The EGL backends share one context type, so destroy, make current and get_proc_address are one. */
 macs_status macs_egl_surfaceless_create(macs_headless *h, char *message, size_t size);
@@ -31,6 +31,6 @@ macs_status macs_egl_surfaceless_create(macs_headless *h, char *message, size_t 
 macs_status macs_egl_device_create(macs_headless *h, int index, char *message, size_t size);
 void macs_egl_destroy(macs_headless *h);
 macs_status macs_egl_make_current(macs_headless *h);
-void *macs_egl_get_proc_address(const char *name, void *user);
+macs_gl_proc macs_egl_get_proc_address(const char *name, void *user);
 
 #endif

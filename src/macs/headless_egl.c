@@ -28,9 +28,8 @@ macs_status macs_egl_platform_display(EGLenum platform, void *native, EGLDisplay
         snprintf(message, size, "EGL_EXT_platform_base is missing from the client extensions");
         return MACS_ERR_CONTEXT;
     }
-    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display = NULL;
-    __eglMustCastToProperFunctionPointerType fn = macs_egl_proc("eglGetPlatformDisplayEXT");
-    memcpy(&get_display, &fn, sizeof fn);
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)macs_egl_proc("eglGetPlatformDisplayEXT");
     if (!get_display) {
         snprintf(message, size, "eglGetPlatformDisplayEXT not found");
         return MACS_ERR_CONTEXT;
@@ -126,11 +125,8 @@ macs_status macs_egl_make_current(macs_headless *h)
     return MACS_OK;
 }
 
-void *macs_egl_get_proc_address(const char *name, void *user)
+macs_gl_proc macs_egl_get_proc_address(const char *name, void *user)
 {
     (void)user;
-    __eglMustCastToProperFunctionPointerType fn = eglGetProcAddress(name);
-    void *p = NULL;
-    memcpy(&p, &fn, sizeof p < sizeof fn ? sizeof p : sizeof fn);
-    return p;
+    return (macs_gl_proc)eglGetProcAddress(name);
 }

@@ -11,8 +11,8 @@
 /* Whether EGL's client extension string (the one of EGL_NO_DISPLAY) names extension. */
 bool macs_egl_client_has(const char *extension);
 
-/* An EGL entry point by name through eglGetProcAddress, as an untyped function pointer that the
- * caller copies into its own type (NULL if absent); extension functions may not be linked directly. */
+/* An EGL entry point by name through eglGetProcAddress, as a generic function pointer that the
+ * caller casts to its own type (NULL if absent); extension functions may not be linked directly. */
 __eglMustCastToProperFunctionPointerType macs_egl_proc(const char *name);
 
 /* eglGetPlatformDisplayEXT(platform, native) and eglInitialize, or why not into message. The display

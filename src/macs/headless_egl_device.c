@@ -35,15 +35,13 @@ static macs_status load_api(device_api *api, char *message, size_t size)
                  "extensions");
         return MACS_ERR_CONTEXT;
     }
-    __eglMustCastToProperFunctionPointerType fn = macs_egl_proc("eglQueryDevicesEXT");
-    memcpy(&api->query_devices, &fn, sizeof fn);
+    api->query_devices = (PFNEGLQUERYDEVICESEXTPROC)macs_egl_proc("eglQueryDevicesEXT");
     if (!api->query_devices) {
         snprintf(message, size, "eglQueryDevicesEXT not found");
         return MACS_ERR_CONTEXT;
     }
     if (client_has_device("EGL_EXT_device_query")) {
-        fn = macs_egl_proc("eglQueryDeviceStringEXT");
-        memcpy(&api->query_string, &fn, sizeof fn);
+        api->query_string = (PFNEGLQUERYDEVICESTRINGEXTPROC)macs_egl_proc("eglQueryDeviceStringEXT");
     }
     return MACS_OK;
 }

@@ -69,12 +69,8 @@ macs_status macs_osmesa_make_current(macs_headless *h)
     return make_current(h->impl);
 }
 
-void *macs_osmesa_get_proc_address(const char *name, void *user)
+macs_gl_proc macs_osmesa_get_proc_address(const char *name, void *user)
 {
     (void)user;
-    OSMESAproc fn = OSMesaGetProcAddress(name);
-    void *p = NULL;
-    /* Function to object pointer: same representation on POSIX, not convertible by a cast in ISO C. */
-    memcpy(&p, &fn, sizeof p < sizeof fn ? sizeof p : sizeof fn);
-    return p;
+    return (macs_gl_proc)OSMesaGetProcAddress(name);
 }

@@ -93,8 +93,7 @@ struct macs_pass {
 struct macs_context {
     macs_gl gl;
     macs_allocator allocator;
-    macs_log_fn logger;
-    void *logger_user;
+    macs_logger logger;
     macs_limits real, effective;
     macs_features features;
     char *gl_strings[4];
@@ -123,13 +122,13 @@ macs_status macs_fail(macs_context *ctx, macs_status status, const char *format,
     __attribute__((__format__(__printf__, 3, 4)))
 #endif
     ;
-void macs_report(macs_log_fn logger, void *user, char *message, size_t size, macs_status status,
+void macs_report(macs_logger logger, char *message, size_t size, macs_status status,
                  const char *format, ...)
 #if defined(__GNUC__)
-    __attribute__((__format__(__printf__, 6, 7)))
+    __attribute__((__format__(__printf__, 5, 6)))
 #endif
     ;
-void macs_log(const macs_context *ctx, int level, const char *message);
+void macs_log(const macs_context *ctx, macs_log_level level, const char *message);
 void macs_gl_drain(macs_context *ctx);
 /* MACS_ERR_CONTEXT, naming where, when no GL context is current on the calling thread. */
 macs_status macs_gl_current(macs_context *ctx, const char *where);

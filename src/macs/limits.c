@@ -63,7 +63,7 @@ int macs_outputs_per_chunk(const macs_context *ctx)
     return n > 64 ? 64 : n;
 }
 
-void macs_context_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective)
+void macs_context_get_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective)
 {
     if (!ctx)
         return;

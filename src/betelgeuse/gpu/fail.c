@@ -13,8 +13,8 @@ bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...)
     va_start(args, format);
     const char *message = macs_first_error_vrecord(&r->error, status, buffer, NULL, format, args);
     va_end(args);
-    if (r->log)
-        r->log(BG_LOG_ERROR, message, r->log_user);
+    if (r->logger.func)
+        r->logger.func(BG_LOG_ERROR, message, r->logger.user);
     return status;
 }
 
@@ -43,12 +43,12 @@ bg_status gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what)
 
 void gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...)
 {
-    if (!r->log)
+    if (!r->logger.func)
         return;
     char message[MACS_MESSAGE_SIZE];
     va_list args;
     va_start(args, format);
     macs_message_vformat(message, NULL, format, args);
     va_end(args);
-    r->log(level, message, r->log_user);
+    r->logger.func(level, message, r->logger.user);
 }

@@ -55,11 +55,7 @@ struct gpu_fused {
 /* BG_PLAN_AUTO goes to the multipass: says why at BG_LOG_INFO. */
 static bg_status decline(bg_renderer *r, const char *why)
 {
-    if (r->log) {
-        char message[MACS_MESSAGE_SIZE];
-        snprintf(message, sizeof message, "bg_render_gpu: rendering with the multipass plan: %s", why);
-        r->log(BG_LOG_INFO, message, r->log_user);
-    }
+    gpu_log(r, BG_LOG_INFO, "bg_render_gpu: rendering with the multipass plan: %s", why);
     return BG_OK;
 }
 

@@ -90,8 +90,7 @@ typedef struct gpu_cache_key {
 
 struct bg_renderer {
     bg_allocator allocator;
-    bg_log_fn log;
-    void *log_user;
+    bg_logger logger;
     macs_first_error error; /* status is a bg_status; fail.c records it */
 
     macs_context *ctx;

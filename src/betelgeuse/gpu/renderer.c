@@ -18,8 +18,8 @@ static bg_status create_fail(const bg_renderer_desc *desc, char *message, size_t
     macs_message_vformat(buffer, "bg_renderer_create: ", format, args);
     va_end(args);
     macs_message_give(message, message_size, buffer);
-    if (desc && desc->log)
-        desc->log(BG_LOG_ERROR, buffer, desc->log_user);
+    if (desc && desc->logger.func)
+        desc->logger.func(BG_LOG_ERROR, buffer, desc->logger.user);
     return status;
 }
 
@@ -55,12 +55,11 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
                            "out of memory: desc->allocator returned NULL for the renderer");
     memset(r, 0, sizeof *r);
     r->allocator = desc->allocator;
-    r->log = desc->log;
-    r->log_user = desc->log_user;
+    r->logger = desc->logger;
     r->ctx = desc->context;
-    macs_context_limits(r->ctx, NULL, &r->limits);
+    macs_context_get_limits(r->ctx, NULL, &r->limits);
     macs_features feats;
-    macs_context_features(r->ctx, &feats);
+    macs_context_get_features(r->ctx, &feats);
     r->float_depth = desc->float_depth && feats.depth_buffer_float;
     if (desc->half_gbuffer)
         choose_half_gbuffer(r);
@@ -103,7 +102,7 @@ void bg_renderer_clear_error(bg_renderer *renderer)
     macs_first_error_clear(&renderer->error);
 }
 
-void bg_renderer_stats(const bg_renderer *renderer, bg_render_stats *stats)
+void bg_renderer_get_stats(const bg_renderer *renderer, bg_render_stats *stats)
 {
     if (!stats)
         return;

@@ -9,8 +9,8 @@
 /* Before the scene exists its failures can only go to the desc's logger. */
 static bg_status create_fail(const bg_scene_desc *d, bg_status status, const char *message)
 {
-    if (d->log)
-        d->log(BG_LOG_ERROR, message, d->log_user);
+    if (d->logger.func)
+        d->logger.func(BG_LOG_ERROR, message, d->logger.user);
     return status;
 }
 
@@ -31,8 +31,7 @@ bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
         return create_fail(&d, BG_ERR_OUT_OF_MEMORY, "bg_scene_create: out of memory");
     memset(s, 0, sizeof *s);
     s->allocator = d.allocator;
-    s->log = d.log;
-    s->log_user = d.log_user;
+    s->logger = d.logger;
     s->camera = bg_camera_init();
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 1.0;
     *out_scene = s;
@@ -81,8 +80,8 @@ bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, .
     va_start(args, format);
     const char *message = macs_first_error_vrecord(&scene->error, status, buffer, NULL, format, args);
     va_end(args);
-    if (scene->log)
-        scene->log(BG_LOG_ERROR, message, scene->log_user);
+    if (scene->logger.func)
+        scene->logger.func(BG_LOG_ERROR, message, scene->logger.user);
     return status;
 }
 

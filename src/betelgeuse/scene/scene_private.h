@@ -19,8 +19,7 @@ typedef struct bg_array {
 
 struct bg_scene {
     bg_allocator allocator;
-    bg_log_fn log;
-    void *log_user;
+    bg_logger logger;
     macs_first_error error; /* status is a bg_status */
 
     /* Pending state. Textures are immutable once added, so the committed state shares their
