@@ -1,5 +1,5 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries), check, check-examples, examples, bench, stress, install, uninstall, clean.
+# Targets: all (libraries), check, check-symbols, check-examples, examples, bench, stress, install, uninstall, clean.
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
 VERSION   := 0.1.0
@@ -79,9 +79,14 @@ BG_SO   := $(BUILD)/libbetelgeuse.so.$(VERSION)
 
 STATIC_LINK := $(BG_A) $(MACS_A) $(BG_LIBS) $(MACS_LIBS)
 
+# The libraries export exactly the functions their headers mark (MACS_API, BG_API); every other
+# symbol is hidden from the shared libraries and carries the prefix macsi_ or bgi_ in the archives
+# (tests/check_symbols.sh holds both to it).
+$(MACS_OBJ) $(BG_OBJ): ALL_CFLAGS += -fvisibility=hidden
+
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-examples examples bench bench-programs stress install uninstall clean glsl-check valgrind
+.PHONY: FORCE all check check-symbols check-examples examples bench bench-programs stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
@@ -95,7 +100,7 @@ $(BUILD)/gen/%_shaders.c: Makefile $(wildcard glsl110/*)
 	@mkdir -p $(dir $@)
 	@{ echo '/* Generated from glsl110/ by the Makefile: do not edit. */'; \
 	   echo '#include <stddef.h>'; \
-	   echo 'const char *const $*_shader_table[][2] = {'; \
+	   echo 'const char *const $*i_shader_table[][2] = {'; \
 	   for f in $(if $(filter macs,$*),$(MACS_SHADERS),$(BG_SHADERS)); do \
 	     printf '  {"%s",\n' "$$(basename $$f)"; \
 	     sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/^/   "/' -e 's/$$/\\n"/' $$f; \
@@ -188,7 +193,10 @@ check-examples: all $(EXAMPLE_BIN)
 	@LD_LIBRARY_PATH=$(STAGE)/usr/local/lib TEST_ENV="$(TEST_ENV)" sh tests/check_examples.sh \
 	  "$(STANDALONE_SRC:examples/%.c=$(BUILD)/installed/%)" "$(EXAMPLE_BIN)"
 
-check: all glsl-check check-examples $(TEST_BIN)
+check-symbols: all
+	sh tests/check_symbols.sh $(BUILD)
+
+check: all glsl-check check-symbols check-examples $(TEST_BIN)
 	@TEST_ENV="$(TEST_ENV)" sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
 # valgrind over the MACS suites and the GPU renderer's error and smoke suites (renderer create/destroy

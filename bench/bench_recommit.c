@@ -80,7 +80,7 @@ static double length_of(bg_vec3 v)
  * object or a light. */
 static bool read_baseline(const bg_scene *scene, baseline *b)
 {
-    const bg_scene_state *s = bg_scene_committed(scene);
+    const bg_scene_state *s = bgi_scene_committed(scene);
     uint32_t first = 0;
     while (s && first < s->object_count && !s->objects[first].bounded)
         first++;
@@ -275,7 +275,7 @@ static bool run_case(bench_gpu *gpu, const case_spec *spec, int size, int rounds
                  plan_asked_name(spec->plan), size, size);
         bench_progress("%s: first frame", label);
         run->rounds = rounds;
-        run->objects = bg_scene_committed(scene)->object_count;
+        run->objects = bgi_scene_committed(scene)->object_count;
         bench_gpu_job job = {.renderer = renderer, .scene = scene, .settings = bg_render_settings_init()};
         job.settings.gpu_plan = spec->plan;
         ok = time_case(&job, &b, &image, label, run);

@@ -1,7 +1,7 @@
 #version 110
 // requires:
 // Exact unpolarised dielectric Fresnel reflectance (docs/shading.md 6.5), ported from
-// bg_cpu_fresnel() in src/betelgeuse/brdf.c. n1 is the index on the ray's side, n2 > 0 the other.
+// bgi_cpu_fresnel() in src/betelgeuse/cpu/brdf.c. n1 is the index on the ray's side, n2 > 0 the other.
 // cos_t receives the cosine of the refracted ray (0.0 on total internal reflection).
 
 float bg_fresnel(float cos_i, float n1, float n2, out float cos_t)

@@ -1,6 +1,6 @@
 #version 110
 // requires: bg_common.glsl
-// The shading tangent of docs/shading.md 3, ported from bg_cpu_hit_attributes() and
+// The shading tangent of docs/shading.md 3, ported from bgi_cpu_hit_attributes() and
 // fallback_tangent() in src/betelgeuse/intersect.c. t0 = to_world_linear * dP/du, n = the unit
 // world normal; the result is unit and perpendicular to n. It only orients the anisotropic azimuth.
 

@@ -23,6 +23,15 @@
 extern "C" {
 #endif
 
+/* Marks the public functions, as MACS_API does in macs.h: exactly these are exported. */
+#ifndef BG_API
+#if defined(__GNUC__) && __GNUC__ >= 4
+#define BG_API __attribute__((visibility("default")))
+#else
+#define BG_API
+#endif
+#endif
+
 /* ---- status ------------------------------------------------------------------------------- */
 
 /* Every status with its default message, one list. */
@@ -46,7 +55,7 @@ typedef enum bg_status {
 } bg_status;
 
 /* The default message of a status ("unknown status" for values outside the list). */
-const char *bg_status_string(bg_status status);
+BG_API const char *bg_status_string(bg_status status);
 
 /* ---- logging and allocation ---------------------------------------------------------------- */
 
@@ -77,17 +86,17 @@ typedef struct bg_vec3 { double x, y, z; } bg_vec3;
 typedef struct bg_mat4 { double m[4][4]; } bg_mat4;
 
 /* Shorthand for a bg_vec3 literal. */
-bg_vec3 bg_vec3_make(double x, double y, double z);
+BG_API bg_vec3 bg_vec3_make(double x, double y, double z);
 /* The identity transform. */
-bg_mat4 bg_mat4_identity(void);
+BG_API bg_mat4 bg_mat4_identity(void);
 /* A translation by (x, y, z). */
-bg_mat4 bg_mat4_translate(double x, double y, double z);
+BG_API bg_mat4 bg_mat4_translate(double x, double y, double z);
 /* A scale by (x, y, z) about the origin. */
-bg_mat4 bg_mat4_scale(double x, double y, double z);
+BG_API bg_mat4 bg_mat4_scale(double x, double y, double z);
 /* A right-handed rotation by angle_degrees about axis (normalised inside; a zero axis gives identity). */
-bg_mat4 bg_mat4_rotate(bg_vec3 axis, double angle_degrees);
+BG_API bg_mat4 bg_mat4_rotate(bg_vec3 axis, double angle_degrees);
 /* The product a * b: applying the result applies b first, then a. */
-bg_mat4 bg_mat4_mul(bg_mat4 a, bg_mat4 b);
+BG_API bg_mat4 bg_mat4_mul(bg_mat4 a, bg_mat4 b);
 
 /* ---- images -------------------------------------------------------------------------------- */
 
@@ -106,15 +115,15 @@ typedef struct bg_image {
 } bg_image;
 
 /* Reads only the size of a PNG file (its header), so the caller can allocate. */
-bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size);
+BG_API bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size);
 /* Reads a PNG of any colour type, depth and interlace into a caller-owned image of exactly its size,
  * keeping the file's encoding (gamma and colour chunks are not applied; grey and palettes become
  * RGB, no alpha means opaque). RGBA8 stores 8-bit samples as they are, 1-, 2- and 4-bit ones scaled
  * to 0..255, 16-bit ones as round(v / 257); RGBA32F stores every sample divided by 255 (65535 for
  * 16-bit files), still encoded. Missing or corrupt files give BG_ERR_IO naming the path and why. */
-bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t message_size);
+BG_API bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t message_size);
 /* Writes an image as an 8-bit RGBA PNG; RGBA32F images are clamped to [0, 1] and scaled by 255. */
-bg_status bg_png_save(const char *path, const bg_image *image, char *message, size_t message_size);
+BG_API bg_status bg_png_save(const char *path, const bg_image *image, char *message, size_t message_size);
 
 /* ---- scene --------------------------------------------------------------------------------- */
 
@@ -127,15 +136,15 @@ typedef struct bg_scene_desc {
 } bg_scene_desc;
 
 /* Creates an empty scene (no objects, no lights, a default camera); desc may be NULL. */
-bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene);
+BG_API bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene);
 /* Frees the scene and everything it owns; NULL is ignored. */
-void bg_scene_destroy(bg_scene *scene);
+BG_API void bg_scene_destroy(bg_scene *scene);
 /* The first error since the last clear (BG_OK if none). */
-bg_status bg_scene_error(const bg_scene *scene);
+BG_API bg_status bg_scene_error(const bg_scene *scene);
 /* The message of the first error, naming the field and object ("" if none). */
-const char *bg_scene_error_message(const bg_scene *scene);
+BG_API const char *bg_scene_error_message(const bg_scene *scene);
 /* Forgets the stored error. */
-void bg_scene_clear_error(bg_scene *scene);
+BG_API void bg_scene_clear_error(bg_scene *scene);
 
 /* Pinhole camera. Defaults (bg_camera_init): at (0, 0, 5) looking at the origin, up (0, 1, 0),
  * vertical field of view 45 degrees. The aspect ratio comes from the image size. */
@@ -147,9 +156,9 @@ typedef struct bg_camera {
 } bg_camera;
 
 /* The default camera described above. */
-bg_camera bg_camera_init(void);
+BG_API bg_camera bg_camera_init(void);
 /* Sets the camera; rejects non-finite values, look_at == position, up parallel to the view. */
-bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera);
+BG_API bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera);
 
 /* ---- textures ------------------------------------------------------------------------------ */
 
@@ -173,13 +182,13 @@ typedef struct bg_texture_desc {
 } bg_texture_desc;
 
 /* Copies a caller image into the scene as a texture (stored as linear float); desc may be NULL. */
-bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
-                               uint32_t *out_texture);
+BG_API bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
+                                      uint32_t *out_texture);
 /* Loads a PNG file as a texture: its samples as bg_png_load keeps them, decoded as desc says like an
  * RGBA8 image's, except that 16-bit files keep all 16 bits (v / 65535 is decoded); missing or
  * corrupt files give BG_ERR_IO naming the path and why. */
-bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_texture_desc *desc,
-                                    uint32_t *out_texture);
+BG_API bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_texture_desc *desc,
+                                           uint32_t *out_texture);
 
 /* ---- materials ----------------------------------------------------------------------------- */
 
@@ -222,11 +231,11 @@ typedef struct bg_material {
 } bg_material;
 
 /* The default material described above. */
-bg_material bg_material_init(void);
+BG_API bg_material bg_material_init(void);
 /* Adds a material; every field is validated and the message names the first bad one. */
-bg_status bg_scene_add_material(bg_scene *scene, const bg_material *material, uint32_t *out_material);
+BG_API bg_status bg_scene_add_material(bg_scene *scene, const bg_material *material, uint32_t *out_material);
 /* Replaces a material's values (cheap re-commit: no new geometry). */
-bg_status bg_scene_set_material(bg_scene *scene, uint32_t material, const bg_material *values);
+BG_API bg_status bg_scene_set_material(bg_scene *scene, uint32_t material, const bg_material *values);
 
 /* ---- objects ------------------------------------------------------------------------------- */
 
@@ -271,18 +280,18 @@ typedef struct bg_object_desc {
 } bg_object_desc;
 
 /* The default object of a shape, described above. */
-bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material);
+BG_API bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material);
 /* Adds an object; singular or non-finite transforms, unknown shapes or materials are rejected. */
-bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object);
+BG_API bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object);
 /* Shorthand: a sphere of the given centre and radius (> 0). */
-bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, uint32_t material,
-                              uint32_t *out_object);
+BG_API bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, uint32_t material,
+                                     uint32_t *out_object);
 /* Shorthand: the plane through point with the given normal (non-zero); its planar UV axes are
  * chosen from the normal as docs/shading.md says. */
-bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t material,
-                             uint32_t *out_object);
+BG_API bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t material,
+                                    uint32_t *out_object);
 /* Moves an object (cheap re-commit). */
-bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4 *transform);
+BG_API bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4 *transform);
 
 /* ---- lights -------------------------------------------------------------------------------- */
 
@@ -304,23 +313,23 @@ typedef struct bg_light {
 } bg_light;
 
 /* The default light described above. */
-bg_light bg_light_init(void);
+BG_API bg_light bg_light_init(void);
 /* Adds a light; every field is validated. */
-bg_status bg_scene_add_light(bg_scene *scene, const bg_light *light, uint32_t *out_light);
+BG_API bg_status bg_scene_add_light(bg_scene *scene, const bg_light *light, uint32_t *out_light);
 /* Replaces a light's values (cheap re-commit). */
-bg_status bg_scene_set_light(bg_scene *scene, uint32_t light, const bg_light *values);
+BG_API bg_status bg_scene_set_light(bg_scene *scene, uint32_t light, const bg_light *values);
 /* Sets the scene's ambient light colour (linear, >= 0; default (1, 1, 1)); each material's
  * ambient colour multiplies it. */
-bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
+BG_API bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
 
 /* ---- commit -------------------------------------------------------------------------------- */
 
 /* Validates the whole scene and makes it what the renderers see: computes bounds, inverse
  * transforms (in double) and what the renderers need. Cheap when only values changed (no
  * allocation). A stored error does not block it; if it fails, the previous commit stays. */
-bg_status bg_scene_commit(bg_scene *scene);
+BG_API bg_status bg_scene_commit(bg_scene *scene);
 /* Bumped by every successful commit; renderers use it to tell what changed. */
-uint64_t bg_scene_commit_count(const bg_scene *scene);
+BG_API uint64_t bg_scene_commit_count(const bg_scene *scene);
 
 /* ---- rendering ----------------------------------------------------------------------------- */
 
@@ -387,11 +396,11 @@ typedef struct bg_render_settings {
 } bg_render_settings;
 
 /* The default settings described above. */
-bg_render_settings bg_render_settings_init(void);
+BG_API bg_render_settings bg_render_settings_init(void);
 
 /* Renders the committed scene with the double-precision CPU reference renderer into a
  * caller-owned image (size 1 .. 16384 per side). The output does not depend on the thread count. */
-bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image);
+BG_API bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image);
 
 /* ---- GPU renderer -------------------------------------------------------------------------- */
 
@@ -415,22 +424,22 @@ typedef struct bg_renderer_desc {
 
 /* Creates a renderer, whose textures and passes are made at the first render and kept while the
  * scene's structure and the image size stay the same; on failure message (if not NULL) gets the reason. */
-bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer, char *message,
-                             size_t message_size);
+BG_API bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer, char *message,
+                                    size_t message_size);
 /* Frees the renderer and its GPU objects (the MACS context stays the caller's); NULL is ignored. */
-void bg_renderer_destroy(bg_renderer *renderer);
+BG_API void bg_renderer_destroy(bg_renderer *renderer);
 /* The first error since the last clear (BG_OK if none). */
-bg_status bg_renderer_error(const bg_renderer *renderer);
+BG_API bg_status bg_renderer_error(const bg_renderer *renderer);
 /* The message of the first error ("" if none); GL failures carry MACS's message. */
-const char *bg_renderer_error_message(const bg_renderer *renderer);
+BG_API const char *bg_renderer_error_message(const bg_renderer *renderer);
 /* Forgets the stored error. */
-void bg_renderer_clear_error(bg_renderer *renderer);
+BG_API void bg_renderer_clear_error(bg_renderer *renderer);
 
 /* Renders the committed scene on the GPU into a caller-owned image, with the same shading model
  * and output encoding as bg_render_cpu. A failure (image larger than the GL limits, GPU out of
  * memory) leaves the renderer usable for the next call. */
-bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
-                        bg_image *image);
+BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                               bg_image *image);
 
 /* Kinds of GPU pass, counted in bg_render_stats. */
 typedef enum bg_pass_kind {
@@ -493,7 +502,7 @@ typedef struct bg_render_stats {
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */
-void bg_renderer_get_stats(const bg_renderer *renderer, bg_render_stats *stats);
+BG_API void bg_renderer_get_stats(const bg_renderer *renderer, bg_render_stats *stats);
 
 #ifdef __cplusplus
 }

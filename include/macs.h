@@ -13,6 +13,16 @@
 extern "C" {
 #endif
 
+/* Marks the public functions: the shared library is built with hidden visibility and exports exactly
+ * these. A caller may define MACS_API before including this header (e.g. for a Windows DLL import). */
+#ifndef MACS_API
+#if defined(__GNUC__) && __GNUC__ >= 4
+#define MACS_API __attribute__((visibility("default")))
+#else
+#define MACS_API
+#endif
+#endif
+
 /* ---------------------------------------------------------------------------------------------- */
 /* Status codes                                                                                    */
 
@@ -40,7 +50,7 @@ typedef enum macs_status {
 } macs_status;
 
 /* Returns the fixed English message of a status ("unknown status" for values outside the list). */
-const char *macs_status_string(macs_status status);
+MACS_API const char *macs_status_string(macs_status status);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Logging, allocation, GL loading                                                                 */
@@ -129,26 +139,26 @@ typedef struct macs_headless_info {
 typedef struct macs_headless macs_headless;
 
 /* Creates a headless context and makes it current; on failure message (if not NULL) gets the reason. */
-macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless **out, char *message,
-                                 size_t message_size);
+MACS_API macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless **out, char *message,
+                                          size_t message_size);
 
 /* Releases and destroys a headless context (NULL is ignored). */
-void macs_headless_destroy(macs_headless *headless);
+MACS_API void macs_headless_destroy(macs_headless *headless);
 
 /* Makes the headless context current on the calling thread again. */
-macs_status macs_headless_make_current(macs_headless *headless);
+MACS_API macs_status macs_headless_make_current(macs_headless *headless);
 
 /* Returns the backend that was actually created. */
-macs_headless_backend macs_headless_backend_used(const macs_headless *headless);
+MACS_API macs_headless_backend macs_headless_backend_used(const macs_headless *headless);
 
 /* Copies what the headless context runs on: backend, EGL device and GL renderer (NULL: DEFAULT, -1, ""). */
-void macs_headless_get_info(const macs_headless *headless, macs_headless_info *info);
+MACS_API void macs_headless_get_info(const macs_headless *headless, macs_headless_info *info);
 
 /* Returns the get_proc_address matching this backend (OSMesaGetProcAddress or eglGetProcAddress). */
-macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *headless);
+MACS_API macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *headless);
 
 /* Returns the user pointer to pass along with macs_headless_get_proc_address(). */
-void *macs_headless_proc_user(const macs_headless *headless);
+MACS_API void *macs_headless_proc_user(const macs_headless *headless);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Context                                                                                         */
@@ -198,41 +208,41 @@ typedef struct macs_gl_info {
 typedef struct macs_context macs_context;
 
 /* Creates a context over the current GL context; on failure message (if not NULL) gets the reason. */
-macs_status macs_context_create(const macs_context_desc *desc, macs_context **out, char *message,
-                                size_t message_size);
+MACS_API macs_status macs_context_create(const macs_context_desc *desc, macs_context **out, char *message,
+                                         size_t message_size);
 
 /* Destroys a context and every texture, depth/stencil object and pass still alive in it (NULL ok). */
-void macs_context_destroy(macs_context *ctx);
+MACS_API void macs_context_destroy(macs_context *ctx);
 
 /* Returns the first error recorded since creation or the last clear (MACS_OK if none). */
-macs_status macs_context_error(const macs_context *ctx);
+MACS_API macs_status macs_context_error(const macs_context *ctx);
 
 /* Returns the message of the first recorded error ("" if none); it holds shader info logs. */
-const char *macs_context_error_message(const macs_context *ctx);
+MACS_API const char *macs_context_error_message(const macs_context *ctx);
 
 /* Forgets the recorded error so that the next one is kept. */
-void macs_context_clear_error(macs_context *ctx);
+MACS_API void macs_context_clear_error(macs_context *ctx);
 
 /* Copies the limits GL reports (real) and the ones passes obey after caps (effective); either may be NULL. */
-void macs_context_get_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
+MACS_API void macs_context_get_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
 
 /* The effective max_uniform_components (after caps), for callers that size generated shaders by it
  * (0 for a NULL context). */
-int macs_context_max_uniform_components(const macs_context *ctx);
+MACS_API int macs_context_max_uniform_components(const macs_context *ctx);
 
 /* How many programs the context has compiled and linked so far: passes whose source its program
  * cache already held count nothing (0 for a NULL context). The difference over a frame tells what
  * the frame compiled. */
-uint64_t macs_context_programs_compiled(const macs_context *ctx);
+MACS_API uint64_t macs_context_programs_compiled(const macs_context *ctx);
 
 /* Copies the GL strings read at creation. */
-void macs_context_get_gl_info(const macs_context *ctx, macs_gl_info *info);
+MACS_API void macs_context_get_gl_info(const macs_context *ctx, macs_gl_info *info);
 
 /* Copies which optional extensions were found. */
-void macs_context_get_features(const macs_context *ctx, macs_features *features);
+MACS_API void macs_context_get_features(const macs_context *ctx, macs_features *features);
 
 /* Waits until GL has finished every command issued so far (glFinish): for timing, not correctness. */
-void macs_context_finish(macs_context *ctx);
+MACS_API void macs_context_finish(macs_context *ctx);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Textures                                                                                        */
@@ -269,25 +279,25 @@ typedef struct macs_texture_desc {
 typedef struct macs_texture macs_texture;
 
 /* Creates a texture, optionally with initial contents. */
-macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc, macs_texture **out);
+MACS_API macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc, macs_texture **out);
 
 /* Destroys a texture; passes that used it lose that input or output until another is set (NULL ok). */
-void macs_texture_destroy(macs_texture *texture);
+MACS_API void macs_texture_destroy(macs_texture *texture);
 
 /* Replaces the whole contents from caller memory (float for float formats, uint8_t for RGBA8). */
-macs_status macs_texture_upload(macs_texture *texture, const void *data, size_t stride);
+MACS_API macs_status macs_texture_upload(macs_texture *texture, const void *data, size_t stride);
 
 /* Reads the whole contents back into caller memory; RGBA32F returns exactly the bits written. */
-macs_status macs_texture_read(macs_texture *texture, void *data, size_t stride);
+MACS_API macs_status macs_texture_read(macs_texture *texture, void *data, size_t stride);
 
 /* Sets every texel to one value (for RGBA8 the value is scaled from 0..1). */
-macs_status macs_texture_clear(macs_texture *texture, const float rgba[4]);
+MACS_API macs_status macs_texture_clear(macs_texture *texture, const float rgba[4]);
 
 /* Reports the size of a texture (either pointer may be NULL). */
-void macs_texture_size(const macs_texture *texture, int *width, int *height);
+MACS_API void macs_texture_size(const macs_texture *texture, int *width, int *height);
 
 /* Reports the format of a texture. */
-macs_format macs_texture_format(const macs_texture *texture);
+MACS_API macs_format macs_texture_format(const macs_texture *texture);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Depth/stencil buffers                                                                           */
@@ -315,18 +325,18 @@ typedef struct macs_depth_stencil_desc {
 typedef struct macs_depth_stencil macs_depth_stencil;
 
 /* Creates a depth/stencil object. */
-macs_status macs_depth_stencil_create(macs_context *ctx, const macs_depth_stencil_desc *desc,
-                                      macs_depth_stencil **out);
+MACS_API macs_status macs_depth_stencil_create(macs_context *ctx, const macs_depth_stencil_desc *desc,
+                                               macs_depth_stencil **out);
 
 /* Destroys a depth/stencil object; passes using it refuse to run until given another (NULL ok). */
-void macs_depth_stencil_destroy(macs_depth_stencil *ds);
+MACS_API void macs_depth_stencil_destroy(macs_depth_stencil *ds);
 
 /* Reports the depth format actually allocated. */
-macs_depth_format macs_depth_stencil_format(const macs_depth_stencil *ds);
+MACS_API macs_depth_format macs_depth_stencil_format(const macs_depth_stencil *ds);
 
 /* Sets depth to depth (clamped to 0..1) and the stencil bits in write_mask to stencil; the reserved
  * bits are always cleared to 0, whatever the mask. */
-macs_status macs_depth_stencil_clear(macs_depth_stencil *ds, float depth, unsigned stencil, unsigned write_mask);
+MACS_API macs_status macs_depth_stencil_clear(macs_depth_stencil *ds, float depth, unsigned stencil, unsigned write_mask);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Passes                                                                                          */
@@ -454,26 +464,26 @@ typedef struct macs_pass_desc {
 typedef struct macs_pass macs_pass;
 
 /* Compiles (or reuses from the context's cache) the programs of a pass and builds its framebuffers. */
-macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs_pass **out);
+MACS_API macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs_pass **out);
 
 /* Destroys a pass (NULL ok). */
-void macs_pass_destroy(macs_pass *pass);
+MACS_API void macs_pass_destroy(macs_pass *pass);
 
 /* Binds a texture (or NULL) to input index; it must not be one of the pass's outputs. */
-macs_status macs_pass_set_input(macs_pass *pass, int index, macs_texture *texture);
+MACS_API macs_status macs_pass_set_input(macs_pass *pass, int index, macs_texture *texture);
 
 /* Binds a texture to output index; it must have the size of the pass's outputs. */
-macs_status macs_pass_set_output(macs_pass *pass, int index, macs_texture *texture);
+MACS_API macs_status macs_pass_set_output(macs_pass *pass, int index, macs_texture *texture);
 
 /* Binds another depth/stencil object (or NULL if no test is enabled); it must have the output size. */
-macs_status macs_pass_set_depth_stencil(macs_pass *pass, macs_depth_stencil *ds);
+MACS_API macs_status macs_pass_set_depth_stencil(macs_pass *pass, macs_depth_stencil *ds);
 
 /* Stores a uniform value, applied at every run: float data for float/vec/mat types (column-major
  * matrices), int data for int and bool; arrays take count elements. */
-macs_status macs_pass_set_uniform(macs_pass *pass, const char *name, const void *value);
+MACS_API macs_status macs_pass_set_uniform(macs_pass *pass, const char *name, const void *value);
 
 /* Returns how many program/framebuffer chunks the pass runs as (1 when it fits the limits). */
-int macs_pass_chunk_count(const macs_pass *pass);
+MACS_API int macs_pass_chunk_count(const macs_pass *pass);
 
 /* Defaults: scissor off (whole output); occlusion_query off. */
 typedef struct macs_run_desc {
@@ -483,10 +493,10 @@ typedef struct macs_run_desc {
 } macs_run_desc;
 
 /* Runs the pass once over its outputs (run may be NULL for defaults). */
-macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run);
+MACS_API macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run);
 
 /* Waits for and returns the sample count of the last run with occlusion_query set. */
-macs_status macs_pass_occlusion_result(macs_pass *pass, uint64_t *samples);
+MACS_API macs_status macs_pass_occlusion_result(macs_pass *pass, uint64_t *samples);
 
 #ifdef __cplusplus
 }

@@ -127,7 +127,7 @@ static void check_tree(const bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t n)
 static bg_bvh build_ok(const bg_bvh_box *boxes, uint32_t n)
 {
     bg_bvh bvh;
-    assert_int_equal(bg_bvh_build(NULL, boxes, n, &bvh), BG_OK);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, n, &bvh), BG_OK);
     check_tree(&bvh, boxes, n);
     return bvh;
 }
@@ -156,7 +156,7 @@ typedef struct test_scene {
 
 static void collect_boxes(test_scene *ts)
 {
-    ts->state = bg_scene_committed(ts->scene);
+    ts->state = bgi_scene_committed(ts->scene);
     assert_non_null(ts->state);
     assert_int_equal(ts->state->object_count, ts->n);
     uint32_t k = 0;
@@ -267,7 +267,7 @@ static void brute_nearest(const test_scene *ts, const double o[3], const double 
     out->t = DBL_MAX;
     for (uint32_t j = 0; j < ts->n; j++) {
         bg_cpu_candidate c;
-        if (bg_cpu_intersect_object(&ts->state->objects[j], o, d, false, out->t, &c) &&
+        if (bgi_cpu_intersect_object(&ts->state->objects[j], o, d, false, out->t, &c) &&
             (out->object == BG_CPU_NONE || c.t < out->t)) {
             out->object = j;
             out->t = c.t;
@@ -281,7 +281,7 @@ static bool visit_nearest(void *user, uint32_t prim, double *t_max)
     nearest *n = user;
     uint32_t j = n->ts->object_of[prim];
     bg_cpu_candidate c;
-    if (bg_cpu_intersect_object(&n->ts->state->objects[j], n->o, n->d, false, *t_max, &c) &&
+    if (bgi_cpu_intersect_object(&n->ts->state->objects[j], n->o, n->d, false, *t_max, &c) &&
         (n->object == BG_CPU_NONE || c.t < n->t || (c.t == n->t && j < n->object))) {
         n->object = j;
         n->t = c.t;
@@ -300,7 +300,7 @@ static bg_bvh_walk bvh_nearest(const bg_bvh *bvh, const test_scene *ts, const do
     out->t = DBL_MAX;
     double t_max = DBL_MAX;
     bg_bvh_walk walk;
-    assert_int_equal(bg_bvh_traverse(bvh, o, d, 0.0, &t_max, visit_nearest, out, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(bvh, o, d, 0.0, &t_max, visit_nearest, out, &walk), BG_OK);
     assert_false(walk.stopped);
     assert_true(walk.nodes_visited <= bvh->node_count);
     return walk;
@@ -324,7 +324,7 @@ static bool visit_blocked(void *user, uint32_t prim, double *t_max)
 {
     any_hit *s = user;
     uint32_t j = s->ts->object_of[prim];
-    if (j == s->skip || !bg_cpu_segment_blocked(&s->ts->state->objects[j], s->p, s->l, *t_max))
+    if (j == s->skip || !bgi_cpu_segment_blocked(&s->ts->state->objects[j], s->p, s->l, *t_max))
         return true;
     s->blocked = true;
     return false;
@@ -333,7 +333,7 @@ static bool visit_blocked(void *user, uint32_t prim, double *t_max)
 static bool brute_blocked(const test_scene *ts, const double p[3], const double l[3], uint32_t skip)
 {
     for (uint32_t j = 0; j < ts->n; j++)
-        if (j != skip && bg_cpu_segment_blocked(&ts->state->objects[j], p, l, 1.0))
+        if (j != skip && bgi_cpu_segment_blocked(&ts->state->objects[j], p, l, 1.0))
             return true;
     return false;
 }
@@ -368,7 +368,7 @@ static void test_nearest_hit_matches_brute_force(void **state)
             /* A tie: another object at exactly the winner's distance. */
             for (uint32_t j = 0; want.object != BG_CPU_NONE && j < n; j++) {
                 bg_cpu_candidate c;
-                if (j != want.object && bg_cpu_intersect_object(&ts.state->objects[j], o, d, false, want.t, &c) &&
+                if (j != want.object && bgi_cpu_intersect_object(&ts.state->objects[j], o, d, false, want.t, &c) &&
                     c.t == want.t) {
                     ties++;
                     break;
@@ -382,7 +382,7 @@ static void test_nearest_hit_matches_brute_force(void **state)
         /* A tree that visits nearly everything would pass the equality above and be useless. */
         if (n >= 1000)
             assert_true((double)visited / rays_for(n) < 0.05 * bvh.node_count);
-        bg_bvh_destroy(&bvh);
+        bgi_bvh_destroy(&bvh);
         free_scene(&ts);
     }
 }
@@ -413,7 +413,7 @@ static void test_any_hit_matches_brute_force(void **state)
             any_hit hit = {&ts, p, l, skip, false};
             double t_max = 1.0;
             bg_bvh_walk walk;
-            assert_int_equal(bg_bvh_traverse(&bvh, p, l, 0.0, &t_max, visit_blocked, &hit, &walk), BG_OK);
+            assert_int_equal(bgi_bvh_traverse(&bvh, p, l, 0.0, &t_max, visit_blocked, &hit, &walk), BG_OK);
             bool want = brute_blocked(&ts, p, l, skip);
             if (hit.blocked != want)
                 fail_msg("segment %u: tree says %s, brute force %s", k, hit.blocked ? "blocked" : "open",
@@ -428,7 +428,7 @@ static void test_any_hit_matches_brute_force(void **state)
             assert_true(blocked < rays_for(n));
         }
         assert_int_equal(stopped, blocked);
-        bg_bvh_destroy(&bvh);
+        bgi_bvh_destroy(&bvh);
         free_scene(&ts);
     }
 }
@@ -444,8 +444,8 @@ static void test_build_is_deterministic(void **state)
     assert_int_equal(a.node_count, b.node_count);
     assert_int_equal(a.depth, b.depth);
     assert_memory_equal(a.nodes, b.nodes, (size_t)a.node_count * BG_BVH_NODE_FLOATS * sizeof(float));
-    bg_bvh_destroy(&a);
-    bg_bvh_destroy(&b);
+    bgi_bvh_destroy(&a);
+    bgi_bvh_destroy(&b);
     free(copy);
     free_scene(&ts);
 }
@@ -456,23 +456,23 @@ static void test_refit_matches_rebuild(void **state)
     test_scene ts = random_scene(1000, 4000);
     bg_bvh refit = build_ok(ts.boxes, ts.n);
     bg_bvh_stats before, after, rebuilt_stats;
-    bg_bvh_get_stats(&refit, &before);
+    bgi_bvh_get_stats(&refit, &before);
 
     /* Refitting to the build's own boxes gives back the built floats bit for bit. */
     size_t bytes = (size_t)refit.node_count * BG_BVH_NODE_FLOATS * sizeof(float);
     float *built = malloc(bytes);
     assert_non_null(built);
     memcpy(built, refit.nodes, bytes);
-    assert_int_equal(bg_bvh_refit(&refit, ts.boxes, ts.n), BG_OK);
+    assert_int_equal(bgi_bvh_refit(&refit, ts.boxes, ts.n), BG_OK);
     assert_memory_equal(refit.nodes, built, bytes);
 
     move_objects(&ts, 4001);
-    assert_int_equal(bg_bvh_refit(&refit, ts.boxes, ts.n), BG_OK);
+    assert_int_equal(bgi_bvh_refit(&refit, ts.boxes, ts.n), BG_OK);
     check_tree(&refit, ts.boxes, ts.n);
     assert_int_equal(refit.depth, before.depth); /* same topology */
     bg_bvh rebuilt = build_ok(ts.boxes, ts.n);
-    bg_bvh_get_stats(&refit, &after);
-    bg_bvh_get_stats(&rebuilt, &rebuilt_stats);
+    bgi_bvh_get_stats(&refit, &after);
+    bgi_bvh_get_stats(&rebuilt, &rebuilt_stats);
     /* Scattering every object makes the old topology much worse than a fresh tree. */
     assert_true(after.sah_cost > rebuilt_stats.sah_cost);
 
@@ -488,8 +488,8 @@ static void test_refit_matches_rebuild(void **state)
         same_nearest(&b, &want, k);
     }
     free(built);
-    bg_bvh_destroy(&refit);
-    bg_bvh_destroy(&rebuilt);
+    bgi_bvh_destroy(&refit);
+    bgi_bvh_destroy(&rebuilt);
     free_scene(&ts);
 }
 
@@ -553,7 +553,7 @@ static void boxes_agree(const bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t n, 
             want.t = t;
         }
     double t_max = DBL_MAX;
-    assert_int_equal(bg_bvh_traverse(bvh, o, d, 0.0, &t_max, visit_box, &got, NULL), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(bvh, o, d, 0.0, &t_max, visit_box, &got, NULL), BG_OK);
     if (got.prim != want.prim || got.t != want.t)
         fail_msg("tree gives box %u at %.17g, brute force box %u at %.17g", got.prim, got.t, want.prim, want.t);
 }
@@ -578,10 +578,10 @@ static void test_single_primitive(void **state)
     box_nearest got = {&box, o, away, BG_CPU_NONE, 0, 0.0};
     double t_max = DBL_MAX;
     bg_bvh_walk walk;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, away, 0.0, &t_max, visit_box, &got, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, away, 0.0, &t_max, visit_box, &got, &walk), BG_OK);
     assert_int_equal(walk.nodes_visited, 1);
     assert_int_equal(walk.prims_visited, 0);
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
     assert_null(bvh.nodes);
     assert_int_equal(bvh.node_count, 0);
 }
@@ -599,13 +599,13 @@ static void test_equal_centroids(void **state)
     box_nearest got = {boxes, o, d, BG_CPU_NONE, 0, 0.0};
     double t_max = DBL_MAX;
     bg_bvh_walk walk;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, visit_box, &got, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, visit_box, &got, &walk), BG_OK);
     assert_int_equal(got.prim, 0);
     assert_true(got.t == 13.0);
     /* Inclusive entry: every copy at the same distance is still offered to the callee. */
     assert_int_equal(got.visits, 100);
     assert_int_equal(walk.nodes_visited, bvh.node_count);
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* Point boxes on a grid, hit by axis-aligned rays through them exactly (two zero components). */
@@ -622,11 +622,11 @@ static void test_zero_size_boxes(void **state)
         const double o[3] = {boxes[i].min[0], boxes[i].min[1], -1.0}, d[3] = {0, 0, 1};
         box_nearest got = {boxes, o, d, BG_CPU_NONE, 0, 0.0};
         double t_max = DBL_MAX;
-        assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, visit_box, &got, NULL), BG_OK);
+        assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, visit_box, &got, NULL), BG_OK);
         assert_int_equal(got.prim, i % 16); /* the nearest of the column: z = 0 */
         boxes_agree(&bvh, boxes, 64, o, d);
     }
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* Coordinates near 1e30, tiny boxes among huge ones, and boxes at powers of two (the most lopsided
@@ -669,7 +669,7 @@ static void test_extreme_coordinates(void **state)
             d[(k + 1) % 3] = 1e-300; /* a tiny component: saturated slab distances */
         boxes_agree(&bvh, boxes, N, o, d);
     }
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* Outward rounding exactly: the nearest float outside when the double is not a float, the float
@@ -702,7 +702,7 @@ static void test_outward_rounding(void **state)
     assert_non_null(leaf0);
     assert_true(leaf0[BG_BVH_NODE_MIN + 0] < 0.1f && leaf0[BG_BVH_NODE_MAX + 0] == 0.1f); /* (float)0.1 > 0.1 */
     assert_true(leaf0[BG_BVH_NODE_MIN + 2] == 0.5f && leaf0[BG_BVH_NODE_MAX + 2] == 0.75f); /* exact */
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* ---- bad input, empty trees, corrupt arrays ---- */
@@ -722,29 +722,29 @@ static void test_bad_boxes(void **state)
     bg_bvh bvh;
     uint32_t bad = 99;
     boxes[2].min[1] = NAN;
-    assert_int_equal(bg_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
     assert_empty(&bvh);
-    assert_int_equal(bg_bvh_check_boxes(boxes, 4, &bad), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_check_boxes(boxes, 4, &bad), BG_ERR_INVALID_ARGUMENT);
     assert_int_equal(bad, 2);
     boxes[2].min[1] = 0.0;
     boxes[1].max[2] = INFINITY;
-    assert_int_equal(bg_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
     boxes[1].max[2] = 1.0;
     boxes[3].min[0] = 2.0; /* min > max */
-    assert_int_equal(bg_bvh_check_boxes(boxes, 4, &bad), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_check_boxes(boxes, 4, &bad), BG_ERR_INVALID_ARGUMENT);
     assert_int_equal(bad, 3);
-    assert_int_equal(bg_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
     assert_empty(&bvh);
     boxes[3].min[0] = 0.0;
     boxes[0].max[0] = 1e39; /* no float box holds it */
-    assert_int_equal(bg_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_LIMIT);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, 4, &bvh), BG_ERR_LIMIT);
     assert_empty(&bvh);
     boxes[0].max[0] = 1.0;
-    assert_int_equal(bg_bvh_build(NULL, NULL, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_build(NULL, NULL, 4, &bvh), BG_ERR_INVALID_ARGUMENT);
     /* Too many primitives: refused before any box is read. */
-    assert_int_equal(bg_bvh_build(NULL, boxes, BG_BVH_MAX_PRIMS + 1, &bvh), BG_ERR_LIMIT);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, BG_BVH_MAX_PRIMS + 1, &bvh), BG_ERR_LIMIT);
     assert_empty(&bvh);
-    assert_int_equal(bg_bvh_build(NULL, boxes, 4, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_build(NULL, boxes, 4, NULL), BG_ERR_INVALID_ARGUMENT);
 }
 
 static bool count_visit(void *user, uint32_t prim, double *t_max)
@@ -759,29 +759,29 @@ static void test_empty_tree(void **state)
 {
     (void)state;
     bg_bvh bvh;
-    assert_int_equal(bg_bvh_build(NULL, NULL, 0, &bvh), BG_OK);
+    assert_int_equal(bgi_bvh_build(NULL, NULL, 0, &bvh), BG_OK);
     check_tree(&bvh, NULL, 0);
     assert_empty(&bvh);
     const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
     double t_max = DBL_MAX;
     uint32_t calls = 0;
     bg_bvh_walk walk;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_OK);
     assert_int_equal(calls, 0);
     assert_int_equal(walk.nodes_visited, 0);
     assert_true(t_max == DBL_MAX);
-    assert_int_equal(bg_bvh_refit(&bvh, NULL, 0), BG_OK);
+    assert_int_equal(bgi_bvh_refit(&bvh, NULL, 0), BG_OK);
     bg_bvh_stats stats;
-    bg_bvh_get_stats(&bvh, &stats);
+    bgi_bvh_get_stats(&bvh, &stats);
     assert_int_equal(stats.node_count, 0);
     assert_int_equal(stats.depth, 0);
-    bg_bvh_destroy(&bvh);
-    bg_bvh_destroy(NULL);
+    bgi_bvh_destroy(&bvh);
+    bgi_bvh_destroy(NULL);
     /* A zeroed struct is the same empty tree. */
     bg_bvh zero;
     memset(&zero, 0, sizeof zero);
-    assert_int_equal(bg_bvh_traverse(&zero, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_OK);
-    bg_bvh_destroy(&zero);
+    assert_int_equal(bgi_bvh_traverse(&zero, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_OK);
+    bgi_bvh_destroy(&zero);
 }
 
 /* Eight unit-high boxes along x, half a unit long and half a unit apart: the ray (-1, 0.5, 0.5) +
@@ -801,20 +801,20 @@ static void test_bad_rays_and_refits(void **state)
     const double o[3] = {-1, 0.5, 0.5}, d[3] = {1, 0, 0}, nan_o[3] = {NAN, 0, 0}, inf_d[3] = {INFINITY, 0, 0};
     double t_max = DBL_MAX;
     uint32_t calls = 0;
-    assert_int_equal(bg_bvh_traverse(&bvh, nan_o, d, 0.0, &t_max, count_visit, &calls, NULL),
+    assert_int_equal(bgi_bvh_traverse(&bvh, nan_o, d, 0.0, &t_max, count_visit, &calls, NULL),
                      BG_ERR_INVALID_ARGUMENT);
-    assert_int_equal(bg_bvh_traverse(&bvh, o, inf_d, 0.0, &t_max, count_visit, &calls, NULL),
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, inf_d, 0.0, &t_max, count_visit, &calls, NULL),
                      BG_ERR_INVALID_ARGUMENT);
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, NAN, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, NULL, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, NAN, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, NULL, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
     assert_int_equal(calls, 0);
     /* A t range that ends before the first box: no visit. */
     t_max = 0.5;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_OK);
     assert_int_equal(calls, 0);
     /* Inclusive at t_max: the first box starts exactly at t = 1. */
     t_max = 1.0;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_OK);
     assert_int_equal(calls, 1);
 
     /* A refit that fails leaves the tree as it was. */
@@ -827,11 +827,11 @@ static void test_bad_rays_and_refits(void **state)
     for (int i = 0; i < 8; i++)
         moved[i].max[1] = 2.0;
     moved[7].min[2] = NAN;
-    assert_int_equal(bg_bvh_refit(&bvh, moved, 8), BG_ERR_INVALID_ARGUMENT);
-    assert_int_equal(bg_bvh_refit(&bvh, boxes, 7), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_refit(&bvh, moved, 8), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_refit(&bvh, boxes, 7), BG_ERR_INVALID_ARGUMENT);
     assert_memory_equal(bvh.nodes, before, bytes);
     free(before);
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* A corrupt array cannot make the walk loop forever or read outside it: each is an error. */
@@ -849,27 +849,27 @@ static void test_corrupt_nodes(void **state)
     bg_bvh_walk walk;
 
     *miss = 0.0f; /* back to the root: a cycle for the threaded walk, which deep trees take */
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_ERR_INVALID_ARGUMENT);
     uint32_t depth = bvh.depth;
     bvh.depth = 200;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_ERR_LIMIT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_ERR_LIMIT);
     assert_int_equal(walk.nodes_visited, 2 * bvh.node_count);
     bvh.depth = depth;
     *miss = (float)(bvh.node_count + 1);
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
     *miss = NAN;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
     *miss = keep_miss;
     *prim = 8.0f;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
     *prim = 2.5f;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, NULL), BG_ERR_INVALID_ARGUMENT);
     *prim = keep_prim;
     calls = 0;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, count_visit, &calls, &walk), BG_OK);
     assert_int_equal(calls, 8);
     assert_int_equal(walk.nodes_visited, bvh.node_count);
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* An any-hit callee ends the walk at once. */
@@ -890,17 +890,17 @@ static void test_stop_early(void **state)
     double t_max = DBL_MAX;
     uint32_t first = 99;
     bg_bvh_walk walk;
-    assert_int_equal(bg_bvh_traverse(&bvh, o, d, 0.0, &t_max, stop_at_first, &first, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, d, 0.0, &t_max, stop_at_first, &first, &walk), BG_OK);
     assert_true(walk.stopped);
     assert_int_equal(walk.prims_visited, 1);
     assert_true(first < 8);
     assert_true(walk.nodes_visited < bvh.node_count);
     /* A ray that misses the root box ends after that one box. */
     const double up[3] = {0, 1, 0};
-    assert_int_equal(bg_bvh_traverse(&bvh, o, up, 0.0, &t_max, stop_at_first, &first, &walk), BG_OK);
+    assert_int_equal(bgi_bvh_traverse(&bvh, o, up, 0.0, &t_max, stop_at_first, &first, &walk), BG_OK);
     assert_int_equal(walk.nodes_visited, 1);
     assert_int_equal(walk.prims_visited, 0);
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* The copy for a viewpoint: the same tree shifted (a valid tree over the shifted double boxes),
@@ -933,7 +933,7 @@ static void test_view_nodes(void **state)
                 shifted[i].min[a] = ts.boxes[i].min[a] - eye[a];
                 shifted[i].max[a] = ts.boxes[i].max[a] - eye[a];
             }
-        assert_int_equal(bg_bvh_view_nodes(&bvh, eye, NULL, out), BG_OK);
+        assert_int_equal(bgi_bvh_view_nodes(&bvh, eye, NULL, out), BG_OK);
         bg_bvh view = bvh;
         view.nodes = out;
         check_tree(&view, shifted, n);
@@ -953,7 +953,7 @@ static void test_view_nodes(void **state)
             ids[p] = 7 * p + 3;
         float *renamed = malloc((size_t)bvh.node_count * BG_BVH_NODE_FLOATS * sizeof(float));
         assert_non_null(renamed);
-        assert_int_equal(bg_bvh_view_nodes(&bvh, eye, ids, renamed), BG_OK);
+        assert_int_equal(bgi_bvh_view_nodes(&bvh, eye, ids, renamed), BG_OK);
         for (uint32_t i = 0; i < view.node_count; i++) {
             float p = out[(size_t)i * BG_BVH_NODE_FLOATS + BG_BVH_NODE_PRIM];
             float q = renamed[(size_t)i * BG_BVH_NODE_FLOATS + BG_BVH_NODE_PRIM];
@@ -966,7 +966,7 @@ static void test_view_nodes(void **state)
         free(renamed);
         free(out);
         free(shifted);
-        bg_bvh_destroy(&bvh);
+        bgi_bvh_destroy(&bvh);
         free_scene(&ts);
     }
 }
@@ -982,7 +982,7 @@ static void test_stats(void **state)
     }
     bg_bvh bvh = build_ok(boxes, 1000);
     bg_bvh_stats stats;
-    bg_bvh_get_stats(&bvh, &stats);
+    bgi_bvh_get_stats(&bvh, &stats);
     assert_int_equal(stats.node_count, 1999);
     assert_int_equal(stats.prim_count, 1000);
     assert_int_equal(stats.depth, bvh.depth);
@@ -990,7 +990,7 @@ static void test_stats(void **state)
     assert_true(stats.depth >= 11 && stats.depth <= 40);
     /* The root counts 1, so more than 1; far below the node count for a useful tree. */
     assert_true(stats.sah_cost > 1.0 && stats.sah_cost < 0.1 * stats.node_count);
-    bg_bvh_destroy(&bvh);
+    bgi_bvh_destroy(&bvh);
 }
 
 /* ---- allocation ---- */
@@ -1027,12 +1027,12 @@ static void test_out_of_memory(void **state)
         counting c = {0, 0, fail_at};
         bg_allocator a = {c_alloc, NULL, c_free, &c};
         bg_bvh bvh;
-        bg_status st = bg_bvh_build(&a, boxes, 50, &bvh);
+        bg_status st = bgi_bvh_build(&a, boxes, 50, &bvh);
         if (st == BG_OK) {
             assert_true(c.calls <= fail_at); /* no allocation failed */
             check_tree(&bvh, boxes, 50);
             assert_int_equal(c.live, 1); /* only the node array stays */
-            bg_bvh_destroy(&bvh);
+            bgi_bvh_destroy(&bvh);
             assert_int_equal(c.live, 0);
             break;
         }
@@ -1048,13 +1048,13 @@ static void test_out_of_memory(void **state)
     counting c = {0, 0, -1};
     bg_allocator half = {c_alloc, NULL, NULL, &c};
     bg_bvh bvh;
-    assert_int_equal(bg_bvh_build(&half, boxes, 50, &bvh), BG_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bgi_bvh_build(&half, boxes, 50, &bvh), BG_ERR_INVALID_ARGUMENT);
     assert_int_equal(c.calls, 0);
     assert_empty(&bvh);
 }
 
 /* The scene's own tree (built at commit) drives the CPU reference's nearest hit: with planes and
- * an object beyond the float range in the always-tested list, bg_cpu_nearest_hit must give the
+ * an object beyond the float range in the always-tested list, bgi_cpu_nearest_hit must give the
  * object and t of a loop over every object, skip rule included. */
 static void test_scene_tree_drives_cpu_nearest_hit(void **state)
 {
@@ -1065,7 +1065,7 @@ static void test_scene_tree_drives_cpu_nearest_hit(void **state)
                      BG_OK);
     assert_int_equal(bg_scene_add_sphere(ts.scene, bg_vec3_make(1e39, 0, 0), 1.0, mat, &far), BG_OK);
     assert_int_equal(bg_scene_commit(ts.scene), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(ts.scene);
+    const bg_scene_state *st = bgi_scene_committed(ts.scene);
     assert_int_equal(st->tree_count, 600);
     assert_int_equal(st->always_count, 2);
     assert_int_equal(st->always_objects[0], plane - 1);
@@ -1081,14 +1081,14 @@ static void test_scene_tree_drives_cpu_nearest_hit(void **state)
         double want_t = DBL_MAX;
         for (uint32_t j = 0; j < st->object_count; j++) {
             bg_cpu_candidate c;
-            if (j != skip && bg_cpu_intersect_object(&st->objects[j], o, d, false, want_t, &c) &&
+            if (j != skip && bgi_cpu_intersect_object(&st->objects[j], o, d, false, want_t, &c) &&
                 (want == BG_CPU_NONE || c.t < want_t)) {
                 want = j;
                 want_t = c.t;
             }
         }
         bg_cpu_hit hit;
-        bool got = bg_cpu_nearest_hit(st, o, d, skip, BG_CPU_NONE, &hit);
+        bool got = bgi_cpu_nearest_hit(st, o, d, skip, BG_CPU_NONE, &hit);
         assert_int_equal(got, want != BG_CPU_NONE);
         if (got) {
             assert_int_equal(hit.object, want);

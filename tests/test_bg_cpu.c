@@ -66,11 +66,11 @@ static void centre_pixel(bg_scene *scene, const bg_render_settings *settings, fl
 
 static void centre_ray(bg_scene *scene, const bg_render_settings *settings, double rgb[3])
 {
-    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_scene_state *st = bgi_scene_committed(scene);
     assert_non_null(st);
     double o[3], d[3];
-    bg_cpu_primary_ray(&st->camera, 3, 3, 1, 1, o, d);
-    bg_cpu_shade_ray(st, settings, o, d, rgb);
+    bgi_cpu_primary_ray(&st->camera, 3, 3, 1, 1, o, d);
+    bgi_cpu_shade_ray(st, settings, o, d, rgb);
 }
 
 /* Camera at (0, 0, 5) facing a unit sphere at the origin; one point light at the camera. */
@@ -106,11 +106,11 @@ static void test_centre_hit(void **state)
 {
     (void)state;
     bg_scene *scene = lit_sphere(1.0);
-    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_scene_state *st = bgi_scene_committed(scene);
     double o[3], d[3];
-    bg_cpu_primary_ray(&st->camera, 3, 3, 1, 1, o, d);
+    bgi_cpu_primary_ray(&st->camera, 3, 3, 1, 1, o, d);
     bg_cpu_hit hit;
-    assert_true(bg_cpu_nearest_hit(st, o, d, BG_CPU_NONE, BG_CPU_NONE, &hit));
+    assert_true(bgi_cpu_nearest_hit(st, o, d, BG_CPU_NONE, BG_CPU_NONE, &hit));
     rel_near(hit.t, 4.0, 1e-12); /* d - 1 */
     assert_true(hit.normal[2] > 1.0 - 1e-12);
     assert_true(bg_v3_dot(hit.normal, d) < 0.0);
@@ -167,26 +167,26 @@ static void test_brdf_formulas(void **state)
     double z = r / pow(1.0 + r * t * t - t * t, 2.0);
     double a = sqrt(p / (p * p - p * p * w * w + w * w));
     double want = g * z * a / (4.0 * PI * v * vl) + (1.0 - g) / PI;
-    rel_near(bg_cpu_schlick_d(r, p, t, v, vl, w), want, 1e-12);
+    rel_near(bgi_cpu_schlick_d(r, p, t, v, vl, w), want, 1e-12);
     double sa, sb, sc;
-    bg_cpu_schlick_split(0.3, &sa, &sb, &sc);
+    bgi_cpu_schlick_split(0.3, &sa, &sb, &sc);
     rel_near(sb, 0.84, 1e-12);
     assert_true(sa == 0.0);
     rel_near(sc, 0.16, 1e-12);
-    bg_cpu_schlick_split(0.8, &sa, &sb, &sc);
+    bgi_cpu_schlick_split(0.8, &sa, &sb, &sc);
     rel_near(sa, 1.0 - 0.64, 1e-12);
     assert_true(sc == 0.0);
     const double cc[3] = {0.2, 0.5, 1.0};
     double s3[3];
-    bg_cpu_schlick_s(cc, 0.5, s3);
+    bgi_cpu_schlick_s(cc, 0.5, s3);
     rel_near(s3[0], 0.2 + 0.8 / 32.0, 1e-12);
     rel_near(s3[2], 1.0, 1e-12);
     /* guards: no NaN at r = 0, t = 1 and p = 0, w = 0, v = 0 */
-    assert_true(bg_cpu_schlick_d(0.0, 0.0, 1.0, 1.0, 1.0, 0.0) == 0.0);
-    assert_true(bg_cpu_schlick_d(0.5, 1.0, 1.0, 0.0, 1.0, 1.0) == 0.0);
+    assert_true(bgi_cpu_schlick_d(0.0, 0.0, 1.0, 1.0, 1.0, 0.0) == 0.0);
+    assert_true(bgi_cpu_schlick_d(0.5, 1.0, 1.0, 0.0, 1.0, 1.0) == 0.0);
     double ct;
-    rel_near(bg_cpu_fresnel(1.0, 1.0, 1.5, &ct), 0.04, 1e-12);
-    assert_true(bg_cpu_fresnel(0.1, 1.5, 1.0, &ct) == 1.0); /* total internal reflection */
+    rel_near(bgi_cpu_fresnel(1.0, 1.0, 1.5, &ct), 0.04, 1e-12);
+    assert_true(bgi_cpu_fresnel(0.1, 1.5, 1.0, &ct) == 1.0); /* total internal reflection */
 }
 
 /* A point on the plane straight below a sphere, with the light straight above: ambient only. */
@@ -206,17 +206,17 @@ static void test_shadow_ambient_only(void **state)
     assert_int_equal(bg_scene_add_light(scene, &l, &id), BG_OK);
     set_ambient(scene, 0.5, 0.5, 0.5);
     assert_int_equal(bg_scene_commit(scene), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_scene_state *st = bgi_scene_committed(scene);
     bg_render_settings s = bg_render_settings_init();
     double o[3] = {0, -1.5, 5}, d[3] = {0, -0.5, -5}, rgb[3];
     bg_v3_normalize(d);
-    bg_cpu_shade_ray(st, &s, o, d, rgb);
+    bgi_cpu_shade_ray(st, &s, o, d, rgb);
     rel_near(rgb[0], 0.1, 1e-12);
     rel_near(rgb[1], 0.15, 1e-12);
     rel_near(rgb[2], 0.2, 1e-12);
     /* control: a point on the plane away from the shadow is lit */
     double o2[3] = {6, -1.5, 5}, rgb2[3];
-    bg_cpu_shade_ray(st, &s, o2, d, rgb2);
+    bgi_cpu_shade_ray(st, &s, o2, d, rgb2);
     assert_true(rgb2[0] > 0.1 + 1e-3);
     bg_scene_destroy(scene);
 }
@@ -352,24 +352,24 @@ static void test_texture_sampling(void **state)
     assert_int_equal(bg_scene_add_texture(scene, &img, &rep, &tr), BG_OK);
     assert_int_equal(bg_scene_add_texture(scene, &img, &clamp, &tc), BG_OK);
     assert_int_equal(bg_scene_commit(scene), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_scene_state *st = bgi_scene_committed(scene);
     const bg_texture_data *r = &st->textures[tr - 1], *c = &st->textures[tc - 1];
     double v[4];
-    bg_cpu_texture_sample(r, 0.25, 0.25, v); /* texel centre (0, 0): bottom-left = blue */
+    bgi_cpu_texture_sample(r, 0.25, 0.25, v); /* texel centre (0, 0): bottom-left = blue */
     assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0 && v[3] == 1.0);
-    bg_cpu_texture_sample(r, 0.25, 0.75, v); /* top-left = red */
+    bgi_cpu_texture_sample(r, 0.25, 0.75, v); /* top-left = red */
     assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
-    bg_cpu_texture_sample(r, 0.5, 0.5, v); /* the mean of all four */
+    bgi_cpu_texture_sample(r, 0.5, 0.5, v); /* the mean of all four */
     assert_true(v[0] == 0.5 && v[1] == 0.5 && v[2] == 0.5);
-    bg_cpu_texture_sample(r, 0.375, 0.25, v); /* a quarter of the way from blue to white */
+    bgi_cpu_texture_sample(r, 0.375, 0.25, v); /* a quarter of the way from blue to white */
     assert_true(v[0] == 0.25 && v[1] == 0.25 && v[2] == 1.0);
-    bg_cpu_texture_sample(r, 0.0, 0.25, v); /* REPEAT: half white (column -1 = 1), half blue */
+    bgi_cpu_texture_sample(r, 0.0, 0.25, v); /* REPEAT: half white (column -1 = 1), half blue */
     assert_true(v[0] == 0.5 && v[1] == 0.5 && v[2] == 1.0);
-    bg_cpu_texture_sample(r, 1.25, -0.75, v); /* REPEAT: same as (0.25, 0.25) */
+    bgi_cpu_texture_sample(r, 1.25, -0.75, v); /* REPEAT: same as (0.25, 0.25) */
     assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
-    bg_cpu_texture_sample(c, 0.0, 0.25, v); /* CLAMP_TO_EDGE: blue only */
+    bgi_cpu_texture_sample(c, 0.0, 0.25, v); /* CLAMP_TO_EDGE: blue only */
     assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
-    bg_cpu_texture_sample(c, -3.0, 7.0, v); /* far outside: the top-left corner texel */
+    bgi_cpu_texture_sample(c, -3.0, 7.0, v); /* far outside: the top-left corner texel */
     assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
 
     /* GL_NEAREST: the texel whose square holds the point, whatever the distance to its centre. */
@@ -380,17 +380,17 @@ static void test_texture_sampling(void **state)
     assert_int_equal(bg_scene_add_texture(ns, &img, &near_rep, &nr), BG_OK);
     assert_int_equal(bg_scene_add_texture(ns, &img, &near_clamp, &nc), BG_OK);
     assert_int_equal(bg_scene_commit(ns), BG_OK);
-    const bg_texture_data *n = &bg_scene_committed(ns)->textures[nr - 1];
-    const bg_texture_data *ncl = &bg_scene_committed(ns)->textures[nc - 1];
-    bg_cpu_texture_sample(n, 0.49, 0.01, v); /* bottom-left square: blue, no blend toward white */
+    const bg_texture_data *n = &bgi_scene_committed(ns)->textures[nr - 1];
+    const bg_texture_data *ncl = &bgi_scene_committed(ns)->textures[nc - 1];
+    bgi_cpu_texture_sample(n, 0.49, 0.01, v); /* bottom-left square: blue, no blend toward white */
     assert_true(v[0] == 0.0 && v[1] == 0.0 && v[2] == 1.0);
-    bg_cpu_texture_sample(n, 0.5, 0.5, v); /* a corner belongs to the square above and right: green */
+    bgi_cpu_texture_sample(n, 0.5, 0.5, v); /* a corner belongs to the square above and right: green */
     assert_true(v[0] == 0.0 && v[1] == 1.0 && v[2] == 0.0);
-    bg_cpu_texture_sample(n, -0.25, 1.75, v); /* REPEAT: (0.75, 0.75), top-right: green */
+    bgi_cpu_texture_sample(n, -0.25, 1.75, v); /* REPEAT: (0.75, 0.75), top-right: green */
     assert_true(v[0] == 0.0 && v[1] == 1.0 && v[2] == 0.0);
-    bg_cpu_texture_sample(ncl, 1.0, 1.0, v); /* CLAMP's upper edge: the last texel, top-right */
+    bgi_cpu_texture_sample(ncl, 1.0, 1.0, v); /* CLAMP's upper edge: the last texel, top-right */
     assert_true(v[0] == 0.0 && v[1] == 1.0 && v[2] == 0.0);
-    bg_cpu_texture_sample(ncl, -2.0, 0.75, v); /* far left: the left column, top row: red */
+    bgi_cpu_texture_sample(ncl, -2.0, 0.75, v); /* far left: the left column, top row: red */
     assert_true(v[0] == 1.0 && v[1] == 0.0 && v[2] == 0.0);
     bg_scene_destroy(ns);
 
@@ -403,11 +403,11 @@ static void test_texture_sampling(void **state)
     m.base.roughness.channel = 1;
     bg_cpu_surface surf;
     const double uv[2] = {0.75, 0.75}; /* top-right = green */
-    bg_cpu_surface_eval(st, &m, uv, &surf);
+    bgi_cpu_surface_eval(st, &m, uv, &surf);
     assert_true(surf.base.c[0] == 0.0 && surf.base.c[1] == 0.5 && surf.base.c[2] == 0.0);
     assert_true(surf.base.r == 1.0);
     const double uv2[2] = {0.25, 0.25}; /* blue: green channel 0 */
-    bg_cpu_surface_eval(st, &m, uv2, &surf);
+    bgi_cpu_surface_eval(st, &m, uv2, &surf);
     assert_true(surf.base.r == 0.0);
     bg_scene_destroy(scene);
 }
@@ -562,17 +562,17 @@ static void test_stride_and_encoding(void **state)
     /* RGBA8 is the sRGB encoding of the linear float (float rounding may move the 8-bit value by one) */
     for (int i = 0; i < W * H; i++) {
         for (int c = 0; c < 3; c++) {
-            int want = bg_cpu_encode_channel(lin[4 * i + c], BG_ENCODING_SRGB);
+            int want = bgi_cpu_encode_channel(lin[4 * i + c], BG_ENCODING_SRGB);
             assert_true(abs(want - tight[4 * i + c]) <= 1);
         }
         assert_int_equal(tight[4 * i + 3], 255);
     }
     /* the encodings themselves */
-    assert_int_equal(bg_cpu_encode_channel(0.5, BG_ENCODING_LINEAR), 128);
-    assert_int_equal(bg_cpu_encode_channel(2.0, BG_ENCODING_LINEAR), 255);
-    assert_int_equal(bg_cpu_encode_channel(-1.0, BG_ENCODING_SRGB), 0);
-    assert_int_equal(bg_cpu_encode_channel(0.5, BG_ENCODING_SRGB), 188); /* 0.735357 * 255 = 187.5 */
-    rel_near(bg_linear_to_srgb(0.001), 0.01292, 1e-12);
+    assert_int_equal(bgi_cpu_encode_channel(0.5, BG_ENCODING_LINEAR), 128);
+    assert_int_equal(bgi_cpu_encode_channel(2.0, BG_ENCODING_LINEAR), 255);
+    assert_int_equal(bgi_cpu_encode_channel(-1.0, BG_ENCODING_SRGB), 0);
+    assert_int_equal(bgi_cpu_encode_channel(0.5, BG_ENCODING_SRGB), 188); /* 0.735357 * 255 = 187.5 */
+    rel_near(bgi_linear_to_srgb(0.001), 0.01292, 1e-12);
     bg_scene_destroy(scene);
 }
 

@@ -101,7 +101,7 @@ static void check_scene(scene_id id)
     bg_render_stats st = render(util_fx.renderer, s, &set, &fi, name);
     assert_int_equal(st.plan, BG_PLAN_FUSED);
     assert_int_equal(st.passes[BG_PASS_INTERSECT], 1);
-    assert_int_equal(st.intersect_objects, (int)bg_scene_committed(s)->object_count);
+    assert_int_equal(st.intersect_objects, (int)bgi_scene_committed(s)->object_count);
     snprintf(label, sizeof label, "%s fused", name);
     util_expect_near(cpu, &fi, id, label);
 
@@ -113,7 +113,7 @@ static void check_scene(scene_id id)
     for (size_t i = 0; i < (size_t)W * H; i++)
         for (int c = 0; c < 3; c++) {
             float v = linear[4 * i + c];
-            int want = bg_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            int want = bgi_cpu_encode_channel(v, BG_ENCODING_SRGB);
             if (v < 0.0f || abs(want - fused[4 * i + c]) > 1 || linear[4 * i + 3] != 1.0f)
                 fail_msg("%s: pixel %zu channel %d: float %g encodes to %d, RGBA8 output %d", name, i, c, (double)v,
                          want, fused[4 * i + c]);
@@ -133,7 +133,7 @@ static void check_scene(scene_id id)
 
     /* Automatic: every shared scene is within the fused plans' bounds, and gets the same program
      * as the variant forced: unrolled below 8 objects in the tree, walked from 8 on. */
-    bool walked = bg_scene_committed(s)->tree_count >= 8;
+    bool walked = bgi_scene_committed(s)->tree_count >= 8;
     if (walked)
         memcpy(fused, other, bytes);
     set = plan_settings(BG_PLAN_AUTO);
@@ -230,7 +230,7 @@ static void value_recommits(bg_gpu_plan plan)
     macs_context *ctx = util_context(util_fx.headless, NULL);
     bg_renderer *r = util_renderer(ctx);
     bg_scene *s = util_scene(SCENE_GLASS);
-    const bg_scene_state *ss = bg_scene_committed(s);
+    const bg_scene_state *ss = bgi_scene_committed(s);
     unsigned char px[W * H * 4];
     float fpx[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};

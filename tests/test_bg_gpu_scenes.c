@@ -48,7 +48,7 @@ static bool has_bounces(scene_id id)
 static void check_stats(scene_id id, const bg_scene *s, const bg_render_stats *st)
 {
     const char *name = scenes_name(id);
-    const bg_scene_state *ss = bg_scene_committed(s);
+    const bg_scene_state *ss = bgi_scene_committed(s);
     int total = 0;
     for (int k = 0; k < BG_PASS_KIND_COUNT_; k++) {
         assert_true(st->passes[k] >= 0);
@@ -130,7 +130,7 @@ static void check_scene(scene_id id)
     for (int i = 0; i < W * H; i++)
         for (int c = 0; c < 3; c++) {
             float v = gpuf[4 * i + c];
-            int want = bg_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            int want = bgi_cpu_encode_channel(v, BG_ENCODING_SRGB);
             if (v < 0.0f || abs(want - gpu[4 * i + c]) > 1)
                 fail_msg("%s: pixel (%d, %d) channel %d: float %g encodes to %d, RGBA8 output %d", name, i % W,
                          i / W, c, (double)v, want, gpu[4 * i + c]);

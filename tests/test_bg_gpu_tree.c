@@ -108,12 +108,12 @@ static void recommits_keep_the_program(void **state)
     assert_int_equal(bg_scene_set_transform(s, 5, &there), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
     assert_int_equal(tree_render(r, s, &img, "a sphere moved"), 0);
-    bg_camera cam = bg_scene_committed(s)->camera.camera, moved = cam;
+    bg_camera cam = bgi_scene_committed(s)->camera.camera, moved = cam;
     moved.position.x += 0.25;
     assert_int_equal(bg_scene_set_camera(s, &moved), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
     assert_int_equal(tree_render(r, s, &img, "camera moved"), 0);
-    bg_material m = bg_scene_committed(s)->materials[0], red = m;
+    bg_material m = bgi_scene_committed(s)->materials[0], red = m;
     red.base.reflectance.r = 0.9;
     red.base.reflectance.g = 0.1;
     assert_int_equal(bg_scene_set_material(s, 1, &red), BG_OK);

@@ -129,7 +129,7 @@ static void test_missing_file(void **state)
     assert_non_null(strstr(bg_scene_error_message(s), "bg_scene_load_texture_png"));
     assert_non_null(strstr(bg_scene_error_message(s), path));
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(bg_scene_committed(s)->texture_count, 0);
+    assert_int_equal(bgi_scene_committed(s)->texture_count, 0);
     bg_scene_destroy(s);
 }
 
@@ -155,7 +155,7 @@ static void test_truncated_and_corrupt_files(void **state)
     assert_int_equal(bg_scene_load_texture_png(s, path, NULL, &t), BG_ERR_IO);
     assert_non_null(strstr(bg_scene_error_message(s), path));
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(bg_scene_committed(s)->texture_count, 0);
+    assert_int_equal(bgi_scene_committed(s)->texture_count, 0);
 
     /* Not a PNG at all. */
     FILE *f = fopen(path, "wb");
@@ -353,8 +353,8 @@ static void check_loads(const test_png *t)
         bg_scene_load_texture_png(s, path, &linear, &lin) != BG_OK)
         fail_msg("%s: bg_scene_load_texture_png failed: %s", t->label, bg_scene_error_message(s));
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const float *ts = bg_scene_committed(s)->textures[srgb - 1].texels;
-    const float *tl = bg_scene_committed(s)->textures[lin - 1].texels;
+    const float *ts = bgi_scene_committed(s)->textures[srgb - 1].texels;
+    const float *tl = bgi_scene_committed(s)->textures[lin - 1].texels;
 
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
@@ -372,7 +372,7 @@ static void check_loads(const test_png *t)
                 if (got32 != (float)unit)
                     fail_msg("%s: RGBA32F pixel (%d, %d) channel %d is %.9g, want %.9g", t->label, x, y, c,
                              (double)got32, (double)(float)unit);
-                float want_srgb = c < 3 ? (float)bg_srgb_to_linear(unit) : (float)unit;
+                float want_srgb = c < 3 ? (float)bgi_srgb_to_linear(unit) : (float)unit;
                 if (ts[texel + (size_t)c] != want_srgb || tl[texel + (size_t)c] != (float)unit)
                     fail_msg("%s: texel (%d, %d) channel %d is %.9g (sRGB) and %.9g (linear), want %.9g and %.9g",
                              t->label, x, y, c, (double)ts[texel + (size_t)c], (double)tl[texel + (size_t)c],
@@ -528,11 +528,11 @@ static void test_load_16bit_reduces_by_rounding(void **state)
         assert_int_equal(bg_scene_load_texture_png(s, path, &d, &lin), BG_OK);
         assert_int_equal(bg_scene_load_texture_png(s, path, NULL, &srgb), BG_OK);
         assert_int_equal(bg_scene_commit(s), BG_OK);
-        const float *tl = bg_scene_committed(s)->textures[lin - 1].texels;
-        const float *ts = bg_scene_committed(s)->textures[srgb - 1].texels;
+        const float *tl = bgi_scene_committed(s)->textures[lin - 1].texels;
+        const float *ts = bgi_scene_committed(s)->textures[srgb - 1].texels;
         for (int c = 0; c < 3; c++) {
             assert_true(tl[c] == (float)(inputs[i][c] / 65535.0));
-            assert_true(ts[c] == (float)bg_srgb_to_linear(inputs[i][c] / 65535.0));
+            assert_true(ts[c] == (float)bgi_srgb_to_linear(inputs[i][c] / 65535.0));
         }
         assert_true(tl[3] == 1.0f && ts[3] == 1.0f);
         bg_scene_destroy(s);
@@ -621,7 +621,7 @@ static void test_texture_from_png_file(void **state)
     assert_int_equal(bg_scene_load_texture_png(s, path, &d, &t), BG_OK);
     assert_int_equal(t, 1);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_texture_data *tex = &bg_scene_committed(s)->textures[0];
+    const bg_texture_data *tex = &bgi_scene_committed(s)->textures[0];
     assert_int_equal(tex->width, 1);
     assert_int_equal(tex->height, 2);
     assert_int_equal(tex->wrap, BG_WRAP_CLAMP);
@@ -648,7 +648,7 @@ static void test_texture_flip_stride_and_float(void **state)
     uint32_t t;
     assert_int_equal(bg_scene_add_texture(s, &img, NULL, &t), BG_OK); /* sRGB ignored for floats */
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_texture_data *tex = &bg_scene_committed(s)->textures[0];
+    const bg_texture_data *tex = &bgi_scene_committed(s)->textures[0];
     assert_int_equal(tex->wrap, BG_WRAP_REPEAT);
     for (int y = 0; y < 3; y++)
         for (int x = 0; x < 2; x++)
@@ -663,14 +663,14 @@ static void test_texture_flip_stride_and_float(void **state)
 static void test_srgb_decode(void **state)
 {
     (void)state;
-    assert_true(bg_srgb_to_linear(0.0) == 0.0);
-    assert_true(bg_srgb_to_linear(1.0) == 1.0);
+    assert_true(bgi_srgb_to_linear(0.0) == 0.0);
+    assert_true(bgi_srgb_to_linear(1.0) == 1.0);
     /* Both branches meet at the 0.04045 boundary (linear 0.0031308). */
     double lo = 0.04045 / 12.92, hi = pow((0.04045 + 0.055) / 1.055, 2.4);
-    assert_true(fabs(bg_srgb_to_linear(0.04045) - lo) < 1e-15);
+    assert_true(fabs(bgi_srgb_to_linear(0.04045) - lo) < 1e-15);
     assert_true(fabs(lo - hi) < 1e-7);
-    assert_true(fabs(bg_srgb_to_linear(0.5) - 0.21404114048223255) < 1e-12);
-    assert_true(fabs(bg_linear_to_srgb(bg_srgb_to_linear(0.7)) - 0.7) < 1e-12);
+    assert_true(fabs(bgi_srgb_to_linear(0.5) - 0.21404114048223255) < 1e-12);
+    assert_true(fabs(bgi_linear_to_srgb(bgi_srgb_to_linear(0.7)) - 0.7) < 1e-12);
 
     /* Through a texture: bytes 0, 10 (linear branch), 11 (power branch), 255; alpha stays linear. */
     unsigned char px[16] = {0, 10, 11, 255, 255, 128, 0, 128, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -682,7 +682,7 @@ static void test_srgb_decode(void **state)
     bg_texture_desc d = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR, BG_FILTER_LINEAR};
     assert_int_equal(bg_scene_add_texture(s, &img, &d, &lin), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const float *a = bg_scene_committed(s)->textures[0].texels, *b = bg_scene_committed(s)->textures[1].texels;
+    const float *a = bgi_scene_committed(s)->textures[0].texels, *b = bgi_scene_committed(s)->textures[1].texels;
     assert_true(a[0] == 0.0f);
     assert_true(a[1] == (float)(10.0 / 255.0 / 12.92));
     assert_true(a[2] == (float)pow((11.0 / 255.0 + 0.055) / 1.055, 2.4));

@@ -41,7 +41,7 @@ static bg_scene *small_scene(void)
 
 static counts committed_counts(const bg_scene *s)
 {
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     assert_non_null(st);
     counts c = {st->object_count, st->material_count, st->light_count, st->texture_count};
     return c;
@@ -107,12 +107,12 @@ static void test_not_committed_before_first_commit(void **state)
     (void)state;
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_null(bg_scene_committed(s));
+    assert_null(bgi_scene_committed(s));
     assert_int_equal(bg_scene_commit_count(s), 0);
     assert_int_equal(bg_scene_error(s), BG_OK);
     assert_string_equal(bg_scene_error_message(s), "");
     assert_int_equal(bg_scene_commit(s), BG_OK); /* an empty scene is a valid scene */
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     assert_non_null(st);
     assert_int_equal(st->object_count, 0);
     assert_false(st->has_bounded_objects);
@@ -132,9 +132,9 @@ static void test_pending_changes_invisible_until_commit(void **state)
     uint32_t o;
     assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(5, 0, 0), 1, 1, &o), BG_OK);
     assert_int_equal(o, 3);
-    assert_int_equal(bg_scene_committed(s)->object_count, 2);
+    assert_int_equal(bgi_scene_committed(s)->object_count, 2);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(bg_scene_committed(s)->object_count, 3);
+    assert_int_equal(bgi_scene_committed(s)->object_count, 3);
     bg_scene_destroy(s);
 }
 
@@ -198,8 +198,8 @@ static void test_allocator_hooks(void **state)
     for (int i = 0; i < 20; i++)
         assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(i, 0, 0), 1, 1, &id), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(bg_scene_committed(s)->object_count, 20);
-    assert_true(bg_scene_committed(s)->objects[19].to_world[0][3] == 19.0);
+    assert_int_equal(bgi_scene_committed(s)->object_count, 20);
+    assert_true(bgi_scene_committed(s)->objects[19].to_world[0][3] == 19.0);
     assert_true(a.allocs > 3);
     bg_scene_destroy(s);
     assert_int_equal(a.allocs, a.frees);
@@ -235,7 +235,7 @@ static void test_out_of_memory_leaves_scene_intact(void **state)
     a.fail_after = a.allocs;
     assert_int_equal(bg_scene_commit(s), BG_ERR_OUT_OF_MEMORY);
     assert_int_equal(bg_scene_error(s), BG_ERR_OUT_OF_MEMORY);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     assert_non_null(st);
     assert_int_equal(st->object_count, 4);
     assert_int_equal(st->commit_count, 1);
@@ -246,7 +246,7 @@ static void test_out_of_memory_leaves_scene_intact(void **state)
     a.fail_after = -1;
     bg_scene_clear_error(s);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_int_equal(bg_scene_committed(s)->object_count, 32);
+    assert_int_equal(bgi_scene_committed(s)->object_count, 32);
     bg_scene_destroy(s);
     assert_int_equal(a.allocs, a.frees);
 }
@@ -362,7 +362,7 @@ static void test_material_validation(void **state)
     bg_material bad = bg_material_init(); bad.base.isotropy.value = 3;
     expect_rejected(s, bg_scene_set_material(s, 2, &bad), BG_ERR_INVALID_ARGUMENT, "material 2: base.isotropy.value = 3");
     /* The rejected set left material 2 as it was (textured). */
-    assert_int_equal(bg_scene_committed(s)->materials[1].base.reflectance.texture, 1);
+    assert_int_equal(bgi_scene_committed(s)->materials[1].base.reflectance.texture, 1);
     bg_scene_destroy(s);
 }
 
@@ -432,7 +432,7 @@ static void test_object_validation(void **state)
     expect_rejected(s, bg_scene_set_transform(s, 99, &ok), BG_ERR_INVALID_ARGUMENT, "object = 99");
     expect_rejected(s, bg_scene_set_transform(s, 1, &flat), BG_ERR_INVALID_ARGUMENT, "object 1: transform is singular");
     expect_rejected(s, bg_scene_set_transform(s, 1, NULL), BG_ERR_INVALID_ARGUMENT, "transform");
-    assert_true(bg_scene_committed(s)->objects[0].to_world[0][0] == 1.0);
+    assert_true(bgi_scene_committed(s)->objects[0].to_world[0][0] == 1.0);
     bg_scene_destroy(s);
 }
 
@@ -459,7 +459,7 @@ static void test_camera_validation(void **state)
     expect_rejected(s, set_camera(s, c), BG_ERR_INVALID_ARGUMENT, "look_at");
     expect_rejected(s, bg_scene_set_camera(s, NULL), BG_ERR_INVALID_ARGUMENT, "camera");
     /* The camera is unchanged by the rejected calls. */
-    assert_true(bg_scene_committed(s)->camera.camera.position.z == 5.0);
+    assert_true(bgi_scene_committed(s)->camera.camera.position.z == 5.0);
     c = bg_camera_init(); c.fov_y_degrees = 179.5;
     assert_int_equal(set_camera(s, c), BG_OK);
     bg_scene_destroy(s);
@@ -513,7 +513,7 @@ static void test_light_validation(void **state)
     l = bg_light_init(); l.direction = bg_vec3_make(0, 0, 0);
     assert_int_equal(add_light(s, l), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     assert_int_equal(st->light_count, 3);
     assert_true(st->lights[0].position.x == 3.0); /* rejected set_light changed nothing */
     assert_true(fabs(st->lights[2].direction.y + 1.0) < 1e-15);
@@ -576,7 +576,7 @@ static void test_commit_inverse_and_normal_matrix(void **state)
                                           bg_mat4_scale(0.25, 4, 1.5)));
     assert_int_equal(add_object(s, d), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_object_data *o = &bg_scene_committed(s)->objects[2];
+    const bg_object_data *o = &bgi_scene_committed(s)->objects[2];
     double p[4][4], q[4][4];
     mat_times(o->to_world, o->to_object, p);
     mat_times(o->to_object, o->to_world, q);
@@ -641,7 +641,7 @@ static void test_commit_bounds(void **state)
     assert_int_equal(add_object(s, d), BG_OK);
     assert_int_equal(bg_scene_add_plane(s, bg_vec3_make(0, -10, 0), y, mat, &id), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     double r = sqrt(2.5), q = sqrt(2.0);
     expect_box(&st->objects[0], 0, 0, 2.5, 2, 4, 3.5);
     expect_box(&st->objects[1], -r, -r, -1, r, r, 1);
@@ -674,7 +674,7 @@ static void test_commit_resolves_uv_mapping(void **state)
     d.casts_shadows = false;
     assert_int_equal(add_object(s, d), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     for (int i = 0; i < BG_SHAPE_COUNT_; i++) {
         assert_int_equal(st->objects[i].uv_mapping, want[i]);
         assert_int_equal(st->objects[i].shape, i);
@@ -691,7 +691,7 @@ static void test_commit_camera_and_lights(void **state)
 {
     (void)state;
     bg_scene *s = small_scene();
-    const bg_camera_data *c = &bg_scene_committed(s)->camera;
+    const bg_camera_data *c = &bgi_scene_committed(s)->camera;
     assert_true(fabs(c->forward[2] + 1) < 1e-15 && fabs(c->right[0] - 1) < 1e-15 && fabs(c->up[1] - 1) < 1e-15);
     assert_true(fabs(c->tan_half_fov_y - tan(22.5 * 3.14159265358979323846 / 180)) < 1e-15);
     bg_camera cam = bg_camera_init();
@@ -707,7 +707,7 @@ static void test_commit_camera_and_lights(void **state)
     double amb[3] = {0.2, 0.3, 0.4};
     assert_int_equal(bg_scene_set_ambient(s, amb), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     c = &st->camera;
     assert_true(fabs(c->forward[0] + 1) < 1e-15);
     double dots[3] = {
@@ -738,7 +738,7 @@ static void test_cheap_recommit(void **state)
     bg_light l = bg_light_init();
     assert_int_equal(bg_scene_add_light(s, &l, &light), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     const bg_object_data *objects = st->objects;
     const bg_material *materials = st->materials;
     const bg_light *lights = st->lights;
@@ -753,7 +753,7 @@ static void test_cheap_recommit(void **state)
     /* Values change only at commit. */
     assert_true(st->materials[0].base.reflectance.r == 0.8);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    assert_ptr_equal(bg_scene_committed(s), st);
+    assert_ptr_equal(bgi_scene_committed(s), st);
     assert_int_equal(st->commit_count, 2);
     assert_ptr_equal(st->objects, objects);
     assert_ptr_equal(st->materials, materials);
@@ -803,7 +803,7 @@ static void test_plane_frame(void **state)
     for (size_t i = 0; i < 4; i++)
         assert_int_equal(bg_scene_add_plane(s, bg_vec3_make(1, 2, 3), normals[i], 1, &id), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const bg_scene_state *st = bg_scene_committed(s);
+    const bg_scene_state *st = bgi_scene_committed(s);
     const bg_object_data *floor = &st->objects[1];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)

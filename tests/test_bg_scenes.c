@@ -24,7 +24,7 @@ static const bg_scene_state *build(scene_id id, const scene_params *p, bg_scene 
     assert_int_equal(bg_scene_error(s), BG_OK);
     assert_int_equal(bg_scene_commit_count(s), 1);
     *out = s;
-    return bg_scene_committed(s);
+    return bgi_scene_committed(s);
 }
 
 static int count_shape(const bg_scene_state *st, bg_shape shape)

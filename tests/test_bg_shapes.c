@@ -32,7 +32,7 @@ static bg_cpu_span proto(bg_shape shape, double ox, double oy, double oz, double
 {
     const double o[3] = {ox, oy, oz}, d[3] = {dx, dy, dz};
     bg_cpu_span s;
-    bg_cpu_intersect_prototype(shape, o, d, &s);
+    bgi_cpu_intersect_prototype(shape, o, d, &s);
     return s;
 }
 
@@ -172,57 +172,57 @@ static void test_uv_maps(void **state)
     (void)state;
     double uv[2], dpdu[3];
     const double front[3] = {0, 0, 1};
-    bg_cpu_uv_map(BG_UV_SPHERICAL, front, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_SPHERICAL, front, uv, dpdu);
     near(uv[0], 0.5, EPS);
     near(uv[1], 0.5, EPS);
     near3(dpdu, 1, 0, 0, EPS);
     const double east[3] = {1, 0, 0};
-    bg_cpu_uv_map(BG_UV_SPHERICAL, east, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_SPHERICAL, east, uv, dpdu);
     near(uv[0], 0.75, EPS);
     const double lat45[3] = {0, sqrt(0.5), sqrt(0.5)};
-    bg_cpu_uv_map(BG_UV_SPHERICAL, lat45, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_SPHERICAL, lat45, uv, dpdu);
     near(uv[1], 0.75, EPS);
     /* the seam: just east of -z is u = 1, just west is u = 0 */
     const double seam_e[3] = {1e-12, 0, -1}, seam_w[3] = {-1e-12, 0, -1};
-    bg_cpu_uv_map(BG_UV_SPHERICAL, seam_e, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_SPHERICAL, seam_e, uv, dpdu);
     near(uv[0], 1.0, 1e-9);
-    bg_cpu_uv_map(BG_UV_SPHERICAL, seam_w, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_SPHERICAL, seam_w, uv, dpdu);
     near(uv[0], 0.0, 1e-9);
     /* pole: guarded atan2(0, 0) */
     const double pole[3] = {0, 1, 0};
-    bg_cpu_uv_map(BG_UV_SPHERICAL, pole, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_SPHERICAL, pole, uv, dpdu);
     near(uv[0], 0.5, 0);
     near(uv[1], 1.0, EPS);
     near3(dpdu, 0, 0, 0, 0);
 
     const double pp[3] = {0.5, 0, -0.5};
-    bg_cpu_uv_map(BG_UV_PLANAR, pp, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_PLANAR, pp, uv, dpdu);
     near(uv[0], 0.75, EPS);
     near(uv[1], 0.75, EPS);
     near3(dpdu, 1, 0, 0, 0);
 
     const double bx[3] = {-1, 0.5, 0.2};
-    bg_cpu_uv_map(BG_UV_BOX, bx, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_BOX, bx, uv, dpdu);
     near(uv[0], 0.6, EPS);
     near(uv[1], 0.75, EPS);
     near3(dpdu, 0, 0, 1, 0);
     const double bz[3] = {0.5, -0.5, -1};
-    bg_cpu_uv_map(BG_UV_BOX, bz, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_BOX, bz, uv, dpdu);
     near(uv[0], 0.25, EPS);
     near(uv[1], 0.25, EPS);
     near3(dpdu, -1, 0, 0, 0);
 
     const double side[3] = {1, 0.5, 0};
-    bg_cpu_uv_map(BG_UV_CYLINDRICAL, side, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_CYLINDRICAL, side, uv, dpdu);
     near(uv[0], 0.75, EPS);
     near(uv[1], 0.75, EPS);
     near3(dpdu, 0, 0, -1, EPS);
     const double cap[3] = {0.5, 1, -0.5};
-    bg_cpu_uv_map(BG_UV_CYLINDRICAL, cap, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_CYLINDRICAL, cap, uv, dpdu);
     near(uv[0], 0.75, EPS);
     near(uv[1], 0.75, EPS);
     const double cap_low[3] = {0.5, -1, -0.5};
-    bg_cpu_uv_map(BG_UV_CYLINDRICAL, cap_low, uv, dpdu);
+    bgi_cpu_uv_map(BG_UV_CYLINDRICAL, cap_low, uv, dpdu);
     near(uv[1], 0.25, EPS);
 }
 
@@ -243,12 +243,12 @@ static bg_scene *one_object(const bg_object_desc *desc)
 
 static bool hit_object(const bg_scene *scene, const double o[3], const double d[3], bool far_root, bg_cpu_hit *hit)
 {
-    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_scene_state *st = bgi_scene_committed(scene);
     assert_non_null(st);
     bg_cpu_candidate c;
-    if (!bg_cpu_intersect_object(&st->objects[0], o, d, far_root, 1e300, &c))
+    if (!bgi_cpu_intersect_object(&st->objects[0], o, d, far_root, 1e300, &c))
         return false;
-    bg_cpu_hit_attributes(&st->objects[0], 0, o, d, &c, hit);
+    bgi_cpu_hit_attributes(&st->objects[0], 0, o, d, &c, hit);
     return true;
 }
 
@@ -373,12 +373,12 @@ static void test_segment_blocked(void **state)
     (void)state;
     bg_object_desc desc = bg_object_desc_init(BG_SHAPE_SPHERE, 1);
     bg_scene *scene = one_object(&desc);
-    const bg_scene_state *st = bg_scene_committed(scene);
+    const bg_scene_state *st = bgi_scene_committed(scene);
     const double o[3] = {0, 0, 5}, l[3] = {0, 0, -1};
-    assert_true(bg_cpu_segment_blocked(&st->objects[0], o, l, 10.0));
-    assert_false(bg_cpu_segment_blocked(&st->objects[0], o, l, 3.5)); /* ends before the sphere */
+    assert_true(bgi_cpu_segment_blocked(&st->objects[0], o, l, 10.0));
+    assert_false(bgi_cpu_segment_blocked(&st->objects[0], o, l, 3.5)); /* ends before the sphere */
     const double up[3] = {0, 0, 1};
-    assert_false(bg_cpu_segment_blocked(&st->objects[0], o, up, 1e300)); /* behind the start */
+    assert_false(bgi_cpu_segment_blocked(&st->objects[0], o, up, 1e300)); /* behind the start */
     bg_scene_destroy(scene);
 }
 
@@ -396,22 +396,22 @@ static void test_segment_open_at_light(void **state)
         bg_object_desc desc = bg_object_desc_init(BG_SHAPE_SPHERE, 1);
         desc.transform = bg_mat4_scale(a, a, a);
         bg_scene *scene = one_object(&desc);
-        const bg_scene_state *st = bg_scene_committed(scene);
+        const bg_scene_state *st = bgi_scene_committed(scene);
         const double o[3] = {0, 0, 5 * a}, l[3] = {0, 0, -1};
         /* The sphere's near root is 4a. */
-        assert_false(bg_cpu_segment_blocked(&st->objects[0], o, l, 4 * a * near_end));
-        assert_false(bg_cpu_segment_blocked(&st->objects[0], o, l, 4 * a));
-        assert_true(bg_cpu_segment_blocked(&st->objects[0], o, l, 4 * a * before));
+        assert_false(bgi_cpu_segment_blocked(&st->objects[0], o, l, 4 * a * near_end));
+        assert_false(bgi_cpu_segment_blocked(&st->objects[0], o, l, 4 * a));
+        assert_true(bgi_cpu_segment_blocked(&st->objects[0], o, l, 4 * a * before));
         bg_scene_destroy(scene);
 
         desc = bg_object_desc_init(BG_SHAPE_PLANE, 1);
         desc.transform = bg_mat4_scale(a, a, a);
         scene = one_object(&desc);
-        st = bg_scene_committed(scene);
+        st = bgi_scene_committed(scene);
         /* From 3a above the plane, obliquely: the root is at 5a. */
         const double p[3] = {0, 3 * a, 0}, m[3] = {0.8, -0.6, 0};
-        assert_false(bg_cpu_segment_blocked(&st->objects[0], p, m, 5 * a * near_end));
-        assert_true(bg_cpu_segment_blocked(&st->objects[0], p, m, 5 * a * before));
+        assert_false(bgi_cpu_segment_blocked(&st->objects[0], p, m, 5 * a * near_end));
+        assert_true(bgi_cpu_segment_blocked(&st->objects[0], p, m, 5 * a * before));
         bg_scene_destroy(scene);
     }
 }

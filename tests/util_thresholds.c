@@ -25,7 +25,7 @@ void util_thresholds_catch_half_pixel_offset(const gpu_threshold table[SCENE_COU
         bg_render_settings set = bg_render_settings_init();
         bg_image ai = {width, height, BG_PIXEL_RGBA8, 0, a}, bi = {width, height, BG_PIXEL_RGBA8, 0, b};
         assert_int_equal(bg_render_cpu(s, &set, &ai), BG_OK);
-        const bg_camera_data *cd = &bg_scene_committed(s)->camera;
+        const bg_camera_data *cd = &bgi_scene_committed(s)->camera;
         bg_camera cam = cd->camera;
         double dx = cam.look_at.x - cam.position.x, dy = cam.look_at.y - cam.position.y,
                dz = cam.look_at.z - cam.position.z;

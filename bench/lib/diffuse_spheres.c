@@ -60,7 +60,7 @@ static int grid_side(int n, int dimensions)
 
 static bg_status add_materials(bg_scene *scene, uint32_t materials[MATERIAL_COUNT])
 {
-    /* Roughness stays 1 (Lambertian), opaque, no coat: gpu_material_may_bounce is false for each,
+    /* Roughness stays 1 (Lambertian), opaque, no coat: bgi_gpu_material_may_bounce is false for each,
      * so neither renderer spawns a secondary ray. */
     static const double colors[MATERIAL_COUNT][3] = {
         {0.80, 0.25, 0.20}, {0.25, 0.70, 0.30}, {0.25, 0.40, 0.85}, {0.85, 0.75, 0.30}};

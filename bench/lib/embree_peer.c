@@ -135,7 +135,7 @@ static bool offer_object(const bg_scene_state *state, uint32_t index, const peer
     if (index == ray->skip)
         return false;
     bg_cpu_candidate c;
-    if (!bg_cpu_intersect_object(&state->objects[index], ray->o, ray->d, index == ray->inside, best->t, &c))
+    if (!bgi_cpu_intersect_object(&state->objects[index], ray->o, ray->d, index == ray->inside, best->t, &c))
         return false;
     if (c.t == best->t && index > best->object)
         return false;
@@ -169,7 +169,7 @@ static void object_intersect(const struct RTCIntersectFunctionNArguments *args)
 static bool blocks(const bg_scene_state *state, uint32_t index, const shadow_ray *s)
 {
     const bg_object_data *object = &state->objects[index];
-    return index != s->self && object->casts_shadows && bg_cpu_segment_blocked(object, s->o, s->l, s->t_max);
+    return index != s->self && object->casts_shadows && bgi_cpu_segment_blocked(object, s->o, s->l, s->t_max);
 }
 
 static void object_occluded(const struct RTCOccludedFunctionNArguments *args)
@@ -425,7 +425,7 @@ bool embree_peer_build(embree_peer *peer, const bg_scene *scene, char *message, 
 {
     if (!peer || !scene)
         return embree_fail(message, message_size, "embree peer: a NULL argument");
-    const bg_scene_state *state = bg_scene_committed(scene);
+    const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
         return embree_fail(message, message_size, "embree peer: the scene was never committed");
     return build_bvh(peer, state, message, message_size);

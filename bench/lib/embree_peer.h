@@ -10,12 +10,12 @@
  *   not in the BVH: each ray tests them first, outside Embree, and the nearest plane hit becomes the
  *   ray's initial tfar.
  * - The callbacks intersect an object with the CPU reference's own double-precision routines
- *   (bg_cpu_intersect_object and bg_cpu_segment_blocked through the object's to_object transform), on
+ *   (bgi_cpu_intersect_object and bgi_cpu_segment_blocked through the object's to_object transform), on
  *   the double ray kept beside Embree's float copy, with the reference's rules: the object a ray leaves
  *   is skipped, a ray inside a refracting object takes its far root, ties go to the object added first,
  *   shadow segments end BG_SHADOW_END_REL short of the light and never test the object they start on.
- * - Shading is the reference's per-hit code (bg_cpu_hit_attributes, bg_cpu_surface_eval, bg_cpu_brdf,
- *   bg_cpu_mirror_weight, bg_cpu_fresnel, bg_cpu_encode_channel), chosen over a float rewrite so that
+ * - Shading is the reference's per-hit code (bgi_cpu_hit_attributes, bgi_cpu_surface_eval, bgi_cpu_brdf,
+ *   bgi_cpu_mirror_weight, bgi_cpu_fresnel, bgi_cpu_encode_channel), chosen over a float rewrite so that
  *   "the same BRDF" holds to the last bit: only the order of each pixel's sum differs (level by level
  *   instead of depth first), and the images match the reference byte for byte in every shared scene.
  *   The price: scalar double shading is most of a frame, so on scenes of one or two objects the peer

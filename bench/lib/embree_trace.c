@@ -114,8 +114,8 @@ static void shade_surface(const render_job *job, peer_worker *w, const peer_ray 
         return;
     }
     const bg_object_data *object = &job->state->objects[h->object];
-    bg_cpu_hit_attributes(object, h->object, ray->o, ray->d, &h->candidate, &s->hit);
-    bg_cpu_surface_eval(job->state, &job->state->materials[object->material], s->hit.uv, &s->surface);
+    bgi_cpu_hit_attributes(object, h->object, ray->o, ray->d, &h->candidate, &s->hit);
+    bgi_cpu_surface_eval(job->state, &job->state->materials[object->material], s->hit.uv, &s->surface);
     s->opaque = 1.0 - s->surface.transparency;
     for (int i = 0; i < 3; i++)
         out[i] += ray->weight[i] *
@@ -130,7 +130,7 @@ static void shade_surface(const render_job *job, peer_worker *w, const peer_ray 
  * nothing even unblocked (no shadow test is made then). */
 static bool light_segment(const bg_light *light, const peer_shade *s, int r, shadow_ray *out)
 {
-    if (!bg_cpu_light_arrival(light, s->hit.position, out->l, &out->t_max, out->radiance))
+    if (!bgi_cpu_light_arrival(light, s->hit.position, out->l, &out->t_max, out->radiance))
         return false;
     out->vl = bg_v3_dot(s->hit.normal, out->l);
     if (!(out->vl > 0.0))
@@ -146,7 +146,7 @@ static void add_light(peer_worker *w, const peer_ray *ray, const peer_shade *s, 
 {
     const double view[3] = {-ray->d[0], -ray->d[1], -ray->d[2]};
     double f[3];
-    bg_cpu_brdf(&s->surface, s->hit.normal, s->hit.tangent, view, sh->l, f);
+    bgi_cpu_brdf(&s->surface, s->hit.normal, s->hit.tangent, view, sh->l, f);
     for (int i = 0; i < 3; i++)
         w->rgb[ray->pixel][i] += ray->weight[i] * s->opaque * PEER_PI * f[i] * sh->radiance[i] * sh->vl;
 }
@@ -182,11 +182,11 @@ static void secondary_rays(const render_job *job, peer_worker *w, int level, con
     double cos_i = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0;
     if (s->surface.transparency > 0.0 && !thin) {
         double n1 = hit->entering ? 1.0 : s->surface.ior, n2 = hit->entering ? s->surface.ior : 1.0;
-        fresnel = bg_cpu_fresnel(cos_i, n1, n2, &cos_t);
+        fresnel = bgi_cpu_fresnel(cos_i, n1, n2, &cos_t);
         eta = n1 / n2;
     }
     double mirror[3];
-    bg_cpu_mirror_weight(&s->surface, cos_i, mirror);
+    bgi_cpu_mirror_weight(&s->surface, cos_i, mirror);
     peer_ray refl, refr;
     for (int i = 0; i < 3; i++) {
         refl.weight[i] = ray->weight[i] * (s->opaque * mirror[i] + s->surface.transparency * fresnel);
@@ -197,7 +197,7 @@ static void secondary_rays(const render_job *job, peer_worker *w, int level, con
     /* A ray leaving a closed object's inside stays inside after reflection (far root); any other
      * secondary ray leaves the object it starts on and skips it. */
     const bool stays_inside = !thin && !hit->entering;
-    if (bg_cpu_worth_following(refl.weight, min_weight)) {
+    if (bgi_cpu_worth_following(refl.weight, min_weight)) {
         double dn = bg_v3_dot(d, n);
         bg_v3_set(refl.d, d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]);
         bg_v3_set(refl.o, hit->position[0], hit->position[1], hit->position[2]);
@@ -206,7 +206,7 @@ static void secondary_rays(const render_job *job, peer_worker *w, int level, con
         if (bg_v3_normalize(refl.d))
             spawn(job, w, level, &refl);
     }
-    if (bg_cpu_worth_following(refr.weight, min_weight)) {
+    if (bgi_cpu_worth_following(refr.weight, min_weight)) {
         bg_v3_set(refr.d, d[0], d[1], d[2]);
         if (!thin) {
             double k = eta * cos_i - cos_t;
@@ -259,7 +259,7 @@ static void camera_rays(const render_job *job, level_buffers *b, int x0, int y0)
         if (x >= img->width || y >= img->height)
             continue;
         peer_ray *r = &b->rays[b->count++];
-        bg_cpu_primary_ray(&job->state->camera, img->width, img->height, x, y, r->o, r->d);
+        bgi_cpu_primary_ray(&job->state->camera, img->width, img->height, x, y, r->o, r->d);
         bg_v3_set(r->weight, 1.0, 1.0, 1.0);
         r->pixel = (uint32_t)(ly * TILE + lx);
         r->skip = r->inside = BG_CPU_NONE;
@@ -279,7 +279,7 @@ static void write_tile(const render_job *job, const peer_worker *w, int x0, int 
                 memcpy(row + x * sizeof px, px, sizeof px);
             } else {
                 for (int i = 0; i < 3; i++)
-                    row[4 * x + (size_t)i] = bg_cpu_encode_channel(rgb[i], job->settings->encoding);
+                    row[4 * x + (size_t)i] = bgi_cpu_encode_channel(rgb[i], job->settings->encoding);
                 row[4 * x + 3] = 255;
             }
         }
@@ -334,9 +334,9 @@ bool embree_peer_render(embree_peer *peer, const bg_render_settings *settings, b
         return embree_fail(message, message_size, "embree peer: the scene was committed again since its build");
     char why[256];
     size_t stride = 0;
-    if (bg_render_settings_check(settings, "embree peer", why, sizeof why) != BG_OK)
+    if (bgi_render_settings_check(settings, "embree peer", why, sizeof why) != BG_OK)
         return embree_fail(message, message_size, "%s", why);
-    if (bg_image_check(image, &stride, why, sizeof why) != BG_OK)
+    if (bgi_image_check(image, &stride, why, sizeof why) != BG_OK)
         return embree_fail(message, message_size, "embree peer: %s", why);
     const bg_scene_state *state = peer->state;
 

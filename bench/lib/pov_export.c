@@ -136,7 +136,7 @@ static const double identity_axes[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 static void fit_diffuse(double r, double *k, double *brilliance)
 {
     double a, b, c;
-    bg_cpu_schlick_split(r, &a, &b, &c);
+    bgi_cpu_schlick_split(r, &a, &b, &c);
     if (b <= 0.0) {
         *k = a;
         *brilliance = 1.0;
@@ -154,7 +154,7 @@ static void fit_diffuse(double r, double *k, double *brilliance)
                 double h[3] = {view[0] + light[0], view[1] + light[1], view[2] + light[2]};
                 double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
                 double t = h[2] / hl;
-                double g = a + b * POV_PI * bg_cpu_schlick_d(r, 1.0, t > 1.0 ? 1.0 : t, view[2], light[2], 1.0);
+                double g = a + b * POV_PI * bgi_cpu_schlick_d(r, 1.0, t > 1.0 ? 1.0 : t, view[2], light[2], 1.0);
                 double x = log(light[2]), y = log(g * light[2]);
                 double wt = g * light[2];
                 sx += wt * x; sy += wt * y; sxx += wt * x * x; sxy += wt * x * y;
@@ -182,7 +182,7 @@ static bool write_texture(const bg_texture_data *t, const char *path, char *mess
             unsigned char *dst = pixels + ((size_t)y * t->width + x) * 4;
             for (int c = 0; c < 3; c++) {
                 double l = src[c] < 0.0f ? 0.0 : src[c] > 1.0f ? 1.0 : src[c];
-                dst[c] = (unsigned char)floor(bg_linear_to_srgb(l) * 255.0 + 0.5);
+                dst[c] = (unsigned char)floor(bgi_linear_to_srgb(l) * 255.0 + 0.5);
             }
             dst[3] = 255;
         }
@@ -403,7 +403,7 @@ bool pov_write_scene(scene_id id, const char *dir, char *pov_path, size_t pov_pa
         bg_scene_destroy(scene);
         return false;
     }
-    const bg_scene_state *s = bg_scene_committed(scene);
+    const bg_scene_state *s = bgi_scene_committed(scene);
     bg_render_settings settings = bg_render_settings_init();
     bool ok = true;
 

@@ -4,7 +4,7 @@
 
 #include "internal.h"
 
-bool macs_allocator_valid(const macs_allocator *a)
+bool macsi_allocator_valid(const macs_allocator *a)
 {
     /* Mixing a custom alloc with libc free would corrupt the heap, so it is all or nothing. */
     bool any = a->alloc || a->realloc || a->free;
@@ -12,25 +12,25 @@ bool macs_allocator_valid(const macs_allocator *a)
     return !any || all;
 }
 
-void *macs_alloc(const macs_allocator *a, size_t size)
+void *macsi_alloc(const macs_allocator *a, size_t size)
 {
     if (size == 0)
         size = 1; /* a zero-size request must still give a pointer that free accepts */
     return a->alloc ? a->alloc(size, a->user) : malloc(size);
 }
 
-void *macs_calloc(const macs_allocator *a, size_t count, size_t size)
+void *macsi_calloc(const macs_allocator *a, size_t count, size_t size)
 {
     if (size != 0 && count > (size_t)-1 / size)
         return NULL;
     size_t n = count * size;
-    void *p = macs_alloc(a, n);
+    void *p = macsi_alloc(a, n);
     if (p)
         memset(p, 0, n > 0 ? n : 1);
     return p;
 }
 
-void macs_free(const macs_allocator *a, void *ptr)
+void macsi_free(const macs_allocator *a, void *ptr)
 {
     if (!ptr)
         return;
@@ -40,10 +40,10 @@ void macs_free(const macs_allocator *a, void *ptr)
         free(ptr);
 }
 
-char *macs_strdup(const macs_allocator *a, const char *s)
+char *macsi_strdup(const macs_allocator *a, const char *s)
 {
     size_t n = strlen(s) + 1;
-    char *p = macs_alloc(a, n);
+    char *p = macsi_alloc(a, n);
     if (p)
         memcpy(p, s, n);
     return p;

@@ -3,7 +3,7 @@
 
 #include "internal.h"
 
-void macs_fbo_attach_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds)
+void macsi_fbo_attach_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds)
 {
     /* Two attachment points rather than GL_DEPTH_STENCIL_ATTACHMENT, which EXT_framebuffer_object lacks. */
     GLuint rb = ds ? ds->renderbuffer : 0;
@@ -11,12 +11,12 @@ void macs_fbo_attach_depth_stencil(macs_context *ctx, const macs_depth_stencil *
     ctx->gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, rb);
 }
 
-macs_status macs_fbo_check(macs_context *ctx, const char *what)
+macs_status macsi_fbo_check(macs_context *ctx, const char *what)
 {
     GLenum status = ctx->gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status == GL_FRAMEBUFFER_COMPLETE)
         return MACS_OK;
-    return macs_fail(ctx, MACS_ERR_FRAMEBUFFER, "%s: framebuffer status 0x%04x", what, (unsigned)status);
+    return macsi_fail(ctx, MACS_ERR_FRAMEBUFFER, "%s: framebuffer status 0x%04x", what, (unsigned)status);
 }
 
 static macs_status clear(macs_depth_stencil *ds, float depth, unsigned stencil, unsigned write_mask)
@@ -24,12 +24,12 @@ static macs_status clear(macs_depth_stencil *ds, float depth, unsigned stencil, 
     macs_context *ctx = ds->ctx;
     const macs_gl *gl = &ctx->gl;
     gl->BindFramebuffer(GL_FRAMEBUFFER, ctx->scratch_fbo);
-    macs_fbo_attach_depth_stencil(ctx, ds);
+    macsi_fbo_attach_depth_stencil(ctx, ds);
     /* A framebuffer without colour needs NONE draw and read buffers to be complete under EXT_fbo. */
     static const GLenum none = GL_NONE;
     gl->DrawBuffers(1, &none);
     gl->ReadBuffer(GL_NONE);
-    macs_status st = macs_fbo_check(ctx, "clearing a depth/stencil object");
+    macs_status st = macsi_fbo_check(ctx, "clearing a depth/stencil object");
     if (st == MACS_OK) {
         gl->Disable(GL_SCISSOR_TEST);
         gl->DepthMask(GL_TRUE);
@@ -39,11 +39,11 @@ static macs_status clear(macs_depth_stencil *ds, float depth, unsigned stencil, 
         gl->ClearStencil((GLint)(stencil & MACS_STENCIL_CALLER_BITS));
         gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     }
-    macs_fbo_attach_depth_stencil(ctx, NULL);
+    macsi_fbo_attach_depth_stencil(ctx, NULL);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (st != MACS_OK)
         return st;
-    return macs_gl_check(ctx, "clearing a depth/stencil object");
+    return macsi_gl_check(ctx, "clearing a depth/stencil object");
 }
 
 static macs_status create(macs_context *ctx, int width, int height, bool internal, bool want_float,
@@ -51,15 +51,15 @@ static macs_status create(macs_context *ctx, int width, int height, bool interna
 {
     *out = NULL;
     if (width <= 0 || height <= 0)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: size %dx%d must be positive",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: size %dx%d must be positive",
                          width, height);
     int max = ctx->effective.max_texture_size;
     if (width > max || height > max)
-        return macs_fail(ctx, MACS_ERR_LIMIT, "macs_depth_stencil_create: size %dx%d exceeds the maximum %d",
+        return macsi_fail(ctx, MACS_ERR_LIMIT, "macs_depth_stencil_create: size %dx%d exceeds the maximum %d",
                          width, height, max);
-    macs_depth_stencil *ds = macs_calloc(&ctx->allocator, 1, sizeof *ds);
+    macs_depth_stencil *ds = macsi_calloc(&ctx->allocator, 1, sizeof *ds);
     if (!ds)
-        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a depth/stencil object");
+        return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a depth/stencil object");
     ds->ctx = ctx;
     ds->width = width;
     ds->height = height;
@@ -68,18 +68,18 @@ static macs_status create(macs_context *ctx, int width, int height, bool interna
     bool use_float = !internal && want_float && ctx->allow_float_depth && ctx->features.depth_buffer_float;
     ds->format = use_float ? MACS_DEPTH32F_STENCIL8 : MACS_DEPTH24_STENCIL8;
     const macs_gl *gl = &ctx->gl;
-    macs_gl_drain(ctx);
+    macsi_gl_drain(ctx);
     gl->GenRenderbuffers(1, &ds->renderbuffer);
     gl->BindRenderbuffer(GL_RENDERBUFFER, ds->renderbuffer);
     gl->RenderbufferStorage(GL_RENDERBUFFER, use_float ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8, width, height);
     gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
-    macs_status st = macs_gl_check(ctx, "glRenderbufferStorage");
+    macs_status st = macsi_gl_check(ctx, "glRenderbufferStorage");
     /* New storage is undefined; depth 1 and stencil 0 make the first run behave and set the invariant. */
     if (st == MACS_OK)
         st = clear(ds, 1.0f, 0, 0xFF);
     if (st != MACS_OK) {
         gl->DeleteRenderbuffers(1, &ds->renderbuffer);
-        macs_free(&ctx->allocator, ds);
+        macsi_free(&ctx->allocator, ds);
         return st;
     }
     MACS_LIST_PUSH(ctx->depth_stencils, ds);
@@ -95,16 +95,16 @@ macs_status macs_depth_stencil_create(macs_context *ctx, const macs_depth_stenci
     if (!ctx)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: %s is NULL",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: %s is NULL",
                          desc ? "out" : "desc");
     if (desc->format != 0 && desc->format != MACS_DEPTH24_STENCIL8 && desc->format != MACS_DEPTH32F_STENCIL8)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: desc.format %d is not a "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_create: desc.format %d is not a "
                          "macs_depth_format (0, %d or %d)",
                          (int)desc->format, (int)MACS_DEPTH24_STENCIL8, (int)MACS_DEPTH32F_STENCIL8);
     return create(ctx, desc->width, desc->height, false, desc->format != MACS_DEPTH24_STENCIL8, out);
 }
 
-macs_status macs_depth_stencil_internal(macs_context *ctx, int width, int height, macs_depth_stencil **out)
+macs_status macsi_depth_stencil_internal(macs_context *ctx, int width, int height, macs_depth_stencil **out)
 {
     for (macs_depth_stencil *ds = ctx->depth_stencils; ds; ds = ds->next)
         if (ds->internal && ds->width == width && ds->height == height) {
@@ -119,10 +119,10 @@ void macs_depth_stencil_destroy(macs_depth_stencil *ds)
     if (!ds)
         return;
     macs_context *ctx = ds->ctx;
-    macs_pass_forget_depth_stencil(ctx, ds);
+    macsi_pass_forget_depth_stencil(ctx, ds);
     ctx->gl.DeleteRenderbuffers(1, &ds->renderbuffer);
     MACS_LIST_REMOVE(ctx->depth_stencils, ds);
-    macs_free(&ctx->allocator, ds);
+    macsi_free(&ctx->allocator, ds);
 }
 
 macs_depth_format macs_depth_stencil_format(const macs_depth_stencil *ds)
@@ -135,9 +135,9 @@ macs_status macs_depth_stencil_clear(macs_depth_stencil *ds, float depth, unsign
     if (!ds)
         return MACS_ERR_INVALID_ARGUMENT;
     if (ds->internal)
-        return macs_fail(ds->ctx, MACS_ERR_INVALID_ARGUMENT, "internal depth/stencil objects are MACS's own");
+        return macsi_fail(ds->ctx, MACS_ERR_INVALID_ARGUMENT, "internal depth/stencil objects are MACS's own");
     if (!(depth == depth))
-        return macs_fail(ds->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_clear: depth is NaN");
-    macs_gl_drain(ds->ctx);
+        return macsi_fail(ds->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_depth_stencil_clear: depth is NaN");
+    macsi_gl_drain(ds->ctx);
     return clear(ds, depth, stencil, write_mask);
 }

@@ -17,7 +17,7 @@ const char *macs_status_string(macs_status status)
     return "unknown status";
 }
 
-void macs_log(const macs_context *ctx, macs_log_level level, const char *message)
+void macsi_log(const macs_context *ctx, macs_log_level level, const char *message)
 {
     if (ctx->logger.func)
         ctx->logger.func(level, message, ctx->logger.user);
@@ -32,7 +32,7 @@ static const char *status_prefix(char prefix[PREFIX_SIZE], macs_status status)
     return prefix;
 }
 
-macs_status macs_fail(macs_context *ctx, macs_status status, const char *format, ...)
+macs_status macsi_fail(macs_context *ctx, macs_status status, const char *format, ...)
 {
     char prefix[PREFIX_SIZE], buffer[MACS_MESSAGE_SIZE];
     va_list args;
@@ -40,11 +40,11 @@ macs_status macs_fail(macs_context *ctx, macs_status status, const char *format,
     const char *message =
         macs_first_error_vrecord(&ctx->error, status, buffer, status_prefix(prefix, status), format, args);
     va_end(args);
-    macs_log(ctx, MACS_LOG_ERROR, message);
+    macsi_log(ctx, MACS_LOG_ERROR, message);
     return status;
 }
 
-void macs_report(macs_logger logger, char *message, size_t size, macs_status status,
+void macsi_report(macs_logger logger, char *message, size_t size, macs_status status,
                  const char *format, ...)
 {
     char prefix[PREFIX_SIZE], buffer[MACS_MESSAGE_SIZE];
@@ -74,7 +74,7 @@ void macs_context_clear_error(macs_context *ctx)
     macs_first_error_clear(&ctx->error);
 }
 
-void macs_gl_drain(macs_context *ctx)
+void macsi_gl_drain(macs_context *ctx)
 {
     /* Errors left by the caller's own GL code must not be blamed on MACS. The bound stops a broken
      * implementation that never returns GL_NO_ERROR from hanging us. */
@@ -82,14 +82,14 @@ void macs_gl_drain(macs_context *ctx)
         ;
 }
 
-macs_status macs_gl_current(macs_context *ctx, const char *where)
+macs_status macsi_gl_current(macs_context *ctx, const char *where)
 {
     /* Without a current context every GL call does nothing and names come back 0: a shader then
      * "fails to compile" with an empty log. GL_VERSION is NULL exactly then (GL 2.1 section 6.1.11
      * defines it for every context), so one cheap query tells the caller what is really wrong. */
     if (ctx->gl.GetString(GL_VERSION))
         return MACS_OK;
-    return macs_fail(ctx, MACS_ERR_CONTEXT,
+    return macsi_fail(ctx, MACS_ERR_CONTEXT,
                      "%s: no OpenGL context is current on this thread (glGetString(GL_VERSION) is NULL): make the "
                      "context this MACS context was created on current (macs_headless_make_current, or your "
                      "toolkit's call) before using it",
@@ -108,13 +108,13 @@ static const char *gl_error_name(GLenum e)
     }
 }
 
-macs_status macs_gl_check(macs_context *ctx, const char *what)
+macs_status macsi_gl_check(macs_context *ctx, const char *what)
 {
     GLenum e = ctx->gl.GetError();
     if (e == GL_NO_ERROR)
         return MACS_OK;
-    macs_gl_drain(ctx);
+    macsi_gl_drain(ctx);
     if (e == GL_OUT_OF_MEMORY)
-        return macs_fail(ctx, MACS_ERR_GPU_OUT_OF_MEMORY, "%s: GL_OUT_OF_MEMORY", what);
-    return macs_fail(ctx, MACS_ERR_GL, "%s: %s (0x%04x)", what, gl_error_name(e), (unsigned)e);
+        return macsi_fail(ctx, MACS_ERR_GPU_OUT_OF_MEMORY, "%s: GL_OUT_OF_MEMORY", what);
+    return macsi_fail(ctx, MACS_ERR_GL, "%s: %s (0x%04x)", what, gl_error_name(e), (unsigned)e);
 }

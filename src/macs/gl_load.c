@@ -4,7 +4,7 @@
 
 #include "internal.h"
 
-bool macs_gl_has_extension(const char *extensions, const char *name)
+bool macsi_gl_has_extension(const char *extensions, const char *name)
 {
     /* Whole-token match: "GL_EXT_foo" must not be found inside "GL_EXT_foo_bar". */
     if (!extensions || !name || !*name)
@@ -30,7 +30,7 @@ static void note_missing(char *missing, size_t size, const char *name)
         snprintf(missing + used, size - used, "%s%s", used ? ", " : "", name);
 }
 
-macs_status macs_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user, bool ext_fbo, char *missing,
+macs_status macsi_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user, bool ext_fbo, char *missing,
                          size_t missing_size)
 {
     bool ok = true;

@@ -39,7 +39,7 @@ static bool check_desc(const macs_headless_desc *d, macs_headless **out, char *t
     else if ((unsigned)d->backend > MACS_HEADLESS_EGL_DEVICE)
         snprintf(text, size, "macs_headless_create: desc.backend %d is not a macs_headless_backend (0 .. %d)",
                  (int)d->backend, (int)MACS_HEADLESS_EGL_DEVICE);
-    else if (!macs_allocator_valid(&d->allocator))
+    else if (!macsi_allocator_valid(&d->allocator))
         snprintf(text, size, "macs_headless_create: desc.allocator: set alloc, realloc and free together or leave "
                  "all NULL");
     else if (d->device_index < 0)
@@ -59,13 +59,13 @@ static macs_status try_backend(macs_headless *h, macs_headless_backend backend, 
     h->backend = backend;
     switch (backend) {
     case MACS_HEADLESS_OSMESA:
-        return macs_osmesa_create(h, why, size);
+        return macsi_osmesa_create(h, why, size);
     case MACS_HEADLESS_EGL:
-        return macs_egl_surfaceless_create(h, why, size);
+        return macsi_egl_surfaceless_create(h, why, size);
     default: {
         /* Index 0 under DEFAULT is no choice of device: the first one that works will do. */
         bool any_device = d->backend == MACS_HEADLESS_DEFAULT && d->device_index == 0;
-        return macs_egl_device_create(h, any_device ? -1 : d->device_index, why, size);
+        return macsi_egl_device_create(h, any_device ? -1 : d->device_index, why, size);
     }
     }
 }
@@ -95,7 +95,7 @@ static macs_status copy_renderer(macs_headless *h)
     typedef const GLubyte *(GLAPIENTRY * get_string_fn)(GLenum name);
     get_string_fn get_string = (get_string_fn)macs_headless_get_proc_address(h)("glGetString", h->impl);
     const GLubyte *renderer = get_string ? get_string(GL_RENDERER) : NULL;
-    h->renderer = macs_strdup(&h->allocator, renderer ? (const char *)renderer : "");
+    h->renderer = macsi_strdup(&h->allocator, renderer ? (const char *)renderer : "");
     return h->renderer ? MACS_OK : MACS_ERR_OUT_OF_MEMORY;
 }
 
@@ -103,18 +103,18 @@ static macs_status copy_renderer(macs_headless *h)
 static void free_headless(macs_headless *h)
 {
     macs_allocator a = h->allocator;
-    macs_free(&a, h->device_name);
-    macs_free(&a, h->device_extensions);
-    macs_free(&a, h->renderer);
-    macs_free(&a, h);
+    macsi_free(&a, h->device_name);
+    macsi_free(&a, h->device_extensions);
+    macsi_free(&a, h->renderer);
+    macsi_free(&a, h);
 }
 
 static void destroy_backend(macs_headless *h)
 {
     if (uses_egl(h->backend))
-        macs_egl_destroy(h);
+        macsi_egl_destroy(h);
     else
-        macs_osmesa_destroy(h);
+        macsi_osmesa_destroy(h);
 }
 
 /* One info line: what the context runs on, and why the backends before it were passed over. */
@@ -143,12 +143,12 @@ macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless *
     if (!desc)
         desc = &defaults;
     if (!check_desc(desc, out, text, sizeof text)) {
-        macs_report(desc->logger, message, message_size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
+        macsi_report(desc->logger, message, message_size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
         return MACS_ERR_INVALID_ARGUMENT;
     }
-    macs_headless *h = macs_calloc(&desc->allocator, 1, sizeof *h);
+    macs_headless *h = macsi_calloc(&desc->allocator, 1, sizeof *h);
     if (!h) {
-        macs_report(desc->logger, message, message_size, MACS_ERR_OUT_OF_MEMORY,
+        macsi_report(desc->logger, message, message_size, MACS_ERR_OUT_OF_MEMORY,
                     "macs_headless_create: allocating a headless context");
         return MACS_ERR_OUT_OF_MEMORY;
     }
@@ -163,7 +163,7 @@ macs_status macs_headless_create(const macs_headless_desc *desc, macs_headless *
         }
     }
     if (st != MACS_OK) {
-        macs_report(desc->logger, message, message_size, st, "macs_headless_create: %s", text);
+        macsi_report(desc->logger, message, message_size, st, "macs_headless_create: %s", text);
         free_headless(h);
         return st;
     }
@@ -184,7 +184,7 @@ macs_status macs_headless_make_current(macs_headless *h)
 {
     if (!h)
         return MACS_ERR_INVALID_ARGUMENT;
-    return uses_egl(h->backend) ? macs_egl_make_current(h) : macs_osmesa_make_current(h);
+    return uses_egl(h->backend) ? macsi_egl_make_current(h) : macsi_osmesa_make_current(h);
 }
 
 macs_headless_backend macs_headless_backend_used(const macs_headless *h)
@@ -208,7 +208,7 @@ macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *h)
 {
     if (!h)
         return NULL;
-    return uses_egl(h->backend) ? macs_egl_get_proc_address : macs_osmesa_get_proc_address;
+    return uses_egl(h->backend) ? macsi_egl_get_proc_address : macsi_osmesa_get_proc_address;
 }
 
 void *macs_headless_proc_user(const macs_headless *h)

@@ -19,18 +19,18 @@ struct macs_headless {
 /* Each backend fills impl and makes its context current, or writes why not into message: status
  * MACS_ERR_CONTEXT where the next backend of the default order may still succeed, any other status
  * where it should not be tried (out of memory, a device index that does not exist). */
-macs_status macs_osmesa_create(macs_headless *h, char *message, size_t size);
-void macs_osmesa_destroy(macs_headless *h);
-macs_status macs_osmesa_make_current(macs_headless *h);
-macs_gl_proc macs_osmesa_get_proc_address(const char *name, void *user);
+macs_status macsi_osmesa_create(macs_headless *h, char *message, size_t size);
+void macsi_osmesa_destroy(macs_headless *h);
+macs_status macsi_osmesa_make_current(macs_headless *h);
+macs_gl_proc macsi_osmesa_get_proc_address(const char *name, void *user);
 
 /* The EGL backends share one context type, so destroy, make current and get_proc_address are one. */
-macs_status macs_egl_surfaceless_create(macs_headless *h, char *message, size_t size);
+macs_status macsi_egl_surfaceless_create(macs_headless *h, char *message, size_t size);
 /* index < 0: every device in the order EGL lists them, the first that gives a context; else that
  * device only. Fills the device fields of h. */
-macs_status macs_egl_device_create(macs_headless *h, int index, char *message, size_t size);
-void macs_egl_destroy(macs_headless *h);
-macs_status macs_egl_make_current(macs_headless *h);
-macs_gl_proc macs_egl_get_proc_address(const char *name, void *user);
+macs_status macsi_egl_device_create(macs_headless *h, int index, char *message, size_t size);
+void macsi_egl_destroy(macs_headless *h);
+macs_status macsi_egl_make_current(macs_headless *h);
+macs_gl_proc macsi_egl_get_proc_address(const char *name, void *user);
 
 #endif

@@ -11,25 +11,25 @@ typedef struct egl_state {
     EGLContext context;
 } egl_state;
 
-bool macs_egl_client_has(const char *extension)
+bool macsi_egl_client_has(const char *extension)
 {
     /* NULL where EGL lacks EGL_EXT_client_extensions: then no extension is there. */
-    return macs_gl_has_extension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), extension);
+    return macsi_gl_has_extension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), extension);
 }
 
-__eglMustCastToProperFunctionPointerType macs_egl_proc(const char *name)
+__eglMustCastToProperFunctionPointerType macsi_egl_proc(const char *name)
 {
     return eglGetProcAddress(name);
 }
 
-macs_status macs_egl_platform_display(EGLenum platform, void *native, EGLDisplay *out, char *message, size_t size)
+macs_status macsi_egl_platform_display(EGLenum platform, void *native, EGLDisplay *out, char *message, size_t size)
 {
-    if (!macs_egl_client_has("EGL_EXT_platform_base")) {
+    if (!macsi_egl_client_has("EGL_EXT_platform_base")) {
         snprintf(message, size, "EGL_EXT_platform_base is missing from the client extensions");
         return MACS_ERR_CONTEXT;
     }
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
-        (PFNEGLGETPLATFORMDISPLAYEXTPROC)macs_egl_proc("eglGetPlatformDisplayEXT");
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)macsi_egl_proc("eglGetPlatformDisplayEXT");
     if (!get_display) {
         snprintf(message, size, "eglGetPlatformDisplayEXT not found");
         return MACS_ERR_CONTEXT;
@@ -53,7 +53,7 @@ static macs_status choose_config(EGLDisplay display, const char *display_ext, EG
     static const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_DONT_CARE,
                                             EGL_NONE};
     *config = EGL_NO_CONFIG_KHR;
-    if (macs_gl_has_extension(display_ext, "EGL_KHR_no_config_context"))
+    if (macsi_gl_has_extension(display_ext, "EGL_KHR_no_config_context"))
         return MACS_OK;
     EGLint count = 0;
     if (!eglChooseConfig(display, config_attribs, config, 1, &count) || count < 1) {
@@ -63,10 +63,10 @@ static macs_status choose_config(EGLDisplay display, const char *display_ext, EG
     return MACS_OK;
 }
 
-macs_status macs_egl_create_on(macs_headless *h, EGLDisplay display, char *message, size_t size)
+macs_status macsi_egl_create_on(macs_headless *h, EGLDisplay display, char *message, size_t size)
 {
     const char *display_ext = eglQueryString(display, EGL_EXTENSIONS);
-    if (!macs_gl_has_extension(display_ext, "EGL_KHR_surfaceless_context")) {
+    if (!macsi_gl_has_extension(display_ext, "EGL_KHR_surfaceless_context")) {
         snprintf(message, size, "EGL_KHR_surfaceless_context is missing from the display's extensions");
         return MACS_ERR_CONTEXT;
     }
@@ -78,7 +78,7 @@ macs_status macs_egl_create_on(macs_headless *h, EGLDisplay display, char *messa
     macs_status st = choose_config(display, display_ext, &config, message, size);
     if (st != MACS_OK)
         return st;
-    egl_state *s = macs_calloc(&h->allocator, 1, sizeof *s);
+    egl_state *s = macsi_calloc(&h->allocator, 1, sizeof *s);
     if (!s) {
         snprintf(message, size, "out of memory");
         return MACS_ERR_OUT_OF_MEMORY;
@@ -88,20 +88,20 @@ macs_status macs_egl_create_on(macs_headless *h, EGLDisplay display, char *messa
     s->context = eglCreateContext(display, config, EGL_NO_CONTEXT, NULL);
     if (s->context == EGL_NO_CONTEXT) {
         snprintf(message, size, "eglCreateContext failed (error 0x%04x)", (unsigned)eglGetError());
-        macs_free(&h->allocator, s);
+        macsi_free(&h->allocator, s);
         return MACS_ERR_CONTEXT;
     }
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, s->context)) {
         snprintf(message, size, "eglMakeCurrent without a surface failed (error 0x%04x)", (unsigned)eglGetError());
         eglDestroyContext(display, s->context);
-        macs_free(&h->allocator, s);
+        macsi_free(&h->allocator, s);
         return MACS_ERR_CONTEXT;
     }
     h->impl = s;
     return MACS_OK;
 }
 
-void macs_egl_destroy(macs_headless *h)
+void macsi_egl_destroy(macs_headless *h)
 {
     egl_state *s = h->impl;
     if (!s)
@@ -113,11 +113,11 @@ void macs_egl_destroy(macs_headless *h)
     eglDestroyContext(s->display, s->context);
     if (was_current)
         eglReleaseThread();
-    macs_free(&h->allocator, s);
+    macsi_free(&h->allocator, s);
     h->impl = NULL;
 }
 
-macs_status macs_egl_make_current(macs_headless *h)
+macs_status macsi_egl_make_current(macs_headless *h)
 {
     egl_state *s = h->impl;
     if (!eglBindAPI(EGL_OPENGL_API) || !eglMakeCurrent(s->display, EGL_NO_SURFACE, EGL_NO_SURFACE, s->context))
@@ -125,7 +125,7 @@ macs_status macs_egl_make_current(macs_headless *h)
     return MACS_OK;
 }
 
-macs_gl_proc macs_egl_get_proc_address(const char *name, void *user)
+macs_gl_proc macsi_egl_get_proc_address(const char *name, void *user)
 {
     (void)user;
     return (macs_gl_proc)eglGetProcAddress(name);

@@ -24,24 +24,24 @@ typedef struct device_list {
 /* EGL_EXT_device_base is the older name of enumeration and query together. */
 static bool client_has_device(const char *extension)
 {
-    return macs_egl_client_has(extension) || macs_egl_client_has("EGL_EXT_device_base");
+    return macsi_egl_client_has(extension) || macsi_egl_client_has("EGL_EXT_device_base");
 }
 
 static macs_status load_api(device_api *api, char *message, size_t size)
 {
     memset(api, 0, sizeof *api);
-    if (!macs_egl_client_has("EGL_EXT_platform_device") || !client_has_device("EGL_EXT_device_enumeration")) {
+    if (!macsi_egl_client_has("EGL_EXT_platform_device") || !client_has_device("EGL_EXT_device_enumeration")) {
         snprintf(message, size, "EGL_EXT_platform_device or EGL_EXT_device_enumeration is missing from the client "
                  "extensions");
         return MACS_ERR_CONTEXT;
     }
-    api->query_devices = (PFNEGLQUERYDEVICESEXTPROC)macs_egl_proc("eglQueryDevicesEXT");
+    api->query_devices = (PFNEGLQUERYDEVICESEXTPROC)macsi_egl_proc("eglQueryDevicesEXT");
     if (!api->query_devices) {
         snprintf(message, size, "eglQueryDevicesEXT not found");
         return MACS_ERR_CONTEXT;
     }
     if (client_has_device("EGL_EXT_device_query")) {
-        api->query_string = (PFNEGLQUERYDEVICESTRINGEXTPROC)macs_egl_proc("eglQueryDeviceStringEXT");
+        api->query_string = (PFNEGLQUERYDEVICESTRINGEXTPROC)macsi_egl_proc("eglQueryDeviceStringEXT");
     }
     return MACS_OK;
 }
@@ -55,7 +55,7 @@ static macs_status list_devices(const macs_allocator *a, const device_api *api, 
     EGLint count = 0;
     if (!api->query_devices(0, NULL, &count) || count < 1)
         return MACS_OK;
-    list->devices = macs_calloc(a, (size_t)count, sizeof *list->devices);
+    list->devices = macsi_calloc(a, (size_t)count, sizeof *list->devices);
     if (!list->devices) {
         snprintf(message, size, "out of memory");
         return MACS_ERR_OUT_OF_MEMORY;
@@ -77,7 +77,7 @@ static const char *device_string(const device_api *api, EGLDeviceEXT device, EGL
 static const char *device_name(const device_api *api, EGLDeviceEXT device)
 {
     const char *ext = device_string(api, device, EGL_EXTENSIONS);
-    if (macs_gl_has_extension(ext, "EGL_MESA_device_software"))
+    if (macsi_gl_has_extension(ext, "EGL_MESA_device_software"))
         return "software";
     static const struct { const char *extension; EGLint name; } sources[] = {
         {"EGL_EXT_device_drm", EGL_DRM_DEVICE_FILE_EXT},
@@ -85,7 +85,7 @@ static const char *device_name(const device_api *api, EGLDeviceEXT device)
         {"EGL_EXT_device_query_name", EGL_RENDERER_EXT},
     };
     for (size_t i = 0; i < sizeof sources / sizeof sources[0]; i++)
-        if (macs_gl_has_extension(ext, sources[i].extension)) {
+        if (macsi_gl_has_extension(ext, sources[i].extension)) {
             const char *name = device_string(api, device, sources[i].name);
             if (name[0])
                 return name;
@@ -99,17 +99,17 @@ static macs_status record_device(macs_headless *h, const device_api *api, const 
     EGLDeviceEXT device = list->devices[index];
     h->device_index = index;
     h->device_count = list->count;
-    h->device_name = macs_strdup(&h->allocator, device_name(api, device));
-    h->device_extensions = macs_strdup(&h->allocator, device_string(api, device, EGL_EXTENSIONS));
+    h->device_name = macsi_strdup(&h->allocator, device_name(api, device));
+    h->device_extensions = macsi_strdup(&h->allocator, device_string(api, device, EGL_EXTENSIONS));
     return h->device_name && h->device_extensions ? MACS_OK : MACS_ERR_OUT_OF_MEMORY;
 }
 
 static macs_status create_on_device(macs_headless *h, EGLDeviceEXT device, char *message, size_t size)
 {
     EGLDisplay display;
-    macs_status st = macs_egl_platform_display(EGL_PLATFORM_DEVICE_EXT, device, &display, message, size);
+    macs_status st = macsi_egl_platform_display(EGL_PLATFORM_DEVICE_EXT, device, &display, message, size);
     if (st == MACS_OK)
-        st = macs_egl_create_on(h, display, message, size);
+        st = macsi_egl_create_on(h, display, message, size);
     return st;
 }
 
@@ -144,7 +144,7 @@ static macs_status create_on_list(macs_headless *h, const device_api *api, const
         if (st == MACS_OK) {
             st = record_device(h, api, list, i);
             if (st != MACS_OK) {
-                macs_egl_destroy(h);
+                macsi_egl_destroy(h);
                 snprintf(message, size, "out of memory");
             }
             return st;
@@ -156,7 +156,7 @@ static macs_status create_on_list(macs_headless *h, const device_api *api, const
     return MACS_ERR_CONTEXT;
 }
 
-macs_status macs_egl_device_create(macs_headless *h, int index, char *message, size_t size)
+macs_status macsi_egl_device_create(macs_headless *h, int index, char *message, size_t size)
 {
     device_api api;
     device_list list;
@@ -166,6 +166,6 @@ macs_status macs_egl_device_create(macs_headless *h, int index, char *message, s
     if (st != MACS_OK)
         return st;
     st = create_on_list(h, &api, &list, index, message, size);
-    macs_free(&h->allocator, list.devices);
+    macsi_free(&h->allocator, list.devices);
     return st;
 }

@@ -4,16 +4,16 @@
 
 #include "headless_egl.h"
 
-macs_status macs_egl_surfaceless_create(macs_headless *h, char *message, size_t size)
+macs_status macsi_egl_surfaceless_create(macs_headless *h, char *message, size_t size)
 {
-    if (!macs_egl_client_has("EGL_MESA_platform_surfaceless")) {
+    if (!macsi_egl_client_has("EGL_MESA_platform_surfaceless")) {
         snprintf(message, size, "EGL_MESA_platform_surfaceless is missing from the client extensions");
         return MACS_ERR_CONTEXT;
     }
     EGLDisplay display;
-    macs_status st = macs_egl_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, &display, message,
+    macs_status st = macsi_egl_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, &display, message,
                                                size);
     if (st != MACS_OK)
         return st;
-    return macs_egl_create_on(h, display, message, size);
+    return macsi_egl_create_on(h, display, message, size);
 }

@@ -19,9 +19,9 @@ static macs_status make_current(osmesa_state *s)
     return OSMesaMakeCurrent(s->context, s->pixel, GL_UNSIGNED_BYTE, 1, 1) ? MACS_OK : MACS_ERR_CONTEXT;
 }
 
-macs_status macs_osmesa_create(macs_headless *h, char *message, size_t size)
+macs_status macsi_osmesa_create(macs_headless *h, char *message, size_t size)
 {
-    osmesa_state *s = macs_calloc(&h->allocator, 1, sizeof *s);
+    osmesa_state *s = macsi_calloc(&h->allocator, 1, sizeof *s);
     if (!s) {
         snprintf(message, size, "out of memory");
         return MACS_ERR_OUT_OF_MEMORY;
@@ -39,20 +39,20 @@ macs_status macs_osmesa_create(macs_headless *h, char *message, size_t size)
     }
     if (!s->context) {
         snprintf(message, size, "OSMesaCreateContextAttribs failed for a compatibility context");
-        macs_free(&h->allocator, s);
+        macsi_free(&h->allocator, s);
         return MACS_ERR_CONTEXT;
     }
     if (make_current(s) != MACS_OK) {
         snprintf(message, size, "OSMesaMakeCurrent failed");
         OSMesaDestroyContext(s->context);
-        macs_free(&h->allocator, s);
+        macsi_free(&h->allocator, s);
         return MACS_ERR_CONTEXT;
     }
     h->impl = s;
     return MACS_OK;
 }
 
-void macs_osmesa_destroy(macs_headless *h)
+void macsi_osmesa_destroy(macs_headless *h)
 {
     osmesa_state *s = h->impl;
     if (!s)
@@ -60,16 +60,16 @@ void macs_osmesa_destroy(macs_headless *h)
     if (OSMesaGetCurrentContext() == s->context)
         OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
     OSMesaDestroyContext(s->context);
-    macs_free(&h->allocator, s);
+    macsi_free(&h->allocator, s);
     h->impl = NULL;
 }
 
-macs_status macs_osmesa_make_current(macs_headless *h)
+macs_status macsi_osmesa_make_current(macs_headless *h)
 {
     return make_current(h->impl);
 }
 
-macs_gl_proc macs_osmesa_get_proc_address(const char *name, void *user)
+macs_gl_proc macsi_osmesa_get_proc_address(const char *name, void *user)
 {
     (void)user;
     return (macs_gl_proc)OSMesaGetProcAddress(name);

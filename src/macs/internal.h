@@ -110,75 +110,75 @@ struct macs_context {
 };
 
 /* alloc.c: allocation through the caller's hooks; every result must be checked. */
-bool macs_allocator_valid(const macs_allocator *a);
-void *macs_alloc(const macs_allocator *a, size_t size);
-void *macs_calloc(const macs_allocator *a, size_t count, size_t size);
-void macs_free(const macs_allocator *a, void *ptr);
-char *macs_strdup(const macs_allocator *a, const char *s);
+bool macsi_allocator_valid(const macs_allocator *a);
+void *macsi_alloc(const macs_allocator *a, size_t size);
+void *macsi_calloc(const macs_allocator *a, size_t count, size_t size);
+void macsi_free(const macs_allocator *a, void *ptr);
+char *macsi_strdup(const macs_allocator *a, const char *s);
 
 /* error.c: recording and reporting errors. */
-macs_status macs_fail(macs_context *ctx, macs_status status, const char *format, ...)
+macs_status macsi_fail(macs_context *ctx, macs_status status, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((__format__(__printf__, 3, 4)))
 #endif
     ;
-void macs_report(macs_logger logger, char *message, size_t size, macs_status status,
+void macsi_report(macs_logger logger, char *message, size_t size, macs_status status,
                  const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((__format__(__printf__, 5, 6)))
 #endif
     ;
-void macs_log(const macs_context *ctx, macs_log_level level, const char *message);
-void macs_gl_drain(macs_context *ctx);
+void macsi_log(const macs_context *ctx, macs_log_level level, const char *message);
+void macsi_gl_drain(macs_context *ctx);
 /* MACS_ERR_CONTEXT, naming where, when no GL context is current on the calling thread. */
-macs_status macs_gl_current(macs_context *ctx, const char *where);
-macs_status macs_gl_check(macs_context *ctx, const char *what);
+macs_status macsi_gl_current(macs_context *ctx, const char *where);
+macs_status macsi_gl_check(macs_context *ctx, const char *what);
 
 /* gl_load.c: filling the GL table. */
-bool macs_gl_has_extension(const char *extensions, const char *name);
-macs_status macs_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user, bool ext_fbo, char *missing,
+bool macsi_gl_has_extension(const char *extensions, const char *name);
+macs_status macsi_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user, bool ext_fbo, char *missing,
                          size_t missing_size);
 
 /* limits.c */
-void macs_limits_query(macs_context *ctx);
-macs_status macs_limits_check_caps(const macs_limits *caps, char *message, size_t size);
-int macs_outputs_per_chunk(const macs_context *ctx);
-void macs_apply_caps(macs_context *ctx, const macs_limits *caps);
+void macsi_limits_query(macs_context *ctx);
+macs_status macsi_limits_check_caps(const macs_limits *caps, char *message, size_t size);
+int macsi_outputs_per_chunk(const macs_context *ctx);
+void macsi_apply_caps(macs_context *ctx, const macs_limits *caps);
 
 /* program_cache.c */
-macs_status macs_program_acquire(macs_context *ctx, const char *fragment_source, int input_count,
+macs_status macsi_program_acquire(macs_context *ctx, const char *fragment_source, int input_count,
                                  char *const *input_names, macs_program **out);
-void macs_program_release(macs_context *ctx, macs_program *program);
-void macs_program_cache_destroy(macs_context *ctx);
+void macsi_program_release(macs_context *ctx, macs_program *program);
+void macsi_program_cache_destroy(macs_context *ctx);
 
 /* pass_source.c */
-char *macs_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count);
-size_t macs_uniform_value_size(macs_uniform_type type, int count);
+char *macsi_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count);
+size_t macsi_uniform_value_size(macs_uniform_type type, int count);
 
 /* depth_stencil.c */
-macs_status macs_depth_stencil_internal(macs_context *ctx, int width, int height, macs_depth_stencil **out);
-void macs_fbo_attach_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
-macs_status macs_fbo_check(macs_context *ctx, const char *what);
+macs_status macsi_depth_stencil_internal(macs_context *ctx, int width, int height, macs_depth_stencil **out);
+void macsi_fbo_attach_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
+macs_status macsi_fbo_check(macs_context *ctx, const char *what);
 
 /* split.c */
-macs_status macs_split_check_state(macs_context *ctx, const macs_stencil_state *stencil, int chunk_count);
-void macs_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bool any_ds);
+macs_status macsi_split_check_state(macs_context *ctx, const macs_stencil_state *stencil, int chunk_count);
+void macsi_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bool any_ds);
 
 /* query.c */
-macs_status macs_query_begin(macs_pass *pass);
-void macs_query_end(macs_pass *pass);
-void macs_query_destroy(macs_pass *pass);
+macs_status macsi_query_begin(macs_pass *pass);
+void macsi_query_end(macs_pass *pass);
+void macsi_query_destroy(macs_pass *pass);
 
 /* pass_validate.c: refuses a pass description, naming the bad argument and the rule it breaks. */
-macs_status macs_pass_validate(macs_context *ctx, const macs_pass_desc *desc);
+macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc);
 
 /* pass.c: detaching destroyed objects from passes */
-void macs_pass_forget_texture(macs_context *ctx, const macs_texture *texture);
-void macs_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
+void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture);
+void macsi_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
 
 /* GL enum of a comparison, with the default given. */
-GLenum macs_gl_compare(macs_compare c, GLenum fallback);
-GLenum macs_gl_stencil_op(macs_stencil_op op);
+GLenum macsi_gl_compare(macs_compare c, GLenum fallback);
+GLenum macsi_gl_stencil_op(macs_stencil_op op);
 
 /* Doubly linked list helpers for the context's object lists. */
 #define MACS_LIST_PUSH(head, node) \

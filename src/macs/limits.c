@@ -9,7 +9,7 @@ static int capped(int real, int cap)
     return cap > 0 && cap < real ? cap : real;
 }
 
-void macs_limits_query(macs_context *ctx)
+void macsi_limits_query(macs_context *ctx)
 {
     GLint v;
     macs_limits *r = &ctx->real;
@@ -34,7 +34,7 @@ void macs_limits_query(macs_context *ctx)
 #define MACS_LIMIT_FIELDS(X) \
     X(max_draw_buffers) X(max_color_attachments) X(max_texture_units) X(max_texture_size) X(max_uniform_components)
 
-macs_status macs_limits_check_caps(const macs_limits *caps, char *message, size_t size)
+macs_status macsi_limits_check_caps(const macs_limits *caps, char *message, size_t size)
 {
 #define MACS_CHECK_CAP_(field) \
     if (caps->field < 0) { \
@@ -47,14 +47,14 @@ macs_status macs_limits_check_caps(const macs_limits *caps, char *message, size_
     return MACS_OK;
 }
 
-void macs_apply_caps(macs_context *ctx, const macs_limits *caps)
+void macsi_apply_caps(macs_context *ctx, const macs_limits *caps)
 {
 #define MACS_APPLY_CAP_(field) ctx->effective.field = capped(ctx->real.field, caps->field);
     MACS_LIMIT_FIELDS(MACS_APPLY_CAP_)
 #undef MACS_APPLY_CAP_
 }
 
-int macs_outputs_per_chunk(const macs_context *ctx)
+int macsi_outputs_per_chunk(const macs_context *ctx)
 {
     int n = ctx->effective.max_draw_buffers;
     if (ctx->effective.max_color_attachments < n)

@@ -10,27 +10,27 @@ static void free_pass(macs_pass *p)
     macs_context *ctx = p->ctx;
     const macs_allocator *a = &ctx->allocator;
     for (int c = 0; p->chunks && c < p->chunk_count; c++) {
-        macs_program_release(ctx, p->chunks[c].program);
+        macsi_program_release(ctx, p->chunks[c].program);
         if (p->chunks[c].fbo)
             ctx->gl.DeleteFramebuffers(1, &p->chunks[c].fbo);
-        macs_free(a, p->chunks[c].uniform_locations);
+        macsi_free(a, p->chunks[c].uniform_locations);
     }
-    macs_free(a, p->chunks);
-    macs_query_destroy(p);
+    macsi_free(a, p->chunks);
+    macsi_query_destroy(p);
     for (int i = 0; p->input_names && i < p->input_count; i++)
-        macs_free(a, p->input_names[i]);
+        macsi_free(a, p->input_names[i]);
     for (int i = 0; p->output_names && i < p->output_count; i++)
-        macs_free(a, p->output_names[i]);
+        macsi_free(a, p->output_names[i]);
     for (int i = 0; p->uniforms && i < p->uniform_count; i++) {
-        macs_free(a, p->uniforms[i].name);
-        macs_free(a, p->uniforms[i].value);
+        macsi_free(a, p->uniforms[i].name);
+        macsi_free(a, p->uniforms[i].value);
     }
-    macs_free(a, p->input_names);
-    macs_free(a, p->output_names);
-    macs_free(a, p->inputs);
-    macs_free(a, p->outputs);
-    macs_free(a, p->uniforms);
-    macs_free(a, p);
+    macsi_free(a, p->input_names);
+    macsi_free(a, p->output_names);
+    macsi_free(a, p->inputs);
+    macsi_free(a, p->outputs);
+    macsi_free(a, p->uniforms);
+    macsi_free(a, p);
 }
 
 static macs_status copy_desc(macs_pass *p, const macs_pass_desc *d)
@@ -39,20 +39,20 @@ static macs_status copy_desc(macs_pass *p, const macs_pass_desc *d)
     p->input_count = d->input_count;
     p->output_count = d->output_count;
     p->uniform_count = d->uniform_count;
-    p->input_names = macs_calloc(a, (size_t)d->input_count, sizeof *p->input_names);
-    p->inputs = macs_calloc(a, (size_t)d->input_count, sizeof *p->inputs);
-    p->output_names = macs_calloc(a, (size_t)d->output_count, sizeof *p->output_names);
-    p->outputs = macs_calloc(a, (size_t)d->output_count, sizeof *p->outputs);
-    p->uniforms = macs_calloc(a, (size_t)d->uniform_count, sizeof *p->uniforms);
+    p->input_names = macsi_calloc(a, (size_t)d->input_count, sizeof *p->input_names);
+    p->inputs = macsi_calloc(a, (size_t)d->input_count, sizeof *p->inputs);
+    p->output_names = macsi_calloc(a, (size_t)d->output_count, sizeof *p->output_names);
+    p->outputs = macsi_calloc(a, (size_t)d->output_count, sizeof *p->outputs);
+    p->uniforms = macsi_calloc(a, (size_t)d->uniform_count, sizeof *p->uniforms);
     if (!p->input_names || !p->inputs || !p->output_names || !p->outputs || !p->uniforms)
         return MACS_ERR_OUT_OF_MEMORY;
     for (int i = 0; i < d->input_count; i++) {
-        if (!(p->input_names[i] = macs_strdup(a, d->inputs[i].name)))
+        if (!(p->input_names[i] = macsi_strdup(a, d->inputs[i].name)))
             return MACS_ERR_OUT_OF_MEMORY;
         p->inputs[i] = d->input_textures ? d->input_textures[i] : NULL;
     }
     for (int i = 0; i < d->output_count; i++) {
-        if (!(p->output_names[i] = macs_strdup(a, d->outputs[i].name)))
+        if (!(p->output_names[i] = macsi_strdup(a, d->outputs[i].name)))
             return MACS_ERR_OUT_OF_MEMORY;
         p->outputs[i] = d->output_textures[i];
     }
@@ -60,9 +60,9 @@ static macs_status copy_desc(macs_pass *p, const macs_pass_desc *d)
         macs_pass_uniform *u = &p->uniforms[i];
         u->type = d->uniforms[i].type;
         u->count = d->uniforms[i].count;
-        u->size = macs_uniform_value_size(u->type, u->count);
-        u->name = macs_strdup(a, d->uniforms[i].name);
-        u->value = macs_calloc(a, 1, u->size); /* unset uniforms read as zero, like fresh GL uniforms */
+        u->size = macsi_uniform_value_size(u->type, u->count);
+        u->name = macsi_strdup(a, d->uniforms[i].name);
+        u->value = macsi_calloc(a, 1, u->size); /* unset uniforms read as zero, like fresh GL uniforms */
         if (!u->name || !u->value)
             return MACS_ERR_OUT_OF_MEMORY;
     }
@@ -73,33 +73,33 @@ static macs_status build_chunks(macs_pass *p, const macs_pass_desc *d)
 {
     macs_context *ctx = p->ctx;
     const macs_allocator *a = &ctx->allocator;
-    int per_chunk = macs_outputs_per_chunk(ctx);
+    int per_chunk = macsi_outputs_per_chunk(ctx);
     p->chunk_count = (d->output_count + per_chunk - 1) / per_chunk;
-    p->chunks = macs_calloc(a, (size_t)p->chunk_count, sizeof *p->chunks);
+    p->chunks = macsi_calloc(a, (size_t)p->chunk_count, sizeof *p->chunks);
     if (!p->chunks) {
         p->chunk_count = 0;
-        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating pass chunks");
+        return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating pass chunks");
     }
     for (int c = 0; c < p->chunk_count; c++) {
         macs_chunk *ch = &p->chunks[c];
         ch->first_output = c * per_chunk;
         ch->output_count = d->output_count - ch->first_output < per_chunk ? d->output_count - ch->first_output
                                                                           : per_chunk;
-        ch->uniform_locations = macs_calloc(a, (size_t)p->uniform_count, sizeof *ch->uniform_locations);
-        char *source = macs_pass_source(a, d, ch->first_output, ch->output_count);
+        ch->uniform_locations = macsi_calloc(a, (size_t)p->uniform_count, sizeof *ch->uniform_locations);
+        char *source = macsi_pass_source(a, d, ch->first_output, ch->output_count);
         if (!ch->uniform_locations || !source) {
-            macs_free(a, source);
-            return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "building the shader source of a pass");
+            macsi_free(a, source);
+            return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "building the shader source of a pass");
         }
-        macs_status st = macs_program_acquire(ctx, source, p->input_count, p->input_names, &ch->program);
-        macs_free(a, source);
+        macs_status st = macsi_program_acquire(ctx, source, p->input_count, p->input_names, &ch->program);
+        macsi_free(a, source);
         if (st != MACS_OK)
             return st;
         for (int i = 0; i < p->uniform_count; i++)
             ch->uniform_locations[i] = ctx->gl.GetUniformLocation(ch->program->id, p->uniforms[i].name);
         ctx->gl.GenFramebuffers(1, &ch->fbo);
     }
-    return macs_gl_check(ctx, "building pass chunks");
+    return macsi_gl_check(ctx, "building pass chunks");
 }
 
 macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs_pass **out)
@@ -109,21 +109,21 @@ macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs
     if (!ctx)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s is NULL",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s is NULL",
                          desc ? "out" : "desc");
-    macs_status st = macs_pass_validate(ctx, desc);
+    macs_status st = macsi_pass_validate(ctx, desc);
     if (st != MACS_OK)
         return st;
-    int per_chunk = macs_outputs_per_chunk(ctx);
-    st = macs_split_check_state(ctx, &desc->stencil, (desc->output_count + per_chunk - 1) / per_chunk);
+    int per_chunk = macsi_outputs_per_chunk(ctx);
+    st = macsi_split_check_state(ctx, &desc->stencil, (desc->output_count + per_chunk - 1) / per_chunk);
     if (st == MACS_OK)
-        st = macs_gl_current(ctx, "macs_pass_create");
+        st = macsi_gl_current(ctx, "macs_pass_create");
     if (st != MACS_OK)
         return st;
-    macs_gl_drain(ctx);
-    macs_pass *p = macs_calloc(&ctx->allocator, 1, sizeof *p);
+    macsi_gl_drain(ctx);
+    macs_pass *p = macsi_calloc(&ctx->allocator, 1, sizeof *p);
     if (!p)
-        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a pass");
+        return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a pass");
     p->ctx = ctx;
     p->width = desc->output_textures[0]->width;
     p->height = desc->output_textures[0]->height;
@@ -136,7 +136,7 @@ macs_status macs_pass_create(macs_context *ctx, const macs_pass_desc *desc, macs
     st = copy_desc(p, desc);
     if (st != MACS_OK) {
         free_pass(p);
-        return macs_fail(ctx, st, "copying the pass description");
+        return macsi_fail(ctx, st, "copying the pass description");
     }
     st = build_chunks(p, desc);
     if (st != MACS_OK) {
@@ -166,13 +166,13 @@ macs_status macs_pass_set_input(macs_pass *pass, int index, macs_texture *textur
     if (!pass)
         return MACS_ERR_INVALID_ARGUMENT;
     if (index < 0 || index >= pass->input_count)
-        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_input: index %d outside 0..%d", index,
+        return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_input: index %d outside 0..%d", index,
                          pass->input_count - 1);
     if (texture && texture->ctx != pass->ctx)
-        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_input: texture of another context");
+        return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_input: texture of another context");
     for (int i = 0; texture && i < pass->output_count; i++)
         if (pass->outputs[i] == texture)
-            return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT,
+            return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT,
                              "macs_pass_set_input: input %d (%s) would also be output %d", index,
                              pass->input_names[index], i);
     pass->inputs[index] = texture;
@@ -185,19 +185,19 @@ macs_status macs_pass_set_output(macs_pass *pass, int index, macs_texture *textu
         return MACS_ERR_INVALID_ARGUMENT;
     macs_context *ctx = pass->ctx;
     if (index < 0 || index >= pass->output_count)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: index %d outside 0..%d", index,
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: index %d outside 0..%d", index,
                          pass->output_count - 1);
     if (!texture || texture->ctx != ctx)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: no texture of this context");
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: no texture of this context");
     if (texture->width != pass->width || texture->height != pass->height)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is %dx%d, the pass is %dx%d",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is %dx%d, the pass is %dx%d",
                          texture->width, texture->height, pass->width, pass->height);
     for (int i = 0; i < pass->output_count; i++)
         if (i != index && pass->outputs[i] == texture)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is already output %d", i);
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is already output %d", i);
     for (int i = 0; i < pass->input_count; i++)
         if (pass->inputs[i] == texture)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is input %d (%s)", i,
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is input %d (%s)", i,
                              pass->input_names[i]);
     if (pass->outputs[index] != texture) {
         pass->outputs[index] = texture;
@@ -212,12 +212,12 @@ macs_status macs_pass_set_depth_stencil(macs_pass *pass, macs_depth_stencil *ds)
         return MACS_ERR_INVALID_ARGUMENT;
     macs_context *ctx = pass->ctx;
     if (ds && (ds->ctx != ctx || ds->internal))
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_depth_stencil: object of another context");
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_depth_stencil: object of another context");
     if (ds && (ds->width != pass->width || ds->height != pass->height))
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_depth_stencil: it is %dx%d, the pass %dx%d",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_depth_stencil: it is %dx%d, the pass %dx%d",
                          ds->width, ds->height, pass->width, pass->height);
     if (!ds && (pass->depth.test || pass->stencil.test))
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT,
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT,
                          "macs_pass_set_depth_stencil: the pass tests depth or stencil and needs one");
     pass->depth_stencil = ds;
     pass->attachments_dirty = true;
@@ -229,17 +229,17 @@ macs_status macs_pass_set_uniform(macs_pass *pass, const char *name, const void 
     if (!pass)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!name || !value)
-        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_uniform: name and value are required");
+        return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_uniform: name and value are required");
     for (int i = 0; i < pass->uniform_count; i++)
         if (strcmp(pass->uniforms[i].name, name) == 0) {
             memcpy(pass->uniforms[i].value, value, pass->uniforms[i].size);
             return MACS_OK;
         }
-    return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_uniform: the pass has no uniform \"%s\"",
+    return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_uniform: the pass has no uniform \"%s\"",
                      name);
 }
 
-void macs_pass_forget_texture(macs_context *ctx, const macs_texture *texture)
+void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture)
 {
     for (macs_pass *p = ctx->passes; p; p = p->next) {
         for (int i = 0; i < p->input_count; i++)
@@ -253,7 +253,7 @@ void macs_pass_forget_texture(macs_context *ctx, const macs_texture *texture)
     }
 }
 
-void macs_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds)
+void macsi_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds)
 {
     for (macs_pass *p = ctx->passes; p; p = p->next) {
         if (p->depth_stencil == ds)

@@ -19,7 +19,7 @@ static const char *glsl_type(macs_uniform_type t)
     }
 }
 
-size_t macs_uniform_value_size(macs_uniform_type t, int count)
+size_t macsi_uniform_value_size(macs_uniform_type t, int count)
 {
     size_t n;
     switch (t) {
@@ -52,14 +52,14 @@ static void append(text *t, const char *s)
         size_t cap = (t->cap ? t->cap * 2 : 1024);
         while (cap < t->len + n + 1)
             cap *= 2;
-        char *grown = macs_alloc(t->a, cap);
+        char *grown = macsi_alloc(t->a, cap);
         if (!grown) {
             t->failed = true;
             return;
         }
         if (t->s)
             memcpy(grown, t->s, t->len + 1);
-        macs_free(t->a, t->s);
+        macsi_free(t->a, t->s);
         t->s = grown;
         t->cap = cap;
     }
@@ -76,7 +76,7 @@ static void append_line_directive(text *t, int source)
     append(t, buf);
 }
 
-char *macs_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count)
+char *macsi_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count)
 {
     text t = {a, NULL, 0, 0, false};
     char buf[256];
@@ -108,7 +108,7 @@ char *macs_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int 
     }
     append(&t, "\n}\n");
     if (t.failed) {
-        macs_free(a, t.s);
+        macsi_free(a, t.s);
         return NULL;
     }
     return t.s;

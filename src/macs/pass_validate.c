@@ -41,11 +41,11 @@ static macs_status check_unique(macs_context *ctx, const macs_pass_desc *d, cons
 {
     for (int i = 0; i < inputs_before; i++)
         if (strcmp(d->inputs[i].name, name) == 0)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d \"%s\": the name is "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d \"%s\": the name is "
                              "already used by input %d", kind, index, name, i);
     for (int i = 0; i < uniforms_before; i++)
         if (strcmp(d->uniforms[i].name, name) == 0)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d \"%s\": the name is "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d \"%s\": the name is "
                              "already used by uniform %d", kind, index, name, i);
     return MACS_OK;
 }
@@ -54,10 +54,10 @@ static macs_status check_unique(macs_context *ctx, const macs_pass_desc *d, cons
 static macs_status check_name(macs_context *ctx, const char *kind, int index, const char *name)
 {
     if (!name)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d name is NULL", kind, index);
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d name is NULL", kind, index);
     const char *fault = name_fault(name);
     if (fault)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d \"%s\": the name %s", kind,
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: %s %d \"%s\": the name %s", kind,
                          index, name, fault);
     return MACS_OK;
 }
@@ -66,22 +66,22 @@ static macs_status check_name(macs_context *ctx, const char *kind, int index, co
 static macs_status check_counts(macs_context *ctx, const macs_pass_desc *d)
 {
     if (d->output_count < 1)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.output_count %d: at least one "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.output_count %d: at least one "
                          "output is required", d->output_count);
     if (!d->outputs || !d->output_textures)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.output_count %d but desc.%s is "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.output_count %d but desc.%s is "
                          "NULL", d->output_count, d->outputs ? "output_textures" : "outputs");
     if (d->input_count < 0)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.input_count %d is negative",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.input_count %d is negative",
                          d->input_count);
     if (d->input_count > 0 && !d->inputs)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.input_count %d but desc.inputs "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.input_count %d but desc.inputs "
                          "is NULL", d->input_count);
     if (d->uniform_count < 0)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.uniform_count %d is negative",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.uniform_count %d is negative",
                          d->uniform_count);
     if (d->uniform_count > 0 && !d->uniforms)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.uniform_count %d but "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.uniform_count %d but "
                          "desc.uniforms is NULL", d->uniform_count);
     return MACS_OK;
 }
@@ -97,20 +97,20 @@ static macs_status check_outputs(macs_context *ctx, const macs_pass_desc *d)
         if (st != MACS_OK)
             return st;
         if (!o->value)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\": value is NULL, "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\": value is NULL, "
                              "a vec4 expression is required", i, o->name);
         if (!t)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\": "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\": "
                              "desc.output_textures[%d] is NULL", i, o->name, i);
         if (t->ctx != ctx)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\": its texture "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\": its texture "
                              "belongs to another context", i, o->name);
         if (t->width != first->width || t->height != first->height)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\" is %dx%d but "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: output %d \"%s\" is %dx%d but "
                              "output 0 is %dx%d", i, o->name, t->width, t->height, first->width, first->height);
         for (int j = 0; j < i; j++)
             if (d->output_textures[j] == t)
-                return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: outputs %d and %d are the "
+                return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: outputs %d and %d are the "
                                  "same texture", j, i);
     }
     return MACS_OK;
@@ -128,11 +128,11 @@ static macs_status check_inputs(macs_context *ctx, const macs_pass_desc *d)
             return st;
         const macs_texture *t = d->input_textures ? d->input_textures[i] : NULL;
         if (t && t->ctx != ctx)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: input %d \"%s\" is a texture of "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: input %d \"%s\" is a texture of "
                              "another context", i, name);
         for (int j = 0; t && j < d->output_count; j++)
             if (d->output_textures[j] == t)
-                return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: input %d \"%s\" is also "
+                return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: input %d \"%s\" is also "
                                  "output %d", i, name, j);
     }
     return MACS_OK;
@@ -149,11 +149,11 @@ static macs_status check_uniforms(macs_context *ctx, const macs_pass_desc *d)
         if (st != MACS_OK)
             return st;
         if (u->type < MACS_UNIFORM_FLOAT || u->type > MACS_UNIFORM_MAT4)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: uniform %d \"%s\": type %d is "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: uniform %d \"%s\": type %d is "
                              "not a macs_uniform_type (%d .. %d)", i, u->name, (int)u->type,
                              (int)MACS_UNIFORM_FLOAT, (int)MACS_UNIFORM_MAT4);
         if (u->count < 0 || u->count > 65536)
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: uniform %d \"%s\": count %d is "
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: uniform %d \"%s\": count %d is "
                              "outside 0 (one value) .. 65536", i, u->name, u->count);
     }
     return MACS_OK;
@@ -164,13 +164,13 @@ static macs_status check_depth_stencil(macs_context *ctx, const macs_pass_desc *
     const macs_depth_stencil *ds = d->depth_stencil;
     const macs_texture *first = d->output_textures[0];
     if (ds && (ds->ctx != ctx || ds->internal))
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.depth_stencil belongs to another "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.depth_stencil belongs to another "
                          "context");
     if (ds && (ds->width != first->width || ds->height != first->height))
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.depth_stencil is %dx%d but the "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.depth_stencil is %dx%d but the "
                          "outputs are %dx%d", ds->width, ds->height, first->width, first->height);
     if ((d->depth.test || d->stencil.test) && !ds)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.%s.test is on but "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.%s.test is on but "
                          "desc.depth_stencil is NULL", d->depth.test ? "depth" : "stencil");
     return MACS_OK;
 }
@@ -188,17 +188,17 @@ static macs_status check_state(macs_context *ctx, const macs_pass_desc *d)
 {
 #define MACS_CHECK_STATE_(field, last, type) \
     if ((unsigned)d->field > (unsigned)(last)) \
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc." #field " %d is not a " type \
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc." #field " %d is not a " type \
                          " (0 .. %d)", (int)d->field, (int)(last));
     MACS_PASS_STATE_FIELDS(MACS_CHECK_STATE_)
 #undef MACS_CHECK_STATE_
     if (d->color_mask > 31)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.color_mask %u holds bits other "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.color_mask %u holds bits other "
                          "than MACS_COLOR_MASK_R, _G, _B, _A and _NONE", d->color_mask);
     return MACS_OK;
 }
 
-macs_status macs_pass_validate(macs_context *ctx, const macs_pass_desc *desc)
+macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc)
 {
     macs_status st = check_counts(ctx, desc);
     if (st == MACS_OK)
@@ -214,7 +214,7 @@ macs_status macs_pass_validate(macs_context *ctx, const macs_pass_desc *desc)
     if (st != MACS_OK)
         return st;
     if (desc->input_count > ctx->effective.max_texture_units)
-        return macs_fail(ctx, MACS_ERR_LIMIT, "macs_pass_create: desc.input_count: %d inputs but only %d texture "
+        return macsi_fail(ctx, MACS_ERR_LIMIT, "macs_pass_create: desc.input_count: %d inputs but only %d texture "
                          "units",
                          desc->input_count, ctx->effective.max_texture_units);
     return MACS_OK;

@@ -28,7 +28,7 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
         log[0] = '\0';
         gl->GetShaderInfoLog(fs, (GLsizei)sizeof log, NULL, log);
         gl->DeleteShader(fs);
-        return macs_fail(ctx, MACS_ERR_SHADER_COMPILE,
+        return macsi_fail(ctx, MACS_ERR_SHADER_COMPILE,
                          "fragment shader (source 1 = functions, 2 = main, 3+i = output i):\n%s", log);
     }
     GLuint program = gl->CreateProgram();
@@ -43,7 +43,7 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
         log[0] = '\0';
         gl->GetProgramInfoLog(program, (GLsizei)sizeof log, NULL, log);
         gl->DeleteProgram(program);
-        return macs_fail(ctx, MACS_ERR_SHADER_LINK, "%s", log);
+        return macsi_fail(ctx, MACS_ERR_SHADER_LINK, "%s", log);
     }
     /* Input i always samples texture unit i; the source names the inputs in order, so every pass
      * sharing this program binds its inputs the same way. */
@@ -54,7 +54,7 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
             gl->Uniform1i(loc, i);
     }
     gl->UseProgram(0);
-    macs_status st = macs_gl_check(ctx, "linking a pass program");
+    macs_status st = macsi_gl_check(ctx, "linking a pass program");
     if (st != MACS_OK) {
         gl->DeleteProgram(program);
         return st;
@@ -63,7 +63,7 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
     return MACS_OK;
 }
 
-macs_status macs_program_acquire(macs_context *ctx, const char *source, int input_count,
+macs_status macsi_program_acquire(macs_context *ctx, const char *source, int input_count,
                                  char *const *input_names, macs_program **out)
 {
     uint64_t h = hash_source(source);
@@ -73,17 +73,17 @@ macs_status macs_program_acquire(macs_context *ctx, const char *source, int inpu
             *out = p;
             return MACS_OK;
         }
-    macs_program *p = macs_calloc(&ctx->allocator, 1, sizeof *p);
-    char *copy = macs_strdup(&ctx->allocator, source);
+    macs_program *p = macsi_calloc(&ctx->allocator, 1, sizeof *p);
+    char *copy = macsi_strdup(&ctx->allocator, source);
     if (!p || !copy) {
-        macs_free(&ctx->allocator, p);
-        macs_free(&ctx->allocator, copy);
-        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a program cache entry");
+        macsi_free(&ctx->allocator, p);
+        macsi_free(&ctx->allocator, copy);
+        return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a program cache entry");
     }
     macs_status st = compile_and_link(ctx, source, input_count, input_names, &p->id);
     if (st != MACS_OK) {
-        macs_free(&ctx->allocator, p);
-        macs_free(&ctx->allocator, copy);
+        macsi_free(&ctx->allocator, p);
+        macsi_free(&ctx->allocator, copy);
         return st;
     }
     ctx->programs_compiled++;
@@ -96,7 +96,7 @@ macs_status macs_program_acquire(macs_context *ctx, const char *source, int inpu
     return MACS_OK;
 }
 
-void macs_program_release(macs_context *ctx, macs_program *program)
+void macsi_program_release(macs_context *ctx, macs_program *program)
 {
     if (!program || --program->refs > 0)
         return;
@@ -106,18 +106,18 @@ void macs_program_release(macs_context *ctx, macs_program *program)
             break;
         }
     ctx->gl.DeleteProgram(program->id);
-    macs_free(&ctx->allocator, program->source);
-    macs_free(&ctx->allocator, program);
+    macsi_free(&ctx->allocator, program->source);
+    macsi_free(&ctx->allocator, program);
 }
 
-void macs_program_cache_destroy(macs_context *ctx)
+void macsi_program_cache_destroy(macs_context *ctx)
 {
     while (ctx->programs) {
         macs_program *p = ctx->programs;
         ctx->programs = p->next;
         ctx->gl.DeleteProgram(p->id);
-        macs_free(&ctx->allocator, p->source);
-        macs_free(&ctx->allocator, p);
+        macsi_free(&ctx->allocator, p->source);
+        macsi_free(&ctx->allocator, p);
     }
 }
 

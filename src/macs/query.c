@@ -1,7 +1,7 @@
 /* Occlusion queries: samples that passed the tests in a run (its first chunk, which runs the tests). */
 #include "internal.h"
 
-macs_status macs_query_begin(macs_pass *pass)
+macs_status macsi_query_begin(macs_pass *pass)
 {
     const macs_gl *gl = &pass->ctx->gl;
     if (!pass->query)
@@ -10,13 +10,13 @@ macs_status macs_query_begin(macs_pass *pass)
     return MACS_OK;
 }
 
-void macs_query_end(macs_pass *pass)
+void macsi_query_end(macs_pass *pass)
 {
     pass->ctx->gl.EndQuery(GL_SAMPLES_PASSED);
     pass->query_issued = true;
 }
 
-void macs_query_destroy(macs_pass *pass)
+void macsi_query_destroy(macs_pass *pass)
 {
     if (pass->query)
         pass->ctx->gl.DeleteQueries(1, &pass->query);
@@ -29,15 +29,15 @@ macs_status macs_pass_occlusion_result(macs_pass *pass, uint64_t *samples)
     if (!pass)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!samples)
-        return macs_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_occlusion_result: samples is NULL");
+        return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_occlusion_result: samples is NULL");
     if (!pass->query_issued)
-        return macs_fail(pass->ctx, MACS_ERR_NO_RESULT,
+        return macsi_fail(pass->ctx, MACS_ERR_NO_RESULT,
                          "macs_pass_occlusion_result: no run of this pass asked for an occlusion query");
-    macs_gl_drain(pass->ctx);
+    macsi_gl_drain(pass->ctx);
     GLuint value = 0;
     /* GL_QUERY_RESULT waits for the GPU; that is the documented blocking behaviour. */
     pass->ctx->gl.GetQueryObjectuiv(pass->query, GL_QUERY_RESULT, &value);
-    macs_status st = macs_gl_check(pass->ctx, "glGetQueryObjectuiv");
+    macs_status st = macsi_gl_check(pass->ctx, "glGetQueryObjectuiv");
     if (st == MACS_OK)
         *samples = value;
     return st;

@@ -13,13 +13,13 @@ static macs_status attach(macs_pass *p, macs_depth_stencil *ds)
         for (int j = 0; j < ch->output_count; j++)
             gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)j, GL_TEXTURE_2D,
                                      p->outputs[ch->first_output + j]->id, 0);
-        macs_fbo_attach_depth_stencil(ctx, ds);
+        macsi_fbo_attach_depth_stencil(ctx, ds);
         GLenum buffers[64];
         for (int j = 0; j < ch->output_count; j++)
             buffers[j] = GL_COLOR_ATTACHMENT0 + (GLenum)j;
         gl->DrawBuffers(ch->output_count, buffers);
         gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
-        st = macs_fbo_check(ctx, "attaching pass outputs");
+        st = macsi_fbo_check(ctx, "attaching pass outputs");
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (st == MACS_OK) {
@@ -90,16 +90,16 @@ static macs_status validate_run(macs_pass *p, const macs_run_desc *run)
     macs_context *ctx = p->ctx;
     for (int i = 0; i < p->output_count; i++)
         if (!p->outputs[i])
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: output %d (%s) has no texture", i,
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: output %d (%s) has no texture", i,
                              p->output_names[i]);
     for (int i = 0; i < p->input_count; i++)
         if (!p->inputs[i])
-            return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: input %d (%s) has no texture", i,
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: input %d (%s) has no texture", i,
                              p->input_names[i]);
     if ((p->depth.test || p->stencil.test) && !p->depth_stencil)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: the depth/stencil object is gone");
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: the depth/stencil object is gone");
     if (run->scissor && (run->scissor_width < 0 || run->scissor_height < 0))
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: negative scissor size %dx%d",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: negative scissor size %dx%d",
                          run->scissor_width, run->scissor_height);
     return MACS_OK;
 }
@@ -115,14 +115,14 @@ macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run)
     const macs_gl *gl = &ctx->gl;
     macs_status st = validate_run(pass, run);
     if (st == MACS_OK)
-        st = macs_gl_current(ctx, "macs_pass_run");
+        st = macsi_gl_current(ctx, "macs_pass_run");
     if (st != MACS_OK)
         return st;
-    macs_gl_drain(ctx);
+    macsi_gl_drain(ctx);
     /* A split pass needs a stencil for its marks even when the caller brought no depth/stencil. */
     macs_depth_stencil *ds = pass->depth_stencil;
     if (!ds && pass->chunk_count > 1) {
-        st = macs_depth_stencil_internal(ctx, pass->width, pass->height, &ds);
+        st = macsi_depth_stencil_internal(ctx, pass->width, pass->height, &ds);
         if (st != MACS_OK)
             return st;
     }
@@ -137,17 +137,17 @@ macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run)
         gl->BindFramebuffer(GL_FRAMEBUFFER, ch->fbo);
         gl->UseProgram(ch->program->id);
         apply_uniforms(pass, ch);
-        macs_split_apply_state(pass, c, pass->depth_stencil != NULL, ds != NULL);
+        macsi_split_apply_state(pass, c, pass->depth_stencil != NULL, ds != NULL);
         if (c == 0 && run->occlusion_query)
-            macs_query_begin(pass);
+            macsi_query_begin(pass);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
         if (c == 0 && run->occlusion_query)
-            macs_query_end(pass);
+            macsi_query_end(pass);
     }
     /* Leave the caller's default framebuffer and no program bound, as a caller sharing the context
      * would expect. */
     gl->UseProgram(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl->BindBuffer(GL_ARRAY_BUFFER, 0);
-    return macs_gl_check(ctx, "macs_pass_run");
+    return macsi_gl_check(ctx, "macs_pass_run");
 }

@@ -15,7 +15,7 @@ static bool op_is_keep(macs_stencil_op op)
     return op == MACS_STENCIL_OP_DEFAULT || op == MACS_STENCIL_OP_KEEP;
 }
 
-macs_status macs_split_check_state(macs_context *ctx, const macs_stencil_state *s, int chunk_count)
+macs_status macsi_split_check_state(macs_context *ctx, const macs_stencil_state *s, int chunk_count)
 {
     if (chunk_count <= 1 || !s->test)
         return MACS_OK;
@@ -23,7 +23,7 @@ macs_status macs_split_check_state(macs_context *ctx, const macs_stencil_state *
      * bits on failure or do arithmetic on the stencil value would disturb the reserved bit. */
     if (!op_is_keep(s->fail) || !op_is_keep(s->depth_fail) ||
         !(op_is_keep(s->pass) || s->pass == MACS_STENCIL_OP_REPLACE))
-        return macs_fail(ctx, MACS_ERR_LIMIT,
+        return macsi_fail(ctx, MACS_ERR_LIMIT,
                          "this pass needs %d chunks (more outputs than draw buffers); a split pass takes only KEEP "
                          "for stencil fail and depth_fail and KEEP or REPLACE for pass",
                          chunk_count);
@@ -35,12 +35,12 @@ static void caller_stencil(const macs_gl *gl, const macs_stencil_state *s)
     unsigned read = s->read_mask ? s->read_mask & CALLER : CALLER;
     unsigned write = s->write_mask ? s->write_mask & CALLER : CALLER;
     gl->Enable(GL_STENCIL_TEST);
-    gl->StencilFunc(macs_gl_compare(s->func, GL_ALWAYS), (GLint)(s->ref & CALLER), read);
-    gl->StencilOp(macs_gl_stencil_op(s->fail), macs_gl_stencil_op(s->depth_fail), macs_gl_stencil_op(s->pass));
+    gl->StencilFunc(macsi_gl_compare(s->func, GL_ALWAYS), (GLint)(s->ref & CALLER), read);
+    gl->StencilOp(macsi_gl_stencil_op(s->fail), macsi_gl_stencil_op(s->depth_fail), macsi_gl_stencil_op(s->pass));
     gl->StencilMask(write);
 }
 
-void macs_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bool any_ds)
+void macsi_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bool any_ds)
 {
     const macs_gl *gl = &pass->ctx->gl;
     const macs_stencil_state *s = &pass->stencil;
@@ -53,7 +53,7 @@ void macs_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bo
     if (chunk == 0) {
         if (caller_ds && pass->depth.test) {
             gl->Enable(GL_DEPTH_TEST);
-            gl->DepthFunc(macs_gl_compare(pass->depth.func, GL_LESS));
+            gl->DepthFunc(macsi_gl_compare(pass->depth.func, GL_LESS));
             gl->DepthMask(pass->depth.write ? GL_TRUE : GL_FALSE);
         } else {
             gl->Disable(GL_DEPTH_TEST);
@@ -69,7 +69,7 @@ void macs_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bo
         }
         /* Marking: the caller's comparison on its own bits, REPLACE on depth-pass writing the mark
          * (and the caller's bits too when the caller asked for REPLACE). */
-        GLenum func = caller_test ? macs_gl_compare(s->func, GL_ALWAYS) : GL_ALWAYS;
+        GLenum func = caller_test ? macsi_gl_compare(s->func, GL_ALWAYS) : GL_ALWAYS;
         unsigned read = caller_test ? (s->read_mask ? s->read_mask & CALLER : CALLER) : 0;
         unsigned ref = (caller_test ? s->ref & CALLER : 0) | RESERVED;
         unsigned write = RESERVED;

@@ -30,7 +30,7 @@ static macs_status set_row_length(macs_texture *t, GLenum pname, size_t stride, 
     if (stride == 0)
         stride = tight;
     if (stride < tight || stride % ts != 0 || stride / ts > 0x7FFFFFFF)
-        return macs_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT,
+        return macsi_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT,
                          "%s: stride %zu must be 0 or a multiple of %zu bytes of at least %zu", what, stride, ts,
                          tight);
     t->ctx->gl.PixelStorei(pname, (GLint)(stride / ts));
@@ -54,39 +54,39 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     if (!ctx)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!desc || !out)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: %s is NULL", desc ? "out" : "desc");
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: %s is NULL", desc ? "out" : "desc");
     if (desc->width <= 0 || desc->height <= 0)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: size %dx%d must be positive",
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: size %dx%d must be positive",
                          desc->width, desc->height);
     int max = ctx->effective.max_texture_size;
     if (desc->width > max || desc->height > max)
-        return macs_fail(ctx, MACS_ERR_LIMIT, "macs_texture_create: size %dx%d exceeds the maximum %d",
+        return macsi_fail(ctx, MACS_ERR_LIMIT, "macs_texture_create: size %dx%d exceeds the maximum %d",
                          desc->width, desc->height, max);
     if ((unsigned)desc->format > MACS_FORMAT_RGBA8)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.format %d is not a macs_format "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.format %d is not a macs_format "
                          "(0 .. %d)", (int)desc->format, (int)MACS_FORMAT_RGBA8);
     if ((unsigned)desc->filter > MACS_FILTER_LINEAR)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.filter %d is not a macs_filter "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.filter %d is not a macs_filter "
                          "(0 .. %d)", (int)desc->filter, (int)MACS_FILTER_LINEAR);
     if ((unsigned)desc->wrap > MACS_WRAP_REPEAT)
-        return macs_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.wrap %d is not a macs_wrap "
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_create: desc.wrap %d is not a macs_wrap "
                          "(0 .. %d)", (int)desc->wrap, (int)MACS_WRAP_REPEAT);
-    macs_status current = macs_gl_current(ctx, "macs_texture_create");
+    macs_status current = macsi_gl_current(ctx, "macs_texture_create");
     if (current != MACS_OK)
         return current;
-    macs_texture *t = macs_calloc(&ctx->allocator, 1, sizeof *t);
+    macs_texture *t = macsi_calloc(&ctx->allocator, 1, sizeof *t);
     if (!t)
-        return macs_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "macs_texture_create: allocating the texture");
+        return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "macs_texture_create: allocating the texture");
     t->ctx = ctx;
     t->width = desc->width;
     t->height = desc->height;
     t->format = desc->format == MACS_FORMAT_DEFAULT ? MACS_FORMAT_RGBA32F : desc->format;
     const macs_gl *gl = &ctx->gl;
-    macs_gl_drain(ctx);
+    macsi_gl_drain(ctx);
     if (desc->data) {
         macs_status st = set_row_length(t, GL_UNPACK_ROW_LENGTH, desc->stride, "macs_texture_create");
         if (st != MACS_OK) {
-            macs_free(&ctx->allocator, t);
+            macsi_free(&ctx->allocator, t);
             return st;
         }
     }
@@ -103,10 +103,10 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
                    texel_type(t->format), desc->data);
     reset_pixel_store(ctx);
     gl->BindTexture(GL_TEXTURE_2D, 0);
-    macs_status st = macs_gl_check(ctx, "macs_texture_create: glTexImage2D");
+    macs_status st = macsi_gl_check(ctx, "macs_texture_create: glTexImage2D");
     if (st != MACS_OK) {
         gl->DeleteTextures(1, &t->id);
-        macs_free(&ctx->allocator, t);
+        macsi_free(&ctx->allocator, t);
         return st;
     }
     MACS_LIST_PUSH(ctx->textures, t);
@@ -119,10 +119,10 @@ void macs_texture_destroy(macs_texture *t)
     if (!t)
         return;
     macs_context *ctx = t->ctx;
-    macs_pass_forget_texture(ctx, t);
+    macsi_pass_forget_texture(ctx, t);
     ctx->gl.DeleteTextures(1, &t->id);
     MACS_LIST_REMOVE(ctx->textures, t);
-    macs_free(&ctx->allocator, t);
+    macsi_free(&ctx->allocator, t);
 }
 
 /* Upload and read-back differ only in direction: the pixel-store row length, then one GL call.
@@ -133,9 +133,9 @@ static macs_status transfer(macs_texture *t, bool upload, void *data, size_t str
     if (!t)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!data)
-        return macs_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "%s: data is NULL", fn);
+        return macsi_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "%s: data is NULL", fn);
     macs_context *ctx = t->ctx;
-    macs_gl_drain(ctx);
+    macsi_gl_drain(ctx);
     macs_status st = set_row_length(t, upload ? GL_UNPACK_ROW_LENGTH : GL_PACK_ROW_LENGTH, stride, fn);
     if (st != MACS_OK)
         return st;
@@ -147,7 +147,7 @@ static macs_status transfer(macs_texture *t, bool upload, void *data, size_t str
         ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, texel_type(t->format), data);
     ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
     reset_pixel_store(ctx);
-    return macs_gl_check(ctx, upload ? "macs_texture_upload: glTexSubImage2D" : "macs_texture_read: glGetTexImage");
+    return macsi_gl_check(ctx, upload ? "macs_texture_upload: glTexSubImage2D" : "macs_texture_read: glGetTexImage");
 }
 
 macs_status macs_texture_upload(macs_texture *t, const void *data, size_t stride)
@@ -166,16 +166,16 @@ macs_status macs_texture_clear(macs_texture *t, const float rgba[4])
     if (!t)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!rgba)
-        return macs_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_clear: rgba is NULL");
+        return macsi_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_clear: rgba is NULL");
     macs_context *ctx = t->ctx;
     const macs_gl *gl = &ctx->gl;
-    macs_gl_drain(ctx);
+    macsi_gl_drain(ctx);
     gl->BindFramebuffer(GL_FRAMEBUFFER, ctx->scratch_fbo);
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->id, 0);
     static const GLenum buffer = GL_COLOR_ATTACHMENT0;
     gl->DrawBuffers(1, &buffer);
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
-    macs_status st = macs_fbo_check(ctx, "macs_texture_clear");
+    macs_status st = macsi_fbo_check(ctx, "macs_texture_clear");
     if (st == MACS_OK) {
         gl->Disable(GL_SCISSOR_TEST);
         gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -186,7 +186,7 @@ macs_status macs_texture_clear(macs_texture *t, const float rgba[4])
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (st != MACS_OK)
         return st;
-    return macs_gl_check(ctx, "macs_texture_clear");
+    return macsi_gl_check(ctx, "macs_texture_clear");
 }
 
 void macs_texture_size(const macs_texture *t, int *width, int *height)

@@ -3,12 +3,12 @@
 
 #include <math.h>
 
-bool bg_vec3_finite(bg_vec3 v)
+bool bgi_vec3_finite(bg_vec3 v)
 {
     return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
-double bg_vec3_length(bg_vec3 v)
+double bgi_vec3_length(bg_vec3 v)
 {
     double m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
     if (m == 0.0 || !isfinite(m))
@@ -17,7 +17,7 @@ double bg_vec3_length(bg_vec3 v)
     return m * sqrt(x * x + y * y + z * z);
 }
 
-const char *bg_affine_check_string(bg_affine_check check)
+const char *bgi_affine_check_string(bg_affine_check check)
 {
     switch (check) {
     case BG_AFFINE_OK: return "is fine";
@@ -28,7 +28,7 @@ const char *bg_affine_check_string(bg_affine_check check)
     return "is invalid";
 }
 
-bg_affine_check bg_affine_inverse(const bg_mat4 *transform, double inv[4][4])
+bg_affine_check bgi_affine_inverse(const bg_mat4 *transform, double inv[4][4])
 {
     const double (*m)[4] = transform->m;
     for (int i = 0; i < 4; i++)

@@ -18,12 +18,12 @@ typedef enum bg_affine_check {
 #define BG_AFFINE_SINGULAR_RATIO 1e-12
 
 /* Checks m and, when it is fine and inv is not NULL, writes its inverse (also checked finite). */
-bg_affine_check bg_affine_inverse(const bg_mat4 *transform, double inv[4][4]);
+bg_affine_check bgi_affine_inverse(const bg_mat4 *transform, double inv[4][4]);
 /* A short English phrase for a check result ("is singular"). */
-const char *bg_affine_check_string(bg_affine_check check);
+const char *bgi_affine_check_string(bg_affine_check check);
 /* True when every element of the 3-vector is finite. */
-bool bg_vec3_finite(bg_vec3 v);
+bool bgi_vec3_finite(bg_vec3 v);
 /* Euclidean length, without overflow for large components. */
-double bg_vec3_length(bg_vec3 v);
+double bgi_vec3_length(bg_vec3 v);
 
 #endif

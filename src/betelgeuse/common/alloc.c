@@ -4,20 +4,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-bool bg_allocator_valid(const bg_allocator *a)
+bool bgi_allocator_valid(const bg_allocator *a)
 {
     bool none = !a->alloc && !a->realloc && !a->free;
     return none || (a->alloc && a->free);
 }
 
-void *bg_alloc(const bg_allocator *a, size_t size)
+void *bgi_alloc(const bg_allocator *a, size_t size)
 {
     if (size == 0)
         return NULL;
     return a->alloc ? a->alloc(size, a->user) : malloc(size);
 }
 
-void *bg_realloc(const bg_allocator *a, void *ptr, size_t old_size, size_t new_size)
+void *bgi_realloc(const bg_allocator *a, void *ptr, size_t old_size, size_t new_size)
 {
     if (new_size == 0)
         return NULL;
@@ -36,7 +36,7 @@ void *bg_realloc(const bg_allocator *a, void *ptr, size_t old_size, size_t new_s
     return p;
 }
 
-void bg_free(const bg_allocator *a, void *ptr)
+void bgi_free(const bg_allocator *a, void *ptr)
 {
     if (!ptr)
         return;
@@ -46,7 +46,7 @@ void bg_free(const bg_allocator *a, void *ptr)
         free(ptr);
 }
 
-bool bg_size_mul(size_t a, size_t b, size_t *out)
+bool bgi_size_mul(size_t a, size_t b, size_t *out)
 {
     if (a != 0 && b > (size_t)-1 / a)
         return false;
@@ -54,10 +54,10 @@ bool bg_size_mul(size_t a, size_t b, size_t *out)
     return true;
 }
 
-char *bg_strdup(const bg_allocator *a, const char *s)
+char *bgi_strdup(const bg_allocator *a, const char *s)
 {
     size_t n = strlen(s) + 1;
-    char *c = bg_alloc(a, n);
+    char *c = bgi_alloc(a, n);
     if (c)
         memcpy(c, s, n);
     return c;

@@ -55,7 +55,7 @@ typedef struct bg_bvh {
     bg_allocator allocator; /* the hooks nodes came from */
 } bg_bvh;
 
-/* What bg_bvh_get_stats reports. */
+/* What bgi_bvh_get_stats reports. */
 typedef struct bg_bvh_stats {
     uint32_t node_count, prim_count, depth;
     /* Sum over nodes of their surface area over the root's: the expected number of boxes a random
@@ -67,17 +67,17 @@ typedef struct bg_bvh_stats {
 
 /* Checks count boxes as the build does; on failure writes the first bad index (when out_first_bad
  * is not NULL) and returns BG_ERR_INVALID_ARGUMENT or BG_ERR_LIMIT as described above. */
-bg_status bg_bvh_check_boxes(const bg_bvh_box *boxes, uint32_t count, uint32_t *out_first_bad);
+bg_status bgi_bvh_check_boxes(const bg_bvh_box *boxes, uint32_t count, uint32_t *out_first_bad);
 
 /* Builds a tree over boxes[0 .. count - 1] into *out through allocator (NULL: the C library's).
  * count 0 gives the empty tree; count > BG_BVH_MAX_PRIMS is BG_ERR_LIMIT. Besides the 32 bytes per
  * node it keeps, the build borrows 112 bytes per primitive while it runs, and takes one pass over
  * the primitives per tree level. On any failure *out is the empty tree and nothing stays
  * allocated; *out is overwritten, so destroy a previous tree first. */
-bg_status bg_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, uint32_t count, bg_bvh *out);
+bg_status bgi_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, uint32_t count, bg_bvh *out);
 
 /* Frees the tree's nodes and leaves it empty; NULL and the empty tree are ignored. */
-void bg_bvh_destroy(bg_bvh *bvh);
+void bgi_bvh_destroy(bg_bvh *bvh);
 
 /* Recomputes every node's box from new boxes of the same count primitives, keeping the topology,
  * for transform changes. The tree stays valid (the invariant holds) but may lose quality: moved
@@ -85,7 +85,7 @@ void bg_bvh_destroy(bg_bvh *bvh);
  * Adding or removing primitives is a structure change and needs a rebuild. On failure (bad boxes,
  * count different from the tree's) the tree is left unchanged. Refitting with the build's own
  * boxes gives back the built floats bit for bit. */
-bg_status bg_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
+bg_status bgi_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
 
 /* Writes the tree's node_count nodes into out as seen from origin, for walks of rays that start
  * there: every box minus origin, computed in double and rounded outward again (the invariant holds
@@ -96,10 +96,10 @@ bg_status bg_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
  * would cost the ray its precision, and uploads this copy. Borrows 8 bytes per tree level from the
  * tree's allocator while it runs: BG_ERR_OUT_OF_MEMORY when they are refused (out then partly
  * written). */
-bg_status bg_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out);
+bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out);
 
 /* Fills *stats for the tree. */
-void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats);
+void bgi_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats);
 
 /* Called for every leaf whose box the ray enters, with the leaf's primitive: the callee tests it,
  * may lower *t_max (nearest hit: later boxes are then tested against the shorter ray), and returns
@@ -133,7 +133,7 @@ typedef struct bg_bvh_walk {
  * past 2 node_count steps, and a node index or primitive out of range (a corrupt node array) is
  * BG_ERR_INVALID_ARGUMENT, both before further visit calls. Non-finite ray values or a NULL visit
  * are BG_ERR_INVALID_ARGUMENT. walk may be NULL. */
-bg_status bg_bvh_traverse(const bg_bvh *bvh, const double origin[3], const double direction[3], double t_min,
+bg_status bgi_bvh_traverse(const bg_bvh *bvh, const double origin[3], const double direction[3], double t_min,
                           double *t_max, bg_bvh_visit_fn visit, void *user, bg_bvh_walk *walk);
 
 #endif

@@ -38,7 +38,7 @@ static bg_status check_box(const bg_bvh_box *box)
     return BG_OK;
 }
 
-bg_status bg_bvh_check_boxes(const bg_bvh_box *boxes, uint32_t count, uint32_t *out_first_bad)
+bg_status bgi_bvh_check_boxes(const bg_bvh_box *boxes, uint32_t count, uint32_t *out_first_bad)
 {
     if (count > 0 && !boxes)
         return BG_ERR_INVALID_ARGUMENT;
@@ -346,31 +346,31 @@ static bg_status allocate(const bg_allocator *a, uint32_t count, builder *b)
 {
     size_t node_bytes, item_bytes;
     size_t node_floats = (size_t)(2 * count - 1) * BG_BVH_NODE_FLOATS;
-    if (!bg_size_mul(node_floats, sizeof(float), &node_bytes) || !bg_size_mul(count, sizeof(item), &item_bytes))
+    if (!bgi_size_mul(node_floats, sizeof(float), &node_bytes) || !bgi_size_mul(count, sizeof(item), &item_bytes))
         return BG_ERR_OUT_OF_MEMORY;
-    b->nodes = bg_alloc(a, node_bytes);
-    b->items = bg_alloc(a, item_bytes);
-    b->scratch = bg_alloc(a, item_bytes);
+    b->nodes = bgi_alloc(a, node_bytes);
+    b->items = bgi_alloc(a, item_bytes);
+    b->scratch = bgi_alloc(a, item_bytes);
     if (b->nodes && b->items && b->scratch)
         return BG_OK;
-    bg_free(a, b->nodes);
-    bg_free(a, b->items);
-    bg_free(a, b->scratch);
+    bgi_free(a, b->nodes);
+    bgi_free(a, b->items);
+    bgi_free(a, b->scratch);
     return BG_ERR_OUT_OF_MEMORY;
 }
 
-bg_status bg_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, uint32_t count, bg_bvh *out)
+bg_status bgi_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, uint32_t count, bg_bvh *out)
 {
     static const bg_allocator default_allocator = {NULL, NULL, NULL, NULL};
     if (!out)
         return BG_ERR_INVALID_ARGUMENT;
     const bg_allocator *a = allocator ? allocator : &default_allocator;
     empty_tree(out, a);
-    if (!bg_allocator_valid(a))
+    if (!bgi_allocator_valid(a))
         return BG_ERR_INVALID_ARGUMENT;
     if (count > BG_BVH_MAX_PRIMS)
         return BG_ERR_LIMIT;
-    bg_status st = bg_bvh_check_boxes(boxes, count, NULL);
+    bg_status st = bgi_bvh_check_boxes(boxes, count, NULL);
     if (st != BG_OK || count == 0)
         return st;
 
@@ -379,8 +379,8 @@ bg_status bg_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, u
     if (st != BG_OK)
         return st;
     build_nodes(&b, boxes, count);
-    bg_free(a, b.items);
-    bg_free(a, b.scratch);
+    bgi_free(a, b.items);
+    bgi_free(a, b.scratch);
 
     out->nodes = b.nodes;
     out->node_count = 2 * count - 1;
@@ -389,11 +389,11 @@ bg_status bg_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, u
     return BG_OK;
 }
 
-void bg_bvh_destroy(bg_bvh *bvh)
+void bgi_bvh_destroy(bg_bvh *bvh)
 {
     if (!bvh)
         return;
-    bg_free(&bvh->allocator, bvh->nodes);
+    bgi_free(&bvh->allocator, bvh->nodes);
     bg_allocator a = bvh->allocator;
     empty_tree(bvh, &a);
 }
@@ -408,11 +408,11 @@ static uint32_t node_index(const float *node, int field)
 /* An interior node's box is the union of its children's floats, which by the monotone rounding
  * equals the rounded union of their doubles (float_down). Children follow their parent in
  * pre-order, so a backward sweep meets them first. */
-bg_status bg_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count)
+bg_status bgi_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count)
 {
     if (!bvh || count != bvh->prim_count)
         return BG_ERR_INVALID_ARGUMENT;
-    bg_status st = bg_bvh_check_boxes(boxes, count, NULL);
+    bg_status st = bgi_bvh_check_boxes(boxes, count, NULL);
     if (st != BG_OK)
         return st;
     for (uint32_t i = bvh->node_count; i-- > 0;) {
@@ -445,7 +445,7 @@ static double node_half_area(const float *node)
     return half_area(&box);
 }
 
-void bg_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats)
+void bgi_bvh_get_stats(const bg_bvh *bvh, bg_bvh_stats *stats)
 {
     memset(stats, 0, sizeof *stats);
     stats->node_count = bvh->node_count;
@@ -503,12 +503,12 @@ static void write_shifted(const bg_bvh *bvh, uint32_t old, uint32_t at, const do
  * something in the nearer child then skips the farther one's boxes beyond that hit. The order is
  * chosen per node by the distance from the viewpoint to each child's box, the tree's first child on
  * a tie. The depth-first order leaves at most one pending subtree per level. */
-bg_status bg_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
+bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
 {
     if (bvh->node_count == 0)
         return BG_OK;
     size_t room = (size_t)bvh->depth + 1;
-    uint32_t *pending_old = bg_alloc(&bvh->allocator, 2 * room * sizeof *pending_old);
+    uint32_t *pending_old = bgi_alloc(&bvh->allocator, 2 * room * sizeof *pending_old);
     if (!pending_old)
         return BG_ERR_OUT_OF_MEMORY;
     uint32_t *pending_at = pending_old + room;
@@ -535,6 +535,6 @@ bg_status bg_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uin
         pending_old[n] = near;
         pending_at[n++] = at + 1;
     }
-    bg_free(&bvh->allocator, pending_old);
+    bgi_free(&bvh->allocator, pending_old);
     return BG_OK;
 }

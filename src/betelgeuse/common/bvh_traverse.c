@@ -206,7 +206,7 @@ static bg_status walk_ordered(walker *k)
     }
 }
 
-bg_status bg_bvh_traverse(const bg_bvh *bvh, const double origin[3], const double direction[3], double t_min,
+bg_status bgi_bvh_traverse(const bg_bvh *bvh, const double origin[3], const double direction[3], double t_min,
                           double *t_max, bg_bvh_visit_fn visit, void *user, bg_bvh_walk *walk)
 {
     bg_bvh_walk none = {0, 0, false};

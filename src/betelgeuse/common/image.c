@@ -5,7 +5,7 @@
 #include <string.h>
 
 
-size_t bg_image_pixel_size(bg_pixel_format format)
+size_t bgi_image_pixel_size(bg_pixel_format format)
 {
     switch (format) {
     case BG_PIXEL_RGBA8: return 4;
@@ -14,7 +14,7 @@ size_t bg_image_pixel_size(bg_pixel_format format)
     return 0;
 }
 
-bg_status bg_image_check(const bg_image *image, size_t *out_stride, char *message, size_t size)
+bg_status bgi_image_check(const bg_image *image, size_t *out_stride, char *message, size_t size)
 {
     if (!image) {
         snprintf(message, size, "image is NULL");
@@ -28,7 +28,7 @@ bg_status bg_image_check(const bg_image *image, size_t *out_stride, char *messag
         snprintf(message, size, "image height = %d is outside [1, %d]", image->height, BG_MAX_IMAGE_SIDE);
         return BG_ERR_INVALID_ARGUMENT;
     }
-    size_t pixel = bg_image_pixel_size(image->format);
+    size_t pixel = bgi_image_pixel_size(image->format);
     if (pixel == 0) {
         snprintf(message, size, "image format = %d is not a bg_pixel_format", (int)image->format);
         return BG_ERR_INVALID_ARGUMENT;
@@ -51,7 +51,7 @@ bg_status bg_image_check(const bg_image *image, size_t *out_stride, char *messag
     return BG_OK;
 }
 
-void bg_message_copy(char *dst, size_t size, const char *message)
+void bgi_message_copy(char *dst, size_t size, const char *message)
 {
     if (!dst || size == 0)
         return;

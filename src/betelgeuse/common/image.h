@@ -9,12 +9,12 @@
 #define BG_MAX_IMAGE_SIDE 16384
 
 /* Bytes per pixel of a format (0 for unknown formats). */
-size_t bg_image_pixel_size(bg_pixel_format format);
+size_t bgi_image_pixel_size(bg_pixel_format format);
 /* Checks size (1 .. 16384 per side), format, pixels and stride; writes the row stride in bytes.
  * On failure writes a message naming the field (without a prefix) and returns
  * BG_ERR_INVALID_ARGUMENT. */
-bg_status bg_image_check(const bg_image *image, size_t *out_stride, char *message, size_t size);
+bg_status bgi_image_check(const bg_image *image, size_t *out_stride, char *message, size_t size);
 /* Copies message into a caller buffer of size bytes (NULL or 0 is fine), truncating. */
-void bg_message_copy(char *dst, size_t size, const char *message);
+void bgi_message_copy(char *dst, size_t size, const char *message);
 
 #endif

@@ -6,7 +6,7 @@
 #include "image.h"
 #include "render_settings.h"
 
-bg_status bg_render_args_check(const char *where, const bg_render_settings *settings, const bg_image *image,
+bg_status bgi_render_args_check(const char *where, const bg_render_settings *settings, const bg_image *image,
                                size_t *out_stride, char *message, size_t size)
 {
     /* A missing argument is named before any field of the other is looked at. */
@@ -14,11 +14,11 @@ bg_status bg_render_args_check(const char *where, const bg_render_settings *sett
         snprintf(message, size, "%s: %s is NULL", where, !settings ? "settings" : "image");
         return BG_ERR_INVALID_ARGUMENT;
     }
-    bg_status st = bg_render_settings_check(settings, where, message, size);
+    bg_status st = bgi_render_settings_check(settings, where, message, size);
     if (st != BG_OK)
         return st;
     char why[256];
-    st = bg_image_check(image, out_stride, why, sizeof why);
+    st = bgi_image_check(image, out_stride, why, sizeof why);
     if (st != BG_OK)
         snprintf(message, size, "%s: %s", where, why);
     return st;

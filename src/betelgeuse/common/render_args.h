@@ -4,9 +4,9 @@
 
 #include "betelgeuse.h"
 
-/* Checks settings, then image (bg_render_settings_check, bg_image_check) and writes the image's row
+/* Checks settings, then image (bgi_render_settings_check, bgi_image_check) and writes the image's row
  * stride in bytes. On failure writes "<where>: <what is wrong>" into message and returns the status. */
-bg_status bg_render_args_check(const char *where, const bg_render_settings *settings, const bg_image *image,
+bg_status bgi_render_args_check(const char *where, const bg_render_settings *settings, const bg_image *image,
                                size_t *out_stride, char *message, size_t size);
 
 #endif

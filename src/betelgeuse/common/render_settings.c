@@ -15,7 +15,7 @@ bg_render_settings bg_render_settings_init(void)
     return s;
 }
 
-bg_status bg_render_settings_check(const bg_render_settings *s, const char *where, char *message, size_t size)
+bg_status bgi_render_settings_check(const bg_render_settings *s, const char *where, char *message, size_t size)
 {
     const double *b = s->background;
     if (!isfinite(b[0]) || !isfinite(b[1]) || !isfinite(b[2]) || b[0] < 0.0 || b[1] < 0.0 || b[2] < 0.0)

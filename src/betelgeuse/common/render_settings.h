@@ -8,6 +8,6 @@
 #define BG_MAX_THREADS 256
 
 /* BG_OK, or BG_ERR_INVALID_ARGUMENT with a message "<where>: settings.<field> ..." in message. */
-bg_status bg_render_settings_check(const bg_render_settings *s, const char *where, char *message, size_t size);
+bg_status bgi_render_settings_check(const bg_render_settings *s, const char *where, char *message, size_t size);
 
 #endif

@@ -3,12 +3,12 @@
 
 #include <math.h>
 
-double bg_srgb_to_linear(double c)
+double bgi_srgb_to_linear(double c)
 {
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-double bg_linear_to_srgb(double l)
+double bgi_linear_to_srgb(double l)
 {
     return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
 }

@@ -3,8 +3,8 @@
 #define BG_SRGB_H
 
 /* Encoded [0, 1] to linear: c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4. */
-double bg_srgb_to_linear(double c);
+double bgi_srgb_to_linear(double c);
 /* Linear [0, 1] to encoded: l <= 0.0031308 ? 12.92 l : 1.055 l^(1/2.4) - 0.055. */
-double bg_linear_to_srgb(double l);
+double bgi_linear_to_srgb(double l);
 
 #endif

@@ -4,7 +4,7 @@
 
 #define PI 3.14159265358979323846264338327950288
 
-void bg_cpu_schlick_s(const double c[3], double u, double s[3])
+void bgi_cpu_schlick_s(const double c[3], double u, double s[3])
 {
     double k = 1.0 - (u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u));
     double k5 = k * k * k * k * k;
@@ -12,7 +12,7 @@ void bg_cpu_schlick_s(const double c[3], double u, double s[3])
         s[i] = c[i] + (1.0 - c[i]) * k5;
 }
 
-void bg_cpu_schlick_split(double r, double *a, double *b, double *c)
+void bgi_cpu_schlick_split(double r, double *a, double *b, double *c)
 {
     *b = 4.0 * r * (1.0 - r);
     if (r < 0.5) {
@@ -24,7 +24,7 @@ void bg_cpu_schlick_split(double r, double *a, double *b, double *c)
     }
 }
 
-double bg_cpu_schlick_d(double r, double p, double t, double v, double vl, double w)
+double bgi_cpu_schlick_d(double r, double p, double t, double v, double vl, double w)
 {
     if (!(v > 0.0) || !(vl > 0.0))
         return 0.0;
@@ -42,14 +42,14 @@ double bg_cpu_schlick_d(double r, double p, double t, double v, double vl, doubl
 static double layer_directional(const bg_cpu_layer *layer, double t, double v, double vl, double w)
 {
     double a, b, c;
-    bg_cpu_schlick_split(layer->r, &a, &b, &c);
+    bgi_cpu_schlick_split(layer->r, &a, &b, &c);
     double f = a / PI;
     if (b > 0.0)
-        f += b * bg_cpu_schlick_d(layer->r, layer->p, t, v, vl, w);
+        f += b * bgi_cpu_schlick_d(layer->r, layer->p, t, v, vl, w);
     return f;
 }
 
-void bg_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double tangent[3], const double view[3],
+void bgi_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double tangent[3], const double view[3],
                  const double light[3], double f[3])
 {
     bg_v3_set(f, 0.0, 0.0, 0.0);
@@ -69,7 +69,7 @@ void bg_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double 
     w = w < -1.0 ? -1.0 : (w > 1.0 ? 1.0 : w);
 
     double s_base[3];
-    bg_cpu_schlick_s(surface->base.c, u, s_base);
+    bgi_cpu_schlick_s(surface->base.c, u, s_base);
     double d_base = layer_directional(&surface->base, t, v, vl, w);
     if (!surface->has_coat) {
         for (int i = 0; i < 3; i++)
@@ -77,30 +77,30 @@ void bg_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double 
         return;
     }
     double s_coat[3];
-    bg_cpu_schlick_s(surface->coat.c, u, s_coat);
+    bgi_cpu_schlick_s(surface->coat.c, u, s_coat);
     double d_coat = layer_directional(&surface->coat, t, v, vl, w);
     for (int i = 0; i < 3; i++)
         f[i] = s_coat[i] * d_coat + (1.0 - s_coat[i]) * s_base[i] * d_base;
 }
 
-void bg_cpu_mirror_weight(const bg_cpu_surface *surface, double v, double m[3])
+void bgi_cpu_mirror_weight(const bg_cpu_surface *surface, double v, double m[3])
 {
     double a, b, c_base, c_coat;
     double s_base[3], s_coat[3];
-    bg_cpu_schlick_split(surface->base.r, &a, &b, &c_base);
-    bg_cpu_schlick_s(surface->base.c, v, s_base);
+    bgi_cpu_schlick_split(surface->base.r, &a, &b, &c_base);
+    bgi_cpu_schlick_s(surface->base.c, v, s_base);
     if (!surface->has_coat) {
         for (int i = 0; i < 3; i++)
             m[i] = c_base * s_base[i];
         return;
     }
-    bg_cpu_schlick_split(surface->coat.r, &a, &b, &c_coat);
-    bg_cpu_schlick_s(surface->coat.c, v, s_coat);
+    bgi_cpu_schlick_split(surface->coat.r, &a, &b, &c_coat);
+    bgi_cpu_schlick_s(surface->coat.c, v, s_coat);
     for (int i = 0; i < 3; i++)
         m[i] = c_coat * s_coat[i] + (1.0 - s_coat[i]) * c_base * s_base[i];
 }
 
-double bg_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t)
+double bgi_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t)
 {
     cos_i = cos_i < 0.0 ? 0.0 : (cos_i > 1.0 ? 1.0 : cos_i);
     double eta = n1 / n2;

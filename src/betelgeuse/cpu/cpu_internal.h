@@ -57,7 +57,7 @@ typedef struct bg_cpu_span {
 } bg_cpu_span;
 
 /* Intersects the object-space ray o + t d (d not normalised) with a prototype shape. */
-void bg_cpu_intersect_prototype(bg_shape shape, const double o[3], const double d[3], bg_cpu_span *span);
+void bgi_cpu_intersect_prototype(bg_shape shape, const double o[3], const double d[3], bg_cpu_span *span);
 
 /* A candidate hit on one object, before its attributes are computed. */
 typedef struct bg_cpu_candidate {
@@ -68,12 +68,12 @@ typedef struct bg_cpu_candidate {
 } bg_cpu_candidate;
 
 /* Transforms a world ray into the object's space (direction not normalised). */
-void bg_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
+void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
                        double od[3]);
 
 /* The hit of a world ray on an object with t in (0, t_max]: the nearest root, or with far_root the
  * exit root of a closed shape (a refracted ray travelling inside it). */
-bool bg_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
+bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
                              double t_max, bg_cpu_candidate *candidate);
 
 /* A shadow segment is open at its light end by this share of its length: a root at
@@ -92,7 +92,7 @@ bool bg_cpu_intersect_object(const bg_object_data *object, const double o[3], co
 #define BG_SHADOW_END_REL 0x1p-16
 
 /* True when the segment o + t l, t in (0, t_max (1 - BG_SHADOW_END_REL)), meets the object (shadow test). */
-bool bg_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max);
+bool bgi_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max);
 
 /* A finished hit with everything shading needs. */
 typedef struct bg_cpu_hit {
@@ -106,18 +106,18 @@ typedef struct bg_cpu_hit {
 } bg_cpu_hit;
 
 /* Fills the hit's attributes from a candidate on object (index) for the world ray o + t d. */
-void bg_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
+void bgi_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
                            const bg_cpu_candidate *candidate, bg_cpu_hit *hit);
 
 /* ---- UV mappings (uv_map.c) ---------------------------------------------------------------- */
 
 /* The texture coordinates (before uv_scale) and dP/du of an object-space point. */
-void bg_cpu_uv_map(bg_uv_mapping mapping, const double p[3], double uv[2], double dpdu[3]);
+void bgi_cpu_uv_map(bg_uv_mapping mapping, const double p[3], double uv[2], double dpdu[3]);
 
 /* ---- textures and material parameters (texture_sample.c) ------------------------------------ */
 
 /* GL_LINEAR sampling (no mipmaps) of a texture at (u, v) with its wrap mode. */
-void bg_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4]);
+void bgi_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4]);
 
 /* A material evaluated at one surface point, every value clamped to its range. */
 typedef struct bg_cpu_layer {
@@ -137,59 +137,59 @@ typedef struct bg_cpu_surface {
 } bg_cpu_surface;
 
 /* Evaluates every (possibly textured) material parameter at texture coordinates uv. */
-void bg_cpu_surface_eval(const bg_scene_state *state, const bg_material *material, const double uv[2],
+void bgi_cpu_surface_eval(const bg_scene_state *state, const bg_material *material, const double uv[2],
                          bg_cpu_surface *surface);
 
 /* ---- Schlick's BRDF (brdf.c) ---------------------------------------------------------------- */
 
 /* Spectral factor S(u) = C + (1 - C)(1 - u)^5 per channel. */
-void bg_cpu_schlick_s(const double c[3], double u, double s[3]);
+void bgi_cpu_schlick_s(const double c[3], double u, double s[3]);
 /* Lambertian, glossy and specular shares (a, b, c) of a layer of roughness r. */
-void bg_cpu_schlick_split(double r, double *a, double *b, double *c);
+void bgi_cpu_schlick_split(double r, double *a, double *b, double *c);
 /* The glossy directional factor D(t, v, v', w) of roughness r and isotropy p (0 when v or v' <= 0). */
-double bg_cpu_schlick_d(double r, double p, double t, double v, double vl, double w);
+double bgi_cpu_schlick_d(double r, double p, double t, double v, double vl, double w);
 /* The non-Dirac BRDF f (single or coat over base) for unit normal n, tangent, unit view direction
  * (towards the viewer) and unit light direction (towards the light). */
-void bg_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double tangent[3], const double view[3],
+void bgi_cpu_brdf(const bg_cpu_surface *surface, const double n[3], const double tangent[3], const double view[3],
                  const double light[3], double f[3]);
 /* The weight of the perfectly specular (mirror) share for the view cosine v = n.view. */
-void bg_cpu_mirror_weight(const bg_cpu_surface *surface, double v, double m[3]);
+void bgi_cpu_mirror_weight(const bg_cpu_surface *surface, double v, double m[3]);
 /* Exact unpolarised dielectric Fresnel reflectance for cosine cos_i and index ratio n1 -> n2;
  * returns 1 on total internal reflection and sets *cos_t otherwise. */
-double bg_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t);
+double bgi_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t);
 
 /* ---- tracing (shade.c) ---------------------------------------------------------------------- */
 
 /* The nearest hit of a world ray (unit d) skipping object skip and taking the far root of object
  * inside (either may be BG_CPU_NONE); false on a miss. */
-bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
+bool bgi_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
                         uint32_t inside, bg_cpu_hit *hit);
 
 /* The radiance arriving at p from a light (0 outside a spot cone), its unit direction l and the
  * shadow segment's length; false when the light cannot contribute (docs/shading.md 7). */
-bool bg_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3]);
+bool bgi_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3]);
 /* Whether a secondary ray of path weight w is followed: some channel positive and >= min_weight. */
-bool bg_cpu_worth_following(const double w[3], double min_weight);
+bool bgi_cpu_worth_following(const double w[3], double min_weight);
 
 /* Adds weight x the radiance along a ray at bounce level `level` into out. */
-void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
                   const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,
                   double out[3]);
 
 /* The linear radiance of one primary ray (o, unit d). */
-void bg_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
                       const double d[3], double rgb[3]);
 
 /* The primary ray through the centre of pixel (x, y) of a width x height image (row 0 at the top). */
-void bg_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
+void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3]);
 
 /* Renders pixel (x, y) of image (rows `stride` bytes apart, row 0 at the top) in its format, alpha 1:
  * what bg_render_cpu writes there. The GPU's tree plan calls it for the pixels it cannot finish. */
-void bg_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
+void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
                          size_t stride, int x, int y);
 
 /* An 8-bit channel: floor(clamp(x, 0, 1) * 255 + 0.5) after the encoding. */
-uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding);
+uint8_t bgi_cpu_encode_channel(double linear, bg_output_encoding encoding);
 
 #endif

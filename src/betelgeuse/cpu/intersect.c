@@ -177,14 +177,14 @@ static void (*const shape_span[BG_SHAPE_COUNT_])(const double o[3], const double
     BG_SHAPES(SPAN_OF)};
 #undef SPAN_OF
 
-void bg_cpu_intersect_prototype(bg_shape shape, const double o[3], const double d[3], bg_cpu_span *span)
+void bgi_cpu_intersect_prototype(bg_shape shape, const double o[3], const double d[3], bg_cpu_span *span)
 {
     memset(span, 0, sizeof *span);
     if ((unsigned)shape < BG_SHAPE_COUNT_)
         shape_span[shape](o, d, span);
 }
 
-void bg_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
+void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
                        double od[3])
 {
     const double (*m)[4] = object->to_object;
@@ -194,13 +194,13 @@ void bg_cpu_object_ray(const bg_object_data *object, const double o[3], const do
     }
 }
 
-bool bg_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
+bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
                              double t_max, bg_cpu_candidate *candidate)
 {
     double oo[3], od[3];
     bg_cpu_span span;
-    bg_cpu_object_ray(object, o, d, oo, od);
-    bg_cpu_intersect_prototype(object->shape, oo, od, &span);
+    bgi_cpu_object_ray(object, o, d, oo, od);
+    bgi_cpu_intersect_prototype(object->shape, oo, od, &span);
     if (span.count == 0)
         return false;
     int root = -1;
@@ -223,12 +223,12 @@ bool bg_cpu_intersect_object(const bg_object_data *object, const double o[3], co
     return true;
 }
 
-bool bg_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max)
+bool bgi_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max)
 {
     double oo[3], od[3];
     bg_cpu_span span;
-    bg_cpu_object_ray(object, o, l, oo, od);
-    bg_cpu_intersect_prototype(object->shape, oo, od, &span);
+    bgi_cpu_object_ray(object, o, l, oo, od);
+    bgi_cpu_intersect_prototype(object->shape, oo, od, &span);
     if (span.count == 0)
         return false;
     double exit_t = span.t[span.count - 1];
@@ -252,7 +252,7 @@ static void fallback_tangent(const double n[3], double t[3])
     bg_v3_normalize(t);
 }
 
-void bg_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
+void bgi_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
                            const bg_cpu_candidate *candidate, bg_cpu_hit *hit)
 {
     hit->object = index;
@@ -277,7 +277,7 @@ void bg_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const d
         bg_v3_set(hit->normal, -hit->normal[0], -hit->normal[1], -hit->normal[2]);
 
     double dpdu[3];
-    bg_cpu_uv_map(object->uv_mapping, candidate->p, hit->uv, dpdu);
+    bgi_cpu_uv_map(object->uv_mapping, candidate->p, hit->uv, dpdu);
     hit->uv[0] *= object->uv_scale[0];
     hit->uv[1] *= object->uv_scale[1];
 

@@ -12,11 +12,11 @@
 
 #define MAX_THREADS BG_MAX_THREADS
 
-uint8_t bg_cpu_encode_channel(double linear, bg_output_encoding encoding)
+uint8_t bgi_cpu_encode_channel(double linear, bg_output_encoding encoding)
 {
     double x = linear < 0.0 ? 0.0 : (linear > 1.0 ? 1.0 : linear);
     if (encoding == BG_ENCODING_SRGB)
-        x = bg_linear_to_srgb(x);
+        x = bgi_linear_to_srgb(x);
     double y = floor(x * 255.0 + 0.5);
     return (uint8_t)(y < 0.0 ? 0.0 : (y > 255.0 ? 255.0 : y));
 }
@@ -30,20 +30,20 @@ typedef struct job {
     int next_row;
 } job;
 
-void bg_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
+void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
                          size_t stride, int x, int y)
 {
     unsigned char *row = (unsigned char *)image->pixels + (size_t)y * stride;
     double o[3], d[3], rgb[3];
-    bg_cpu_primary_ray(&state->camera, image->width, image->height, x, y, o, d);
-    bg_cpu_shade_ray(state, settings, o, d, rgb);
+    bgi_cpu_primary_ray(&state->camera, image->width, image->height, x, y, o, d);
+    bgi_cpu_shade_ray(state, settings, o, d, rgb);
     if (image->format == BG_PIXEL_RGBA32F) {
         float px[4] = {(float)rgb[0], (float)rgb[1], (float)rgb[2], 1.0f};
         memcpy(row + (size_t)x * sizeof px, px, sizeof px);
     } else {
         unsigned char *px = row + (size_t)x * 4;
         for (int i = 0; i < 3; i++)
-            px[i] = bg_cpu_encode_channel(rgb[i], settings->encoding);
+            px[i] = bgi_cpu_encode_channel(rgb[i], settings->encoding);
         px[3] = 255;
     }
 }
@@ -51,7 +51,7 @@ void bg_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *
 static void render_row(const job *jb, int y)
 {
     for (int x = 0; x < jb->image->width; x++)
-        bg_cpu_render_pixel(jb->state, jb->settings, jb->image, jb->stride, x, y);
+        bgi_cpu_render_pixel(jb->state, jb->settings, jb->image, jb->stride, x, y);
 }
 
 /* Takes rows from the shared counter until none is left (C99 has no atomics, hence the mutex). */
@@ -77,12 +77,12 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
         return BG_ERR_INVALID_ARGUMENT;
     char message[256];
     size_t stride = 0;
-    bg_status st = bg_render_args_check("bg_render_cpu", settings, image, &stride, message, sizeof message);
+    bg_status st = bgi_render_args_check("bg_render_cpu", settings, image, &stride, message, sizeof message);
     if (st != BG_OK)
-        return bg_scene_fail(scene, st, "%s", message);
-    const bg_scene_state *state = bg_scene_committed(scene);
+        return bgi_scene_fail(scene, st, "%s", message);
+    const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
-        return bg_scene_fail(scene, BG_ERR_NOT_COMMITTED, "bg_render_cpu: the scene was never committed");
+        return bgi_scene_fail(scene, BG_ERR_NOT_COMMITTED, "bg_render_cpu: the scene was never committed");
 
     int threads = settings->threads;
     if (threads == 0) {
@@ -99,7 +99,7 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
     jb.stride = stride;
     jb.next_row = 0;
     if (pthread_mutex_init(&jb.lock, NULL) != 0)
-        return bg_scene_fail(scene, BG_ERR_THREAD, "bg_render_cpu: pthread_mutex_init failed");
+        return bgi_scene_fail(scene, BG_ERR_THREAD, "bg_render_cpu: pthread_mutex_init failed");
 
     /* The calling thread is worker 0; if a thread cannot be started the others (at least the caller)
      * take its rows, so the image is always complete. */

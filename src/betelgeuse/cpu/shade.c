@@ -21,7 +21,7 @@ typedef struct nearest_search {
 static void offer(nearest_search *n, uint32_t j, double t_max)
 {
     bg_cpu_candidate c;
-    if (j == n->skip || !bg_cpu_intersect_object(&n->state->objects[j], n->o, n->d, j == n->inside, t_max, &c))
+    if (j == n->skip || !bgi_cpu_intersect_object(&n->state->objects[j], n->o, n->d, j == n->inside, t_max, &c))
         return;
     if (n->best_index == BG_CPU_NONE || c.t < n->best.t || (c.t == n->best.t && j < n->best_index)) {
         n->best = c;
@@ -53,11 +53,11 @@ static void walk_tree(const bg_scene_state *state, const double o[3], const doub
     if (state->tree_count == 0)
         return;
     double t = t_max;
-    if (bg_bvh_traverse(state->tree, o, d, 0.0, &t, visit, user, NULL) != BG_OK)
+    if (bgi_bvh_traverse(state->tree, o, d, 0.0, &t, visit, user, NULL) != BG_OK)
         visit_every_leaf(state, visit, user, t_max);
 }
 
-bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
+bool bgi_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
                         uint32_t inside, bg_cpu_hit *hit)
 {
     nearest_search n = {state, o, d, skip, inside, {0.0, 0, {0, 0, 0}, {0, 0, 0}}, BG_CPU_NONE};
@@ -66,7 +66,7 @@ bool bg_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const do
     walk_tree(state, o, d, n.best_index == BG_CPU_NONE ? DBL_MAX : n.best.t, offer_tree_leaf, &n);
     if (n.best_index == BG_CPU_NONE)
         return false;
-    bg_cpu_hit_attributes(&state->objects[n.best_index], n.best_index, o, d, &n.best, hit);
+    bgi_cpu_hit_attributes(&state->objects[n.best_index], n.best_index, o, d, &n.best, hit);
     return true;
 }
 
@@ -82,7 +82,7 @@ typedef struct shadow_search {
 static bool blocks(const shadow_search *s, uint32_t j)
 {
     const bg_object_data *obj = &s->state->objects[j];
-    return j != s->self && obj->casts_shadows && bg_cpu_segment_blocked(obj, s->p, s->l, s->t_max);
+    return j != s->self && obj->casts_shadows && bgi_cpu_segment_blocked(obj, s->p, s->l, s->t_max);
 }
 
 static bool test_tree_blocker(void *user, uint32_t prim, double *t_max)
@@ -103,7 +103,7 @@ static bool shadowed(const bg_scene_state *state, const double p[3], const doubl
     return s.blocked;
 }
 
-bool bg_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3])
+bool bgi_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3])
 {
     double scale = light->intensity;
     if (light->type == BG_LIGHT_DIRECTIONAL) {
@@ -138,19 +138,19 @@ bool bg_cpu_light_arrival(const bg_light *light, const double p[3], double l[3],
     return scale > 0.0;
 }
 
-bool bg_cpu_worth_following(const double w[3], double min_weight)
+bool bgi_cpu_worth_following(const double w[3], double min_weight)
 {
     double m = w[0] > w[1] ? w[0] : w[1];
     m = m > w[2] ? m : w[2];
     return m > 0.0 && m >= min_weight;
 }
 
-void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
                   const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,
                   double out[3])
 {
     bg_cpu_hit hit;
-    if (!bg_cpu_nearest_hit(state, o, d, skip, inside, &hit)) {
+    if (!bgi_cpu_nearest_hit(state, o, d, skip, inside, &hit)) {
         for (int i = 0; i < 3; i++)
             out[i] += weight[i] * settings->background[i];
         return;
@@ -158,7 +158,7 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     const bg_object_data *object = &state->objects[hit.object];
     const bg_material *material = &state->materials[object->material];
     bg_cpu_surface surface;
-    bg_cpu_surface_eval(state, material, hit.uv, &surface);
+    bgi_cpu_surface_eval(state, material, hit.uv, &surface);
 
     const double *n = hit.normal;
     const double view[3] = {-d[0], -d[1], -d[2]};
@@ -173,7 +173,7 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     if (opaque > 0.0 && v > 0.0 && (thin || hit.entering)) {
         for (uint32_t k = 0; k < state->light_count; k++) {
             double l[3], radiance[3], t_max;
-            if (!bg_cpu_light_arrival(&state->lights[k], hit.position, l, &t_max, radiance))
+            if (!bgi_cpu_light_arrival(&state->lights[k], hit.position, l, &t_max, radiance))
                 continue;
             double vl = bg_v3_dot(n, l);
             if (!(vl > 0.0))
@@ -181,7 +181,7 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
             if (shadowed(state, hit.position, l, t_max, hit.object))
                 continue;
             double f[3];
-            bg_cpu_brdf(&surface, n, hit.tangent, view, l, f);
+            bgi_cpu_brdf(&surface, n, hit.tangent, view, l, f);
             for (int i = 0; i < 3; i++)
                 out[i] += weight[i] * opaque * PI * f[i] * radiance[i] * vl;
         }
@@ -195,12 +195,12 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     double cos_i = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0;
     if (surface.transparency > 0.0 && !thin) {
         double n1 = hit.entering ? 1.0 : surface.ior, n2 = hit.entering ? surface.ior : 1.0;
-        fresnel = bg_cpu_fresnel(cos_i, n1, n2, &cos_t);
+        fresnel = bgi_cpu_fresnel(cos_i, n1, n2, &cos_t);
         eta = n1 / n2;
     }
 
     double mirror[3], w_refl[3], w_refr[3];
-    bg_cpu_mirror_weight(&surface, cos_i, mirror);
+    bgi_cpu_mirror_weight(&surface, cos_i, mirror);
     for (int i = 0; i < 3; i++) {
         w_refl[i] = weight[i] * (opaque * mirror[i] + surface.transparency * fresnel);
         w_refr[i] = weight[i] * surface.transparency * (1.0 - fresnel);
@@ -209,14 +209,14 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
     /* A ray leaving a closed object's inside stays inside after reflection (far root); any other
      * secondary ray leaves the object it starts on and skips it. */
     bool stays_inside = !thin && !hit.entering;
-    if (bg_cpu_worth_following(w_refl, settings->min_weight)) {
+    if (bgi_cpu_worth_following(w_refl, settings->min_weight)) {
         double dn = bg_v3_dot(d, n);
         double r[3] = {d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]};
         if (bg_v3_normalize(r))
-            bg_cpu_trace(state, settings, hit.position, r, level + 1, w_refl, stays_inside ? BG_CPU_NONE : hit.object,
+            bgi_cpu_trace(state, settings, hit.position, r, level + 1, w_refl, stays_inside ? BG_CPU_NONE : hit.object,
                          stays_inside ? hit.object : BG_CPU_NONE, out);
     }
-    if (bg_cpu_worth_following(w_refr, settings->min_weight)) {
+    if (bgi_cpu_worth_following(w_refr, settings->min_weight)) {
         double t[3] = {d[0], d[1], d[2]};
         if (!thin) {
             double k = eta * cos_i - cos_t;
@@ -225,21 +225,21 @@ void bg_cpu_trace(const bg_scene_state *state, const bg_render_settings *setting
         }
         if (bg_v3_normalize(t)) {
             bool enters = !thin && hit.entering;
-            bg_cpu_trace(state, settings, hit.position, t, level + 1, w_refr, enters ? BG_CPU_NONE : hit.object,
+            bgi_cpu_trace(state, settings, hit.position, t, level + 1, w_refr, enters ? BG_CPU_NONE : hit.object,
                          enters ? hit.object : BG_CPU_NONE, out);
         }
     }
 }
 
-void bg_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
+void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
                       const double d[3], double rgb[3])
 {
     const double one[3] = {1.0, 1.0, 1.0};
     bg_v3_set(rgb, 0.0, 0.0, 0.0);
-    bg_cpu_trace(state, settings, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, rgb);
+    bgi_cpu_trace(state, settings, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, rgb);
 }
 
-void bg_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
+void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3])
 {
     double aspect = (double)width / (double)height;

@@ -38,7 +38,7 @@ static void sample_nearest(const bg_texture_data *texture, double u, double v, d
         rgba[c] = t[c];
 }
 
-void bg_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4])
+void bgi_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4])
 {
     if (texture->filter == BG_FILTER_NEAREST) {
         sample_nearest(texture, u, v, rgba);
@@ -78,7 +78,7 @@ static void color_param(const bg_scene_state *state, const bg_color_param *param
     const bg_texture_data *tex = texture_of(state, param->texture);
     if (tex) {
         double texel[4];
-        bg_cpu_texture_sample(tex, uv[0], uv[1], texel);
+        bgi_cpu_texture_sample(tex, uv[0], uv[1], texel);
         for (int i = 0; i < 3; i++)
             out[i] *= texel[i];
     }
@@ -91,7 +91,7 @@ static double scalar_param(const bg_scene_state *state, const bg_scalar_param *p
     if (tex) {
         double texel[4];
         int channel = param->channel < 0 ? 0 : (param->channel > 3 ? 3 : param->channel);
-        bg_cpu_texture_sample(tex, uv[0], uv[1], texel);
+        bgi_cpu_texture_sample(tex, uv[0], uv[1], texel);
         value *= texel[channel];
     }
     return value;
@@ -106,7 +106,7 @@ static void layer(const bg_scene_state *state, const bg_schlick_layer *in, const
     out->p = clamp01(scalar_param(state, &in->isotropy, uv));
 }
 
-void bg_cpu_surface_eval(const bg_scene_state *state, const bg_material *material, const double uv[2],
+void bgi_cpu_surface_eval(const bg_scene_state *state, const bg_material *material, const double uv[2],
                          bg_cpu_surface *surface)
 {
     memset(surface, 0, sizeof *surface);

@@ -78,7 +78,7 @@ static void cylindrical(const double p[3], double uv[2], double dpdu[3])
     bg_v3_set(dpdu, p[2], 0.0, -p[0]);
 }
 
-void bg_cpu_uv_map(bg_uv_mapping mapping, const double p[3], double uv[2], double dpdu[3])
+void bgi_cpu_uv_map(bg_uv_mapping mapping, const double p[3], double uv[2], double dpdu[3])
 {
     switch (mapping) {
     case BG_UV_PLANAR: planar(p, uv, dpdu); break;

@@ -20,7 +20,7 @@ static int slots(macs_uniform_type t)
     return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
 }
 
-int gpu_uniform_components(const macs_uniform_desc *u, int count)
+int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count)
 {
     int components = 0;
     for (int i = 0; i < count; i++)
@@ -33,14 +33,14 @@ static bool batching(const bg_renderer *r)
     return !(r->key.disable_skips & BG_SKIP_BATCH);
 }
 
-bool gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4])
+bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4])
 {
     rect[0] = rect[1] = rect[2] = rect[3] = 0;
     for (int j = 0; j < b->count; j++) {
         int one[4];
-        if (!gpu_object_scissor(state, (uint32_t)(b->first + j), width, height, one))
+        if (!bgi_gpu_object_scissor(state, (uint32_t)(b->first + j), width, height, one))
             return false;
-        gpu_rect_union(rect, one);
+        bgi_gpu_rect_union(rect, one);
     }
     return true;
 }
@@ -53,7 +53,7 @@ static double camera_area(const bg_renderer *r, const bg_scene_state *state, int
         return full;
     gpu_batch b = {NULL, first, count, 0};
     int rect[4];
-    if (!gpu_batch_scissor(state, &b, r->width, r->height, rect))
+    if (!bgi_gpu_batch_scissor(state, &b, r->width, r->height, rect))
         return full;
     return (double)rect[2] * (double)rect[3];
 }
@@ -74,22 +74,22 @@ static bool merge_pays(const bg_renderer *r, const bg_scene_state *state, int fi
     return merged * (double)(count + 2) <= run * (double)(count + 1) + alone * 2.0 + PASS_COST_PIXELS;
 }
 
-int gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out)
+int bgi_gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out)
 {
     int n = (int)state->object_count, batches = 0;
     int units = r->limits.max_texture_units - 3; /* the ray maps take three */
-    int budget = macs_context_max_uniform_components(r->ctx) - gpu_hit_shared_components();
+    int budget = macs_context_max_uniform_components(r->ctx) - bgi_gpu_hit_shared_components();
     for (int o = 0; o < n;) {
         uint32_t textures[GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES];
         int texture_count = 0, comps = 0, count = 0;
         while (o + count < n && count < GPU_BATCH_MAX) {
             uint32_t own[GPU_HIT_MAX_TEXTURES];
             int own_count = 0;
-            int c = gpu_hit_object_needs(r, state, (uint32_t)(o + count), own, &own_count);
+            int c = bgi_gpu_hit_object_needs(r, state, (uint32_t)(o + count), own, &own_count);
             /* Its textures join the run's on trial: kept only if the object goes in. */
             int with_own = texture_count;
             for (int i = 0; i < own_count; i++)
-                gpu_hit_texture_lane(textures, &with_own, own[i]);
+                bgi_gpu_hit_texture_lane(textures, &with_own, own[i]);
             /* The first object always goes in: its one-object pass is what exists without batching. */
             if (count > 0 && (!batching(r) || comps + c > budget || with_own > units ||
                               !merge_pays(r, state, o, count)))
@@ -104,14 +104,14 @@ int gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_b
     return batches;
 }
 
-int gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, int group, int first, int n,
+int bgi_gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, int group, int first, int n,
                            gpu_batch *out)
 {
     int lights = (int)state->light_count - group * GPU_LIGHTS_PER_GROUP;
     if (lights > GPU_LIGHTS_PER_GROUP)
         lights = GPU_LIGHTS_PER_GROUP;
-    int per_batch = (macs_context_max_uniform_components(r->ctx) - gpu_shadow_shared_components(lights)) /
-                    gpu_shadow_object_components();
+    int per_batch = (macs_context_max_uniform_components(r->ctx) - bgi_gpu_shadow_shared_components(lights)) /
+                    bgi_gpu_shadow_object_components();
     if (per_batch > GPU_BATCH_MAX)
         per_batch = GPU_BATCH_MAX;
     if (per_batch < 1 || !batching(r))

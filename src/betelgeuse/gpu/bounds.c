@@ -36,7 +36,7 @@ static void box_add(box3 *b, bool *empty, const double p[3])
     *empty = false;
 }
 
-void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax)
+void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax)
 {
     int levels = settings->max_depth + 1;
     if (settings->dmax > 0.0) {
@@ -66,7 +66,7 @@ void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *sett
     }
 }
 
-bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4])
+bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4])
 {
     const bg_object_data *o = &state->objects[object];
     if (!o->bounded)

@@ -6,7 +6,7 @@
 
 #include "gpu_internal.h"
 
-bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...)
+bg_status bgi_gpu_fail(bg_renderer *r, bg_status status, const char *format, ...)
 {
     char buffer[MACS_MESSAGE_SIZE];
     va_list args;
@@ -31,17 +31,17 @@ static bg_status status_of_macs(macs_status ms)
     }
 }
 
-bg_status gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what)
+bg_status bgi_gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what)
 {
     const char *detail = macs_context_error_message(r->ctx);
-    bg_status st = gpu_fail(r, status_of_macs(ms), "bg_render_gpu: %s: %s (%s)", what,
+    bg_status st = bgi_gpu_fail(r, status_of_macs(ms), "bg_render_gpu: %s: %s (%s)", what,
                             detail && *detail ? detail : macs_status_string(ms), macs_status_string(ms));
     /* MACS keeps only its first error; ours now holds it, so the next MACS failure is reported too. */
     macs_context_clear_error(r->ctx);
     return st;
 }
 
-void gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...)
+void bgi_gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...)
 {
     if (!r->logger.func)
         return;

@@ -15,12 +15,12 @@ static bool layer_may_be_aniso(const bg_schlick_layer *l)
     return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
 }
 
-bool gpu_material_may_bounce(const bg_material *m)
+bool bgi_gpu_material_may_bounce(const bg_material *m)
 {
     return m->transparency.value > 0.0 || layer_may_reflect(&m->base) || (m->has_coat && layer_may_reflect(&m->coat));
 }
 
-void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f)
+void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f)
 {
     memset(f, 0, sizeof *f);
     f->generic = generic;
@@ -30,7 +30,7 @@ void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features
         f->transparent |= transparent;
         f->coat |= m->has_coat;
         f->aniso |= layer_may_be_aniso(&m->base) || (m->has_coat && layer_may_be_aniso(&m->coat));
-        f->bounce |= gpu_material_may_bounce(m);
+        f->bounce |= bgi_gpu_material_may_bounce(m);
     }
     if (generic) {
         f->transparent = f->aniso = f->coat = f->bounce = true;

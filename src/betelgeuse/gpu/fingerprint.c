@@ -55,7 +55,7 @@ static void mix_layer(hasher *s, const bg_schlick_layer *l)
     mix_scalar(s, &l->isotropy);
 }
 
-uint64_t gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures)
+uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures)
 {
     hasher s = {0x243f6a8885a308d3ull};
     const bg_camera_data *c = &state->camera;
@@ -113,7 +113,7 @@ uint64_t gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures)
     return s.h;
 }
 
-uint64_t gpu_textures_fingerprint(const bg_scene_state *state)
+uint64_t bgi_gpu_textures_fingerprint(const bg_scene_state *state)
 {
     hasher s = {0x13198a2e03707344ull};
     mix(&s, state->texture_count);

@@ -26,12 +26,12 @@ typedef struct frame {
 
 static void phase_start(frame *f)
 {
-    gpu_phase_start(f->r, f->timing, &f->clock);
+    bgi_gpu_phase_start(f->r, f->timing, &f->clock);
 }
 
 static void phase_end(frame *f, bg_phase phase)
 {
-    gpu_phase_end(f->r, f->timing, &f->clock, phase);
+    bgi_gpu_phase_end(f->r, f->timing, &f->clock, phase);
 }
 
 static bg_status run(frame *f, macs_pass *pass, bg_pass_kind kind, const macs_run_desc *desc)
@@ -39,7 +39,7 @@ static bg_status run(frame *f, macs_pass *pass, bg_pass_kind kind, const macs_ru
     bg_renderer *r = f->r;
     macs_status ms = macs_pass_run(pass, desc);
     if (ms)
-        return gpu_fail_macs(r, ms, "running a pass");
+        return bgi_gpu_fail_macs(r, ms, "running a pass");
     r->stats.passes[kind]++;
     r->stats.chunks += macs_pass_chunk_count(pass);
     return BG_OK;
@@ -67,14 +67,14 @@ static void bounce_scissor(frame *f)
     f->bounce_scissor = !(r->key.disable_skips & BG_SKIP_SCISSOR);
     memset(f->bounce_rect, 0, sizeof f->bounce_rect);
     for (uint32_t o = 0; o < state->object_count && f->bounce_scissor; o++) {
-        if (!gpu_material_may_bounce(&state->materials[state->objects[o].material]))
+        if (!bgi_gpu_material_may_bounce(&state->materials[state->objects[o].material]))
             continue;
         int rect[4];
-        if (!gpu_object_scissor(state, o, r->width, r->height, rect)) {
+        if (!bgi_gpu_object_scissor(state, o, r->width, r->height, rect)) {
             f->bounce_scissor = false;
             break;
         }
-        gpu_rect_union(f->bounce_rect, rect);
+        bgi_gpu_rect_union(f->bounce_rect, rect);
     }
 }
 
@@ -88,7 +88,7 @@ static bg_status run_counted(frame *f, macs_pass *pass, bg_pass_kind kind, int l
         uint64_t n = 0;
         macs_status ms = macs_pass_occlusion_result(pass, &n);
         if (ms)
-            return gpu_fail_macs(f->r, ms, "fragment count");
+            return bgi_gpu_fail_macs(f->r, ms, "fragment count");
         f->r->stats.shaded_fragments += n;
     }
     return st;
@@ -97,7 +97,7 @@ static bg_status run_counted(frame *f, macs_pass *pass, bg_pass_kind kind, int l
 static bg_status bind(bg_renderer *r, macs_pass *pass, int index, macs_texture *t)
 {
     macs_status ms = macs_pass_set_input(pass, index, t);
-    return ms ? gpu_fail_macs(r, ms, "binding a ray map") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "binding a ray map") : BG_OK;
 }
 
 static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
@@ -113,12 +113,12 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
         if (st == BG_OK)
             st = bind(r, p, GPU_HIT_IN_WEIGHT, set->weight);
         if (st == BG_OK)
-            st = gpu_hit_pass_set_dmax(r, p, f->dmax[level]);
+            st = bgi_gpu_hit_pass_set_dmax(r, p, f->dmax[level]);
         if (st != BG_OK)
             return st;
         macs_run_desc d = set_run(f, level);
         int rect[4];
-        if (scissor && gpu_batch_scissor(f->state, batch, r->width, r->height, rect)) {
+        if (scissor && bgi_gpu_batch_scissor(f->state, batch, r->width, r->height, rect)) {
             if (rect[2] == 0 || rect[3] == 0)
                 continue; /* entirely off screen */
             d.scissor = true;
@@ -166,7 +166,7 @@ static bg_status shade(frame *f, const gpu_ray_set *set, int level)
             if (!cleared) {
                 macs_status ms = macs_texture_clear(r->vis, one);
                 if (ms)
-                    return gpu_fail_macs(r, ms, "clearing visibility");
+                    return bgi_gpu_fail_macs(r, ms, "clearing visibility");
                 cleared = true;
             }
             st = run_counted(f, sp, BG_PASS_SHADOW, level);
@@ -212,7 +212,7 @@ static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ra
     if (!ms)
         ms = macs_pass_set_output(pass, 2, child->weight);
     if (ms)
-        return gpu_fail_macs(r, ms, "preparing a child ray set");
+        return bgi_gpu_fail_macs(r, ms, "preparing a child ray set");
     bg_status st = bind(r, pass, GPU_SPAWN_IN_DIR, set->dir);
     if (st == BG_OK)
         st = bind(r, pass, GPU_SPAWN_IN_WEIGHT, set->weight);
@@ -230,7 +230,7 @@ static bg_status mark(frame *f, const gpu_ray_set *set, int level, uint64_t *liv
     macs_status ms = macs_depth_stencil_clear(r->depth, 1.0f, (r->key.disable_skips & BG_SKIP_STENCIL) ? GPU_STENCIL_LIVE : 0u,
                                               GPU_STENCIL_LIVE | GPU_STENCIL_HIT);
     if (ms)
-        return gpu_fail_macs(r, ms, "clearing depth and stencil");
+        return bgi_gpu_fail_macs(r, ms, "clearing depth and stencil");
     bg_status st = bind(r, r->passes.mark, GPU_MARK_IN_WEIGHT, set->weight);
     macs_run_desc d = set_run(f, level);
     d.occlusion_query = true;
@@ -239,7 +239,7 @@ static bg_status mark(frame *f, const gpu_ray_set *set, int level, uint64_t *liv
     if (st != BG_OK)
         return st;
     ms = macs_pass_occlusion_result(r->passes.mark, live);
-    return ms ? gpu_fail_macs(r, ms, "counting live rays") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "counting live rays") : BG_OK;
 }
 
 typedef struct pending {
@@ -263,7 +263,7 @@ static bg_status trace(frame *f)
     while (top > 0) {
         pending cur = stack[--top];
         gpu_ray_set *set = NULL;
-        bg_status st = gpu_ray_set_get(r, cur.slot, &set);
+        bg_status st = bgi_gpu_ray_set_get(r, cur.slot, &set);
         if (st != BG_OK)
             return st;
         uint64_t live = (uint64_t)r->width * (uint64_t)r->height;
@@ -271,7 +271,7 @@ static bg_status trace(frame *f)
             /* Camera rays are all alive. */
             macs_status ms = macs_depth_stencil_clear(r->depth, 1.0f, GPU_STENCIL_LIVE, GPU_STENCIL_LIVE | GPU_STENCIL_HIT);
             if (ms)
-                return gpu_fail_macs(r, ms, "clearing depth and stencil");
+                return bgi_gpu_fail_macs(r, ms, "clearing depth and stencil");
             first = false;
         } else {
             phase_start(f);
@@ -309,7 +309,7 @@ static bg_status trace(frame *f)
                 while (used[slot])
                     slot++;
                 gpu_ray_set *child = NULL;
-                st = gpu_ray_set_get(r, slot, &child);
+                st = bgi_gpu_ray_set_get(r, slot, &child);
                 if (st == BG_OK) {
                     set = &r->sets[cur.slot]; /* the pool may have moved */
                     st = spawn(f, kinds[k], set, child, cur.level);
@@ -332,9 +332,9 @@ static bg_status read_back(frame *f, bg_image *image, size_t stride)
 {
     bg_renderer *r = f->r;
     if (image->format == BG_PIXEL_RGBA32F)
-        return gpu_read_back(r, r->accum, image, stride, true);
+        return bgi_gpu_read_back(r, r->accum, image, stride, true);
     bg_status st = run(f, r->passes.resolve, BG_PASS_RESOLVE, NULL);
-    return st != BG_OK ? st : gpu_read_back(r, r->encoded, image, stride, true);
+    return st != BG_OK ? st : bgi_gpu_read_back(r, r->encoded, image, stride, true);
 }
 
 static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
@@ -353,8 +353,8 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
     memset(&key, 0, sizeof key);
     key.scene = scene;
     key.commit_count = f->state->commit_count;
-    key.textures = gpu_textures_fingerprint(f->state);
-    key.fingerprint = gpu_scene_fingerprint(f->state, key.textures);
+    key.textures = bgi_gpu_textures_fingerprint(f->state);
+    key.fingerprint = bgi_gpu_scene_fingerprint(f->state, key.textures);
     key.width = width;
     key.height = height;
     key.disable_skips = s->gpu_disable_skips;
@@ -369,25 +369,25 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
             float bgc[3] = {(float)s->background[0], (float)s->background[1], (float)s->background[2]};
             macs_status ms = macs_pass_set_uniform(r->passes.background, "bg_background", bgc);
             if (ms)
-                return gpu_fail_macs(r, ms, "background uniforms");
+                return bgi_gpu_fail_macs(r, ms, "background uniforms");
         }
         return BG_OK;
     }
     /* Scene textures are uploaded again only when what they hold changed, not on every commit. */
     bool new_textures = !r->key.valid || r->key.textures != key.textures;
-    gpu_passes_retire(r);
+    bgi_gpu_passes_retire(r);
     memset(&r->key, 0, sizeof r->key);
-    gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->features);
+    bgi_gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->features);
     bg_status st = BG_OK;
     if (new_textures || !r->white)
-        st = gpu_scene_textures_prepare(r, f->state);
+        st = bgi_gpu_scene_textures_prepare(r, f->state);
     r->key = key;
     r->key.valid = false;
     if (st == BG_OK)
-        st = gpu_targets_prepare(r, width, height);
+        st = bgi_gpu_targets_prepare(r, width, height);
     if (st == BG_OK)
-        st = gpu_passes_build(r, f->state, s);
-    gpu_passes_release_retired(r);
+        st = bgi_gpu_passes_build(r, f->state, s);
+    bgi_gpu_passes_release_retired(r);
     if (st != BG_OK)
         return st;
     r->key.valid = true;
@@ -403,25 +403,25 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     if (!r)
         return BG_ERR_INVALID_ARGUMENT;
     if (!scene)
-        return gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "bg_render_gpu: scene is NULL");
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "bg_render_gpu: scene is NULL");
     char message[256];
     size_t stride = 0;
-    bg_status st = bg_render_args_check("bg_render_gpu", settings, image, &stride, message, sizeof message);
+    bg_status st = bgi_render_args_check("bg_render_gpu", settings, image, &stride, message, sizeof message);
     if (st != BG_OK)
-        return gpu_fail(r, st, "%s", message);
+        return bgi_gpu_fail(r, st, "%s", message);
     int max = r->limits.max_texture_size;
     if (image->width > max || image->height > max)
-        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: image size %dx%d exceeds the GL texture size limit %d",
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: image size %dx%d exceeds the GL texture size limit %d",
                         image->width, image->height, max);
-    const bg_scene_state *state = bg_scene_committed(scene);
+    const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
-        return gpu_fail(r, BG_ERR_NOT_COMMITTED, "bg_render_gpu: the scene was never committed");
+        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "bg_render_gpu: the scene was never committed");
 
     memset(&r->stats, 0, sizeof r->stats);
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
     bool fused = false;
-    st = gpu_fused_render(r, state, settings, image, stride, &fused);
+    st = bgi_gpu_fused_render(r, state, settings, image, stride, &fused);
     if (st == BG_OK && !fused)
         st = render_multipass(r, scene, settings, image, stride);
     r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
@@ -432,7 +432,7 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
 static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
                                   bg_image *image, size_t stride)
 {
-    const bg_scene_state *state = bg_scene_committed(scene);
+    const bg_scene_state *state = bgi_scene_committed(scene);
     bg_status st = BG_OK;
     frame f;
     memset(&f, 0, sizeof f);
@@ -440,10 +440,10 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
     f.state = state;
     f.settings = settings;
     f.timing = settings->gpu_timing;
-    double start = f.timing ? gpu_now_ms() : 0.0;
+    double start = f.timing ? bgi_gpu_now_ms() : 0.0;
     if (f.timing)
         macs_context_finish(r->ctx);
-    gpu_dmax_levels(state, settings, f.dmax);
+    bgi_gpu_dmax_levels(state, settings, f.dmax);
 
     phase_start(&f);
     st = prepare(&f, scene, image->width, image->height);
@@ -452,7 +452,7 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
         static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         macs_status ms = macs_texture_clear(r->accum, zero);
         if (ms)
-            st = gpu_fail_macs(r, ms, "clearing the accumulation");
+            st = bgi_gpu_fail_macs(r, ms, "clearing the accumulation");
     }
     if (st == BG_OK) {
         bounce_scissor(&f);
@@ -469,7 +469,7 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
     }
     if (st != BG_OK) {
         /* Start the next render from nothing: a failure may have left any object half made. */
-        gpu_release_all(r);
+        bgi_gpu_release_all(r);
         return st;
     }
     r->stats.gbuffer_targets = r->features.slot_count;
@@ -479,7 +479,7 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
     r->stats.depth_bits = macs_depth_stencil_format(r->depth) == MACS_DEPTH32F_STENCIL8 ? 32 : 24;
     if (f.timing) {
         r->stats.timed = true;
-        r->stats.total_ms = gpu_now_ms() - start;
+        r->stats.total_ms = bgi_gpu_now_ms() - start;
     }
     return BG_OK;
 }

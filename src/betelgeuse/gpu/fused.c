@@ -55,7 +55,7 @@ struct gpu_fused {
 /* BG_PLAN_AUTO goes to the multipass: says why at BG_LOG_INFO. */
 static bg_status decline(bg_renderer *r, const char *why)
 {
-    gpu_log(r, BG_LOG_INFO, "bg_render_gpu: rendering with the multipass plan: %s", why);
+    bgi_gpu_log(r, BG_LOG_INFO, "bg_render_gpu: rendering with the multipass plan: %s", why);
     return BG_OK;
 }
 
@@ -81,11 +81,11 @@ static const char *multipass_option(const bg_renderer *r, const bg_render_settin
 static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fused_layout *l, bool forced, char *why,
                  size_t size)
 {
-    int comps = gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
-    int units = l->sampler_count + (gpu_fused_layout_walks(l) ? 2 : 0);
-    if (l->tree && !gpu_fused_tree_fits(r, state, why, size))
+    int comps = bgi_gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
+    int units = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0);
+    if (l->tree && !bgi_gpu_fused_tree_fits(r, state, why, size))
         return false;
-    if (gpu_fused_layout_walks(l) && l->walk_budget < MIN_WALK_BUDGET)
+    if (bgi_gpu_fused_layout_walks(l) && l->walk_budget < MIN_WALK_BUDGET)
         snprintf(why, size, "%.0f rays per pixel with %u lights leave the tree walks %d loop steps, fewer than %d",
                  (double)l->loop_rays, l->light_count, l->walk_budget, MIN_WALK_BUDGET);
     else if (l->rays_needed > l->loop_rays)
@@ -148,7 +148,7 @@ static void textures_release(bg_renderer *r, struct gpu_fused *f)
 {
     for (uint32_t i = 0; i < f->texture_count; i++)
         macs_texture_destroy(f->textures[i]);
-    bg_free(&r->allocator, f->textures);
+    bgi_free(&r->allocator, f->textures);
     f->textures = NULL;
     f->texture_count = 0;
     f->texture_hash = 0;
@@ -164,14 +164,14 @@ static bg_status textures_prepare(bg_renderer *r, struct gpu_fused *f, const bg_
     textures_release(r, f);
     if (state->texture_count == 0)
         return BG_OK;
-    f->textures = bg_alloc(&r->allocator, state->texture_count * sizeof *f->textures);
+    f->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *f->textures);
     if (!f->textures)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
     memset(f->textures, 0, state->texture_count * sizeof *f->textures);
     f->texture_count = state->texture_count;
     for (int k = 0; k < l->sampler_count; k++) {
         uint32_t i = l->samplers[k] - 1;
-        bg_status st = gpu_scene_texture_upload(r, &state->textures[i], &f->textures[i]);
+        bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &f->textures[i]);
         if (st != BG_OK)
             return st;
     }
@@ -193,7 +193,7 @@ static bg_status output_for(bg_renderer *r, struct gpu_fused *f, int w, int h, b
 {
     macs_texture **slot = as_float ? &f->out_float : &f->out_bytes;
     *out = NULL;
-    bg_status st = gpu_texture_ensure(r, w, h, as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8, slot,
+    bg_status st = bgi_gpu_texture_ensure(r, w, h, as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8, slot,
                                       "fused plan: output texture");
     if (st == BG_OK)
         *out = *slot;
@@ -211,10 +211,10 @@ typedef struct program_text {
 
 static void program_text_free(bg_renderer *r, program_text *p)
 {
-    gpu_text_free(&p->functions);
-    gpu_text_free(&p->main);
-    gpu_text_free(&p->key);
-    gpu_fused_uniforms_free(&r->allocator, p->uniforms, p->uniform_names);
+    bgi_gpu_text_free(&p->functions);
+    bgi_gpu_text_free(&p->main);
+    bgi_gpu_text_free(&p->key);
+    bgi_gpu_fused_uniforms_free(&r->allocator, p->uniforms, p->uniform_names);
     p->uniforms = NULL;
     p->uniform_names = NULL;
 }
@@ -222,23 +222,23 @@ static void program_text_free(bg_renderer *r, program_text *p)
 static bg_status program_text_make(bg_renderer *r, const gpu_fused_layout *l, program_text *p)
 {
     memset(p, 0, sizeof *p);
-    gpu_text_init(&p->functions, &r->allocator);
-    gpu_text_init(&p->main, &r->allocator);
-    gpu_text_init(&p->key, &r->allocator);
-    if (!gpu_fused_source(l, &p->functions, &p->main, &p->output))
+    bgi_gpu_text_init(&p->functions, &r->allocator);
+    bgi_gpu_text_init(&p->main, &r->allocator);
+    bgi_gpu_text_init(&p->key, &r->allocator);
+    if (!bgi_gpu_fused_source(l, &p->functions, &p->main, &p->output))
         return p->functions.failed || p->main.failed
-                   ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader")
-                   : gpu_fail(r, BG_ERR_GL, "bg_render_gpu: fused shader: a glsl110/ file is missing");
-    if (!gpu_fused_uniforms_declare(&r->allocator, l, &p->uniforms, &p->uniform_count, &p->uniform_names))
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory declaring the fused uniforms");
-    gpu_text_append(&p->key, p->functions.s);
-    gpu_text_append(&p->key, p->main.s);
-    gpu_text_printf(&p->key, "// out %s, samplers %d\n", p->output, l->sampler_count);
+                   ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader")
+                   : bgi_gpu_fail(r, BG_ERR_GL, "bg_render_gpu: fused shader: a glsl110/ file is missing");
+    if (!bgi_gpu_fused_uniforms_declare(&r->allocator, l, &p->uniforms, &p->uniform_count, &p->uniform_names))
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory declaring the fused uniforms");
+    bgi_gpu_text_append(&p->key, p->functions.s);
+    bgi_gpu_text_append(&p->key, p->main.s);
+    bgi_gpu_text_printf(&p->key, "// out %s, samplers %d\n", p->output, l->sampler_count);
     for (int i = 0; i < p->uniform_count; i++)
-        gpu_text_printf(&p->key, "// uniform %s %d %d\n", p->uniforms[i].name, (int)p->uniforms[i].type,
+        bgi_gpu_text_printf(&p->key, "// uniform %s %d %d\n", p->uniforms[i].name, (int)p->uniforms[i].type,
                         p->uniforms[i].count);
     if (p->key.failed)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader");
     return BG_OK;
 }
 
@@ -248,30 +248,30 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
                              macs_pass **pass, char *refused, size_t refused_size)
 {
     enum { NAME = 24 }; /* "bg_tex" and any int */
-    int n = l->sampler_count + (gpu_fused_layout_walks(l) ? 2 : 0);
-    macs_input_desc *inputs = bg_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
+    int n = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0);
+    macs_input_desc *inputs = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
     if (!inputs)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
     char *names = (char *)(inputs + (n ? n : 1));
     for (int k = 0; k < l->sampler_count; k++) {
         snprintf(names + k * NAME, NAME, "bg_tex%d", k);
         inputs[k].name = names + k * NAME;
     }
     /* The tree's textures follow the scene's (bind_frame sets them in this order). */
-    if (gpu_fused_layout_walks(l)) {
+    if (bgi_gpu_fused_layout_walks(l)) {
         inputs[l->sampler_count].name = "bg_nodes";
         inputs[l->sampler_count + 1].name = "bg_objects";
     }
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, p->main.s, inputs, NULL, n, p->uniforms, p->uniform_count, &output, outs, 1);
+    bgi_gpu_pass_desc_init(&desc, p->main.s, inputs, NULL, n, p->uniforms, p->uniform_count, &output, outs, 1);
     desc.functions = p->functions.s;
     macs_status ms;
     char why[MACS_MESSAGE_SIZE / 2]; /* GL's message, leaving room for the words around it in refused */
-    bg_status st = gpu_pass_create_trial(r, trial ? "fused pass" : "fused pass (BG_PLAN_FUSED)", &desc, trial, pass,
+    bg_status st = bgi_gpu_pass_create_trial(r, trial ? "fused pass" : "fused pass (BG_PLAN_FUSED)", &desc, trial, pass,
                                          &ms, why, sizeof why);
-    bg_free(&r->allocator, inputs);
+    bgi_free(&r->allocator, inputs);
     if (st == BG_OK && ms != MACS_OK)
         snprintf(refused, refused_size, "GL refused the fused program (%s): %s", macs_status_string(ms), why);
     return st;
@@ -282,7 +282,7 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
  * uniforms and textures of the frame follow its own. */
 static void adopt_layout(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *l)
 {
-    gpu_fused_layout_free(&r->allocator, &f->layout);
+    bgi_gpu_fused_layout_free(&r->allocator, &f->layout);
     f->layout = *l;
     memset(l, 0, sizeof *l); /* the cache owns its arrays now */
 }
@@ -316,8 +316,8 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
     if (st != BG_OK)
         return st;
     if (!pass) {
-        bg_free(&r->allocator, f->refused);
-        f->refused = bg_strdup(&r->allocator, p->key.s);
+        bgi_free(&r->allocator, f->refused);
+        f->refused = bgi_strdup(&r->allocator, p->key.s);
         *declined = true;
         return decline(r, refused);
     }
@@ -326,10 +326,10 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
     f->width = w;
     f->height = h;
     if (!same) {
-        char *key = bg_strdup(&r->allocator, p->key.s);
+        char *key = bgi_strdup(&r->allocator, p->key.s);
         if (!key)
-            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory caching the fused program");
-        bg_free(&r->allocator, f->key);
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory caching the fused program");
+        bgi_free(&r->allocator, f->key);
         f->key = key;
     }
     adopt_layout(r, f, l);
@@ -346,10 +346,10 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     struct gpu_fused *f = r->fused;
     const gpu_fused_layout *l = &f->layout;
     bool as_float = image->format == BG_PIXEL_RGBA32F;
-    bool walks = gpu_fused_layout_walks(l);
+    bool walks = bgi_gpu_fused_layout_walks(l);
     bg_status st = textures_prepare(r, f, state, l);
     if (st == BG_OK && walks)
-        st = gpu_fused_tree_prepare(r, &f->tree, state);
+        st = bgi_gpu_fused_tree_prepare(r, &f->tree, state);
     if (st == BG_OK)
         st = output_for(r, f, image->width, image->height, as_float, out);
     if (st != BG_OK)
@@ -364,9 +364,9 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
-        return gpu_fail_macs(r, ms, "binding the fused pass");
+        return bgi_gpu_fail_macs(r, ms, "binding the fused pass");
     gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, image->width, image->height, as_float};
-    return gpu_fused_uniforms_set(r, f->pass, l, &v);
+    return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
 
 /* One pass did everything; it counts as the intersection pass it starts with. */
@@ -384,7 +384,7 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
 {
     bool timing = settings->gpu_timing;
     double clock = 0.0;
-    gpu_phase_start(r, timing, &clock);
+    bgi_gpu_phase_start(r, timing, &clock);
     double start = clock;
     program_text p;
     bg_status st = program_text_make(r, l, &p);
@@ -396,29 +396,29 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
         return st;
     macs_texture *out = NULL;
     st = bind_frame(r, state, settings, image, &out);
-    gpu_phase_end(r, timing, &clock, BG_PHASE_SETUP);
+    bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_SETUP);
     if (st == BG_OK) {
         macs_status ms = macs_pass_run(r->fused->pass, NULL);
         if (ms)
-            st = gpu_fail_macs(r, ms, "running the fused pass");
+            st = bgi_gpu_fail_macs(r, ms, "running the fused pass");
     }
-    gpu_phase_end(r, timing, &clock, BG_PHASE_INTERSECT);
+    bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_INTERSECT);
     if (st == BG_OK)
-        st = gpu_read_back(r, out, image, stride, !gpu_fused_layout_walks(&r->fused->layout));
-    if (st == BG_OK && gpu_fused_layout_walks(&r->fused->layout))
-        r->stats.fallback_pixels = gpu_fused_tree_fallback(state, settings, image, stride);
-    gpu_phase_end(r, timing, &clock, BG_PHASE_RESOLVE);
+        st = bgi_gpu_read_back(r, out, image, stride, !bgi_gpu_fused_layout_walks(&r->fused->layout));
+    if (st == BG_OK && bgi_gpu_fused_layout_walks(&r->fused->layout))
+        r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(state, settings, image, stride);
+    bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_RESOLVE);
     if (st != BG_OK)
         return st;
     frame_stats(r, state, image);
     if (timing) {
         r->stats.timed = true;
-        r->stats.total_ms = gpu_now_ms() - start;
+        r->stats.total_ms = bgi_gpu_now_ms() - start;
     }
     return BG_OK;
 }
 
-bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                            bg_image *image, size_t stride, bool *done)
 {
     *done = false;
@@ -433,27 +433,27 @@ bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg
     if (!forced && option)
         return decline(r, option);
     if (!r->fused) {
-        r->fused = bg_alloc(&r->allocator, sizeof *r->fused);
+        r->fused = bgi_alloc(&r->allocator, sizeof *r->fused);
         if (!r->fused)
-            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan");
         memset(r->fused, 0, sizeof *r->fused);
     }
     gpu_fused_layout l;
-    if (!gpu_fused_layout_build(&r->allocator, state, settings, tree, &l))
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan's layout");
+    if (!bgi_gpu_fused_layout_build(&r->allocator, state, settings, tree, &l))
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan's layout");
     char why[256];
     if (!fits(r, state, &l, forced, why, sizeof why)) {
-        gpu_fused_layout_free(&r->allocator, &l);
+        bgi_gpu_fused_layout_free(&r->allocator, &l);
         if (forced)
-            return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: %s cannot render this frame: %s", name, why);
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: %s cannot render this frame: %s", name, why);
         return decline(r, why);
     }
     bool declined = false;
     bg_status st = render(r, state, settings, image, stride, &l, forced, &declined);
-    gpu_fused_layout_free(&r->allocator, &l);
+    bgi_gpu_fused_layout_free(&r->allocator, &l);
     if (st != BG_OK) {
         /* Start the next render from nothing: a failure may have left any object half made. */
-        gpu_fused_release(r);
+        bgi_gpu_fused_release(r);
         *done = true;
         return st;
     }
@@ -464,7 +464,7 @@ bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg
     return BG_OK;
 }
 
-void gpu_fused_release(bg_renderer *r)
+void bgi_gpu_fused_release(bg_renderer *r)
 {
     struct gpu_fused *f = r->fused;
     if (!f)
@@ -472,10 +472,10 @@ void gpu_fused_release(bg_renderer *r)
     macs_pass_destroy(f->pass);
     outputs_release(f);
     textures_release(r, f);
-    gpu_fused_tree_release(&r->allocator, &f->tree);
-    gpu_fused_layout_free(&r->allocator, &f->layout);
-    bg_free(&r->allocator, f->key);
-    bg_free(&r->allocator, f->refused);
-    bg_free(&r->allocator, f);
+    bgi_gpu_fused_tree_release(&r->allocator, &f->tree);
+    bgi_gpu_fused_layout_free(&r->allocator, &f->layout);
+    bgi_free(&r->allocator, f->key);
+    bgi_free(&r->allocator, f->refused);
+    bgi_free(&r->allocator, f);
     r->fused = NULL;
 }

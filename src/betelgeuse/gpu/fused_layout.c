@@ -15,7 +15,7 @@ static const bool param_is_color[GPU_FUSED_P_COUNT_] = {
 #undef COLOR_
 };
 
-void gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel)
+void bgi_gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel)
 {
     const bg_color_param *c = NULL;
     const bg_scalar_param *s = NULL;
@@ -51,7 +51,7 @@ static bool layer_aniso(const bg_schlick_layer *l)
     return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
 }
 
-bool gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need)
+bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need)
 {
     switch (need) {
     case GPU_FUSED_NEED_USED: return m->used;
@@ -75,15 +75,15 @@ static void describe_material(const bg_material *src, gpu_fused_material *m, gpu
     m->transparent = src->transparency.value > 0.0;
     m->coat = src->has_coat;
     m->aniso = layer_aniso(&src->base) || (src->has_coat && layer_aniso(&src->coat));
-    m->bounce = gpu_material_may_bounce(src);
+    m->bounce = bgi_gpu_material_may_bounce(src);
     for (int p = 0; p < GPU_FUSED_P_COUNT_; p++) {
         double v[3];
         m->sampler[p] = -1;
         m->texture[p] = 0;
         m->channel[p] = 0;
-        if (!gpu_fused_material_has(m, param_need[p]))
+        if (!bgi_gpu_fused_material_has(m, param_need[p]))
             continue;
-        gpu_fused_param_of(src, (gpu_fused_param)p, v, &m->texture[p], &m->channel[p]);
+        bgi_gpu_fused_param_of(src, (gpu_fused_param)p, v, &m->texture[p], &m->channel[p]);
         if (param_is_color[p])
             m->channel[p] = 0;
         if (!m->texture[p])
@@ -114,7 +114,7 @@ static void describe_tree(gpu_fused_layout *l)
         k->shape[o->shape] = true;
         k->caster[o->shape] |= o->casts_shadows;
         k->all_cast &= o->casts_shadows;
-        bool uv = gpu_fused_object_uv(l, j), tangent = gpu_fused_object_tangent(l, j);
+        bool uv = bgi_gpu_fused_object_uv(l, j), tangent = bgi_gpu_fused_object_tangent(l, j);
         k->uv |= uv;
         k->tangent |= tangent;
         k->mapping[o->uv_mapping] |= uv || tangent;
@@ -176,7 +176,7 @@ static double rays_bound(int depth, bool tree, double min_weight)
     return total < 0x1p40 ? total : 0x1p40;
 }
 
-bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
+bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
                             bool tree, gpu_fused_layout *out)
 {
     gpu_fused_layout l;
@@ -184,12 +184,12 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     l.object_count = state->object_count;
     l.material_count = state->material_count;
     l.light_count = state->light_count;
-    l.objects = bg_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.objects);
-    l.materials = bg_alloc(a, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
-    l.samplers = bg_alloc(a, (state->texture_count ? state->texture_count : 1) * sizeof *l.samplers);
-    l.unrolled = bg_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.unrolled);
+    l.objects = bgi_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.objects);
+    l.materials = bgi_alloc(a, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
+    l.samplers = bgi_alloc(a, (state->texture_count ? state->texture_count : 1) * sizeof *l.samplers);
+    l.unrolled = bgi_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.unrolled);
     if (!l.objects || !l.materials || !l.samplers || !l.unrolled) {
-        gpu_fused_layout_free(a, &l);
+        bgi_gpu_fused_layout_free(a, &l);
         return false;
     }
     memset(l.materials, 0, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
@@ -225,7 +225,7 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     uint32_t tests = l.light_count * (casters(&l) ? casters(&l) : 1);
     l.light_loop = l.light_count > 1 && tests > GPU_FUSED_UNROLLED_SHADOW_TESTS;
     /* The loop bound is a constant of the program, so it cannot depend on min_weight; the pruned
-     * bound only tells whether that constant is enough (gpu_fused_render). Each ray runs the light
+     * bound only tells whether that constant is enough (bgi_gpu_fused_render). Each ray runs the light
      * loop too, where there is one, and every iteration counts against llvmpipe's limit. */
     double full = rays_bound(l.max_depth, l.transparent, 0.0);
     int most = GPU_FUSED_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
@@ -236,26 +236,26 @@ bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, 
     return true;
 }
 
-void gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *l)
+void bgi_gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *l)
 {
-    bg_free(a, l->objects);
-    bg_free(a, l->unrolled);
-    bg_free(a, l->materials);
-    bg_free(a, l->samplers);
+    bgi_free(a, l->objects);
+    bgi_free(a, l->unrolled);
+    bgi_free(a, l->materials);
+    bgi_free(a, l->samplers);
     memset(l, 0, sizeof *l);
 }
 
-bool gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object)
+bool bgi_gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object)
 {
     return l->materials[l->objects[object].material].textured;
 }
 
-bool gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
+bool bgi_gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
 {
     return l->materials[l->objects[object].material].aniso;
 }
 
-bool gpu_fused_layout_walks(const gpu_fused_layout *l)
+bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l)
 {
     return l->tree && l->tree_count > 0;
 }

@@ -51,7 +51,7 @@ typedef struct name {
 static name uniform(const gpu_fused_layout *l, int row, uint32_t i)
 {
     name n;
-    gpu_fused_uniform_name(l, row, i, n.s, sizeof n.s);
+    bgi_gpu_fused_uniform_name(l, row, i, n.s, sizeof n.s);
     return n;
 }
 
@@ -61,9 +61,9 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
 {
     const char *seen[SEEN_CAP];
     int n = 0;
-    bool ok = gpu_text_snippet(t, "bg_stage_camera.glsl", seen, &n, SEEN_CAP) &&
-              gpu_text_snippet(t, "bg_stage_resolve.glsl", seen, &n, SEEN_CAP) &&
-              gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, SEEN_CAP);
+    bool ok = bgi_gpu_text_snippet(t, "bg_stage_camera.glsl", seen, &n, SEEN_CAP) &&
+              bgi_gpu_text_snippet(t, "bg_stage_resolve.glsl", seen, &n, SEEN_CAP) &&
+              bgi_gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, SEEN_CAP);
     static const char *const span[] = {"bg_shape_span", NULL};
     static const char *const root[] = {"bg_shape_span", "bg_hit_root", NULL};
     static const char *const shadow[] = {"bg_shape_span", "bg_segment_blocked", "bg_shadow_visibility", NULL};
@@ -74,29 +74,29 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         const gpu_fused_object *o = &l->objects[j];
         if (!shape_done[o->shape]) {
             shape_done[o->shape] = true;
-            ok = gpu_text_snippet_renamed(t, shape_file[o->shape], span, gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP) &&
-                 gpu_text_snippet_renamed(t, "bg_hit_root.glsl", root, gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP);
+            ok = bgi_gpu_text_snippet_renamed(t, shape_file[o->shape], span, bgi_gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP) &&
+                 bgi_gpu_text_snippet_renamed(t, "bg_hit_root.glsl", root, bgi_gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP);
         }
         if (ok && l->shadows && o->casts_shadows && !caster_done[o->shape]) {
             caster_done[o->shape] = true;
-            ok = gpu_text_snippet_renamed(t, "bg_stage_shadow.glsl", shadow, gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP);
+            ok = bgi_gpu_text_snippet_renamed(t, "bg_stage_shadow.glsl", shadow, bgi_gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP);
         }
-        bool mapped = gpu_fused_object_uv(l, j) || gpu_fused_object_tangent(l, j);
+        bool mapped = bgi_gpu_fused_object_uv(l, j) || bgi_gpu_fused_object_tangent(l, j);
         if (ok && mapped && !uv_done[o->uv_mapping]) {
             uv_done[o->uv_mapping] = true;
             ok = uv_file[o->uv_mapping] &&
-                 gpu_text_snippet_renamed(t, uv_file[o->uv_mapping], uv, uv_name[o->uv_mapping], seen, &n, SEEN_CAP);
+                 bgi_gpu_text_snippet_renamed(t, uv_file[o->uv_mapping], uv, uv_name[o->uv_mapping], seen, &n, SEEN_CAP);
         }
     }
     if (ok && l->aniso)
-        ok = gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
+        ok = bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
     if (ok && l->tree)
-        ok = gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
+        ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
-        ok = gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
+        ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)
-        ok = gpu_text_snippet(t, "bg_stage_spawn.glsl", seen, &n, SEEN_CAP);
-    return ok && gpu_text_snippet(t, "bg_fused_trace.glsl", seen, &n, SEEN_CAP);
+        ok = bgi_gpu_text_snippet(t, "bg_stage_spawn.glsl", seen, &n, SEEN_CAP);
+    return ok && bgi_gpu_text_snippet(t, "bg_fused_trace.glsl", seen, &n, SEEN_CAP);
 }
 
 /* ---- generated functions ---- */
@@ -104,7 +104,7 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
 
 static bool tree_casts(const gpu_fused_layout *l)
 {
-    if (!gpu_fused_layout_walks(l) || !l->shadows)
+    if (!bgi_gpu_fused_layout_walks(l) || !l->shadows)
         return false;
     for (int s = 0; s < BG_SHAPE_COUNT_; s++)
         if (l->kinds.caster[s])
@@ -123,13 +123,13 @@ static void emit_shape_dispatch(gpu_text *t, const bool present[BG_SHAPE_COUNT_]
     for (int s = 0; s < BG_SHAPE_COUNT_; s++) {
         if (!present[s])
             continue;
-        const char *suffix = gpu_shape_suffix((bg_shape)s);
+        const char *suffix = bgi_gpu_shape_suffix((bg_shape)s);
         if (count == 1)
-            gpu_text_printf(t, "%s%s%s%s\n", indent, before, suffix, after);
+            bgi_gpu_text_printf(t, "%s%s%s%s\n", indent, before, suffix, after);
         else if (position == count - 1)
-            gpu_text_printf(t, "%selse\n%s    %s%s%s\n", indent, indent, before, suffix, after);
+            bgi_gpu_text_printf(t, "%selse\n%s    %s%s%s\n", indent, indent, before, suffix, after);
         else
-            gpu_text_printf(t, "%s%sif (meta.x == %d.0)\n%s    %s%s%s\n", indent, position ? "else " : "", s, indent,
+            bgi_gpu_text_printf(t, "%s%sif (meta.x == %d.0)\n%s    %s%s%s\n", indent, position ? "else " : "", s, indent,
                             before, suffix, after);
         position++;
     }
@@ -158,76 +158,76 @@ static void emit_walk(const gpu_fused_layout *l, gpu_text *t, const char *origin
     char done[64] = "";
     if (found)
         snprintf(done, sizeof done, " || %s", found);
-    gpu_text_printf(t, "    vec3 inv = bg_tree_inverse(%s);\n    float node = 0.0;\n", direction);
+    bgi_gpu_text_printf(t, "    vec3 inv = bg_tree_inverse(%s);\n    float node = 0.0;\n", direction);
     const char *stop = "node >= bg_tree_count || bg_tree_left <= 0.0";
-    gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
+    bgi_gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
                     outer > 0 ? outer : 1, INNER);
-    gpu_text_printf(t, "            if (%s%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop, done);
-    gpu_text_append(t, "            vec4 lo = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 0.0);\n"
+    bgi_gpu_text_printf(t, "            if (%s%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop, done);
+    bgi_gpu_text_append(t, "            vec4 lo = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 0.0);\n"
                        "            vec4 hi = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 1.0);\n");
-    gpu_text_printf(t, "            bool entered = bg_tree_box(%s, inv, %s, lo.xyz, hi.xyz);\n", origin, t_max);
-    gpu_text_printf(t, "            if (entered && lo.w >= 0.0%s) {\n"
+    bgi_gpu_text_printf(t, "            bool entered = bg_tree_box(%s, inv, %s, lo.xyz, hi.xyz);\n", origin, t_max);
+    bgi_gpu_text_printf(t, "            if (entered && lo.w >= 0.0%s) {\n"
                        "                mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, lo.w);\n",
                     leaf_test);
-    gpu_text_append(t, leaf->s ? leaf->s : "");
+    bgi_gpu_text_append(t, leaf->s ? leaf->s : "");
     if (leaf->failed)
         t->failed = true;
-    gpu_text_free(leaf);
-    gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 1.0 : hi.w;\n        }\n");
-    gpu_text_printf(t, "        if (%s%s)\n            break;\n    }\n", stop, done);
+    bgi_gpu_text_free(leaf);
+    bgi_gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 1.0 : hi.w;\n        }\n");
+    bgi_gpu_text_printf(t, "        if (%s%s)\n            break;\n    }\n", stop, done);
     if (found)
-        gpu_text_printf(t, "    if (!%s && node < bg_tree_count)\n        bg_tree_short = 1.0;\n", found);
+        bgi_gpu_text_printf(t, "    if (!%s && node < bg_tree_count)\n        bg_tree_short = 1.0;\n", found);
     else
-        gpu_text_append(t, "    if (node < bg_tree_count)\n        bg_tree_short = 1.0;\n");
+        bgi_gpu_text_append(t, "    if (node < bg_tree_count)\n        bg_tree_short = 1.0;\n");
 }
 
 /* The nearest root over the tree's objects, after the unrolled ones (docs/shading.md 2.7): of two
  * equal distances the lower object index wins, as in a loop over the objects in order. */
 static void emit_tree_nearest(const gpu_fused_layout *l, gpu_text *t)
 {
-    gpu_text_append(t, "void bg_tree_nearest(vec4 ro, vec4 rd, inout float t, inout float win, inout vec3 p_obj, "
+    bgi_gpu_text_append(t, "void bg_tree_nearest(vec4 ro, vec4 rd, inout float t, inout float win, inout vec3 p_obj, "
                        "inout vec3 n_obj, inout bool first_root)\n{\n");
     gpu_text leaf;
-    gpu_text_init(&leaf, t->allocator);
-    gpu_text_append(&leaf, "                float tj;\n                vec3 pj, nj;\n                bool fj, h;\n");
+    bgi_gpu_text_init(&leaf, t->allocator);
+    bgi_gpu_text_append(&leaf, "                float tj;\n                vec3 pj, nj;\n                bool fj, h;\n");
     if (shape_count(l->kinds.shape) > 1)
-        gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
+        bgi_gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
                                "lo.w, 3.0);\n");
     emit_shape_dispatch(&leaf, l->kinds.shape, "                ", "h = bg_hit_root_",
                         "(ro, rd, lo.w, m, tj, pj, nj, fj);");
-    gpu_text_append(&leaf, "                if (h && (win < 0.0 || tj < t || (tj == t && lo.w < win))) {\n"
+    bgi_gpu_text_append(&leaf, "                if (h && (win < 0.0 || tj < t || (tj == t && lo.w < win))) {\n"
                            "                    t = tj;\n                    win = lo.w;\n                    p_obj = pj;\n"
                            "                    n_obj = nj;\n                    first_root = fj;\n                }\n");
     emit_walk(l, t, "ro.xyz", "rd.xyz", "win >= 0.0 ? t : 1e38", NULL, "", &leaf);
-    gpu_text_append(t, "}\n");
+    bgi_gpu_text_append(t, "}\n");
 }
 
 /* Whether a caster of the tree other than `self` meets the shadow segment (docs/shading.md 2.8). */
 static void emit_tree_blocked(const gpu_fused_layout *l, gpu_text *t)
 {
-    gpu_text_append(t, "bool bg_tree_blocked(vec3 p, vec3 l, float dist, float self)\n{\n    bool blocked = false;\n");
+    bgi_gpu_text_append(t, "bool bg_tree_blocked(vec3 p, vec3 l, float dist, float self)\n{\n    bool blocked = false;\n");
     gpu_text leaf;
-    gpu_text_init(&leaf, t->allocator);
+    bgi_gpu_text_init(&leaf, t->allocator);
     bool ask = !l->kinds.all_cast;
     if (ask || shape_count(l->kinds.caster) > 1)
-        gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
+        bgi_gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
                                "lo.w, 3.0);\n");
     if (ask)
-        gpu_text_append(&leaf, "                if (meta.w > 0.5) {\n");
+        bgi_gpu_text_append(&leaf, "                if (meta.w > 0.5) {\n");
     emit_shape_dispatch(&leaf, l->kinds.caster, ask ? "                    " : "                ",
                         "blocked = bg_segment_blocked_", "(p, l, dist, m);");
     if (ask)
-        gpu_text_append(&leaf, "                }\n");
+        bgi_gpu_text_append(&leaf, "                }\n");
     emit_walk(l, t, "p", "l", "dist < 0.0 ? 1e38 : dist", "blocked", " && lo.w != self", &leaf);
-    gpu_text_append(t, "    return blocked;\n}\n");
+    bgi_gpu_text_append(t, "    return blocked;\n}\n");
 }
 
 /* The walks and the per-pixel step count they share. */
 static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
 {
-    if (!gpu_fused_layout_walks(l))
+    if (!bgi_gpu_fused_layout_walks(l))
         return;
-    gpu_text_append(t, "// ---- generated: walks of the object tree\n"
+    bgi_gpu_text_append(t, "// ---- generated: walks of the object tree\n"
                        "float bg_tree_left;  // steps the pixel's walks may still take\n"
                        "float bg_tree_short; // 1.0 once a walk ran out of them\n");
     emit_tree_nearest(l, t);
@@ -238,28 +238,28 @@ static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
 /* The nearest root: a strict < keeps the object added first on a tie (docs/shading.md 2.7). */
 static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
 {
-    gpu_text_append(t, "// ---- generated: nearest hit over the scene's objects\n"
+    bgi_gpu_text_append(t, "// ---- generated: nearest hit over the scene's objects\n"
                        "bool bg_fused_nearest(vec4 ro, vec4 rd, out float t, out float win, out vec3 p_obj, "
                        "out vec3 n_obj, out bool first_root)\n{\n"
                        "    t = 0.0;\n    win = -1.0;\n    p_obj = vec3(0.0);\n    n_obj = vec3(0.0, 1.0, 0.0);\n"
                        "    first_root = true;\n");
     if (l->unrolled_count > 0)
-        gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
+        bgi_gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
     int emitted = 0;
     for (uint32_t j = 0; j < l->object_count; j++) {
         if (l->objects[j].in_tree)
             continue;
         name id = uniform(l, GPU_FUSED_U_ID, j);
-        gpu_text_printf(t,
+        bgi_gpu_text_printf(t,
                         "    if (bg_hit_root_%s(ro, rd, %s, %s, tj, pj, nj, fj)%s) {\n"
                         "        t = tj;\n        win = %s;\n        p_obj = pj;\n        n_obj = nj;\n"
                         "        first_root = fj;\n    }\n",
-                        gpu_shape_suffix(l->objects[j].shape), id.s, uniform(l, GPU_FUSED_U_TO_OBJECT, j).s,
+                        bgi_gpu_shape_suffix(l->objects[j].shape), id.s, uniform(l, GPU_FUSED_U_TO_OBJECT, j).s,
                         emitted++ ? " && (win < 0.0 || tj < t)" : "", id.s);
     }
-    if (gpu_fused_layout_walks(l))
-        gpu_text_append(t, "    bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
-    gpu_text_append(t, "    return win >= 0.0;\n}\n");
+    if (bgi_gpu_fused_layout_walks(l))
+        bgi_gpu_text_append(t, "    bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
+    bgi_gpu_text_append(t, "    return win >= 0.0;\n}\n");
 }
 
 /* Shadow segments against every caster but the object the point lies on (docs/shading.md 2.8). */
@@ -267,29 +267,29 @@ static void emit_blocked(const gpu_fused_layout *l, gpu_text *t)
 {
     if (l->light_count == 0)
         return;
-    gpu_text_append(t, "// ---- generated: shadow casters\n"
+    bgi_gpu_text_append(t, "// ---- generated: shadow casters\n"
                        "bool bg_fused_blocked(vec3 p, vec3 l, float dist, float self)\n{\n");
     for (uint32_t j = 0; j < l->object_count && l->shadows; j++) {
         if (!l->objects[j].casts_shadows || l->objects[j].in_tree)
             continue;
-        gpu_text_printf(t, "    if (self != %s && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
-                        uniform(l, GPU_FUSED_U_ID, j).s, gpu_shape_suffix(l->objects[j].shape),
+        bgi_gpu_text_printf(t, "    if (self != %s && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
+                        uniform(l, GPU_FUSED_U_ID, j).s, bgi_gpu_shape_suffix(l->objects[j].shape),
                         uniform(l, GPU_FUSED_U_TO_OBJECT, j).s);
     }
     if (tree_casts(l))
-        gpu_text_append(t, "    if (bg_tree_blocked(p, l, dist, self))\n        return true;\n");
-    gpu_text_append(t, "    return false;\n}\n");
+        bgi_gpu_text_append(t, "    if (bg_tree_blocked(p, l, dist, self))\n        return true;\n");
+    bgi_gpu_text_append(t, "    return false;\n}\n");
 }
 
 /* One branch of an if-chain over `count` cases, the last one the plain else: var == value. */
 static void branch(gpu_text *t, const char *var, const char *value, int position, int count)
 {
     if (count == 1)
-        gpu_text_append(t, "    {\n");
+        bgi_gpu_text_append(t, "    {\n");
     else if (position == count - 1)
-        gpu_text_append(t, "    else {\n");
+        bgi_gpu_text_append(t, "    else {\n");
     else
-        gpu_text_printf(t, "    %sif (%s == %s) {\n", position ? "else " : "", var, value);
+        bgi_gpu_text_printf(t, "    %sif (%s == %s) {\n", position ? "else " : "", var, value);
 }
 
 /* The hit attributes of object j (docs/shading.md 3): normal facing the ray, hit code, UV, tangent. */
@@ -297,20 +297,20 @@ static void emit_object_attributes(const gpu_fused_layout *l, gpu_text *t, uint3
 {
     const gpu_fused_object *o = &l->objects[j];
     const char *thin = bg_shape_thin(o->shape) ? "true" : "false";
-    gpu_text_printf(t, "        n = bg_hit_normal(%s, n_obj, d, %s, first_root, entering);\n",
+    bgi_gpu_text_printf(t, "        n = bg_hit_normal(%s, n_obj, d, %s, first_root, entering);\n",
                     uniform(l, GPU_FUSED_U_NORMAL, j).s, thin);
-    gpu_text_printf(t, "        code = bg_hit_code(%s, %s, entering);\n        mat = %u.0;\n",
+    bgi_gpu_text_printf(t, "        code = bg_hit_code(%s, %s, entering);\n        mat = %u.0;\n",
                     uniform(l, GPU_FUSED_U_ID, j).s, thin, (unsigned)o->material);
-    bool want_uv = gpu_fused_object_uv(l, j), want_tangent = gpu_fused_object_tangent(l, j);
+    bool want_uv = bgi_gpu_fused_object_uv(l, j), want_tangent = bgi_gpu_fused_object_tangent(l, j);
     if (want_uv || want_tangent)
-        gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[o->uv_mapping]);
+        bgi_gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[o->uv_mapping]);
     if (want_uv)
-        gpu_text_printf(t, "        uv *= %s;\n", uniform(l, GPU_FUSED_U_UV_SCALE, j).s);
+        bgi_gpu_text_printf(t, "        uv *= %s;\n", uniform(l, GPU_FUSED_U_UV_SCALE, j).s);
     /* An isotropic layer's azimuth factor is exactly 1 whatever the tangent (bg_brdf.glsl). */
     if (want_tangent)
-        gpu_text_printf(t, "        tg = bg_tangent(%s * dpdu, n);\n", uniform(l, GPU_FUSED_U_TO_WORLD3, j).s);
+        bgi_gpu_text_printf(t, "        tg = bg_tangent(%s * dpdu, n);\n", uniform(l, GPU_FUSED_U_TO_WORLD3, j).s);
     else
-        gpu_text_append(t, "        tg = n;\n");
+        bgi_gpu_text_append(t, "        tg = n;\n");
 }
 
 static const char *const channel_lane[4] = {"r", "g", "b", "a"};
@@ -320,7 +320,7 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
 {
     const gpu_fused_material *m = &l->materials[k];
     for (int p = 0; p < GPU_FUSED_P_COUNT_; p++) {
-        if (!gpu_fused_uniform_present(l, GPU_FUSED_PARAM_ROW(p), k))
+        if (!bgi_gpu_fused_uniform_present(l, GPU_FUSED_PARAM_ROW(p), k))
             continue;
         char value[160];
         name u = uniform(l, GPU_FUSED_PARAM_ROW(p), k);
@@ -330,12 +330,12 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
         else
             snprintf(value, sizeof value, "%s", u.s);
         if (param_unit[p])
-            gpu_text_printf(t, "        %s = clamp(%s, 0.0, 1.0);\n", param_local[p], value);
+            bgi_gpu_text_printf(t, "        %s = clamp(%s, 0.0, 1.0);\n", param_local[p], value);
         else
-            gpu_text_printf(t, "        %s = max(%s, vec3(0.0));\n", param_local[p], value);
+            bgi_gpu_text_printf(t, "        %s = max(%s, vec3(0.0));\n", param_local[p], value);
     }
-    if (gpu_fused_uniform_present(l, GPU_FUSED_U_IOR, k))
-        gpu_text_printf(t, "        ior = %s;\n", uniform(l, GPU_FUSED_U_IOR, k).s);
+    if (bgi_gpu_fused_uniform_present(l, GPU_FUSED_U_IOR, k))
+        bgi_gpu_text_printf(t, "        ior = %s;\n", uniform(l, GPU_FUSED_U_IOR, k).s);
 }
 
 /* The hit attributes of a tree object, as emit_object_attributes writes them from uniforms, here
@@ -343,7 +343,7 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
 static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
 {
     const gpu_fused_tree_kinds *k = &l->kinds;
-    gpu_text_append(t, "        mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, win);\n"
+    bgi_gpu_text_append(t, "        mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, win);\n"
                        "        vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 3.0);\n");
     int thin = 0, shapes = shape_count(k->shape);
     char test[256] = "";
@@ -353,8 +353,8 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
         size_t used = strlen(test);
         snprintf(test + used, sizeof test - used, "%smeta.x == %d.0", thin++ ? " || " : "", s);
     }
-    gpu_text_printf(t, "        bool thin = %s;\n", thin == 0 ? "false" : thin == shapes ? "true" : test);
-    gpu_text_append(t, "        n = bg_hit_normal(bg_tree_normal_matrix(m), n_obj, d, thin, first_root, entering);\n"
+    bgi_gpu_text_printf(t, "        bool thin = %s;\n", thin == 0 ? "false" : thin == shapes ? "true" : test);
+    bgi_gpu_text_append(t, "        n = bg_hit_normal(bg_tree_normal_matrix(m), n_obj, d, thin, first_root, entering);\n"
                        "        code = bg_hit_code(win, thin, entering);\n        mat = meta.y;\n");
     if (k->uv || k->tangent) {
         int count = 0, position = 0;
@@ -364,47 +364,47 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
             if (!k->mapping[u])
                 continue;
             if (count == 1)
-                gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
+                bgi_gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
             else if (position == count - 1)
-                gpu_text_printf(t, "        else\n            uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
+                bgi_gpu_text_printf(t, "        else\n            uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
             else
-                gpu_text_printf(t, "        %sif (meta.z == %d.0)\n            uv = bg_uv_map_%s(p_obj, dpdu);\n",
+                bgi_gpu_text_printf(t, "        %sif (meta.z == %d.0)\n            uv = bg_uv_map_%s(p_obj, dpdu);\n",
                                 position ? "else " : "", u, uv_name[u]);
             position++;
         }
     }
     if (k->uv)
-        gpu_text_append(t, "        uv *= bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0).xy;\n");
+        bgi_gpu_text_append(t, "        uv *= bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0).xy;\n");
     if (k->tangent)
-        gpu_text_append(t, "        tg = bg_tangent(bg_tree_to_world3(bg_objects, bg_object_dims, win) * dpdu, n);\n");
+        bgi_gpu_text_append(t, "        tg = bg_tangent(bg_tree_to_world3(bg_objects, bg_object_dims, win) * dpdu, n);\n");
     else
-        gpu_text_append(t, "        tg = n;\n");
+        bgi_gpu_text_append(t, "        tg = n;\n");
 }
 
 /* The winner's attributes by object, then its material by material: objects of one material share
  * the material's code. */
 static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
 {
-    gpu_text_append(t, "// ---- generated: hit attributes and materials\n"
+    bgi_gpu_text_append(t, "// ---- generated: hit attributes and materials\n"
                        "void bg_fused_surface(float win, vec3 p_obj, vec3 n_obj, bool first_root, vec3 d, out float code, "
                        "out vec4 nrm, out vec4 base, out vec4 coat, out vec4 tangent, out vec3 once, out vec2 xparent)\n{\n"
                        "    bool entering = true;\n    vec3 n = -d;\n    float mat = 0.0;\n    vec2 uv = vec2(0.0);\n"
                        "    vec3 dpdu = vec3(0.0);\n    vec3 tg = -d;\n    code = 0.0;\n");
-    int cases = (int)l->unrolled_count + (gpu_fused_layout_walks(l) ? 1 : 0), position = 0;
+    int cases = (int)l->unrolled_count + (bgi_gpu_fused_layout_walks(l) ? 1 : 0), position = 0;
     for (uint32_t j = 0; j < l->object_count; j++) {
         if (l->objects[j].in_tree)
             continue;
         branch(t, "win", uniform(l, GPU_FUSED_U_ID, j).s, position++, cases);
         emit_object_attributes(l, t, j);
-        gpu_text_append(t, "    }\n");
+        bgi_gpu_text_append(t, "    }\n");
     }
-    if (gpu_fused_layout_walks(l)) {
+    if (bgi_gpu_fused_layout_walks(l)) {
         branch(t, "win", "", position, cases);
         emit_tree_attributes(l, t);
-        gpu_text_append(t, "    }\n");
+        bgi_gpu_text_append(t, "    }\n");
     }
     /* Parameters a material lacks keep the values that make them vanish: isotropic, opaque, no coat. */
-    gpu_text_append(t, "    vec3 base_c = vec3(0.0), ambient = vec3(0.0), emission = vec3(0.0), coat_c = vec3(0.0);\n"
+    bgi_gpu_text_append(t, "    vec3 base_c = vec3(0.0), ambient = vec3(0.0), emission = vec3(0.0), coat_c = vec3(0.0);\n"
                        "    float base_r = 1.0, base_p = 1.0, transparency = 0.0, ior = 1.0, coat_r = -1.0, "
                        "coat_p = 1.0;\n");
     int used = 0;
@@ -418,9 +418,9 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
         snprintf(value, sizeof value, "%u.0", (unsigned)k);
         branch(t, "mat", value, position++, used);
         emit_material(l, t, k);
-        gpu_text_append(t, "    }\n");
+        bgi_gpu_text_append(t, "    }\n");
     }
-    gpu_text_append(t, "    nrm = vec4(n, base_r);\n    base = vec4(base_c, base_p);\n    coat = vec4(coat_c, coat_r);\n"
+    bgi_gpu_text_append(t, "    nrm = vec4(n, base_r);\n    base = vec4(base_c, base_p);\n    coat = vec4(coat_c, coat_r);\n"
                        "    tangent = vec4(tg, coat_p);\n    once = emission + (1.0 - transparency) * ambient;\n"
                        "    xparent = vec2(transparency, ior);\n}\n");
 }
@@ -428,7 +428,7 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
 /* One light's term, the light given by its index into the light arrays (a number or the loop's). */
 static void emit_light_term(gpu_text *t, const char *i, const char *indent)
 {
-    gpu_text_printf(t,
+    bgi_gpu_text_printf(t,
                     "%sradiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, bg_lpos[%s], bg_lrad[%s], "
                     "bg_latt[%s], bg_lspot[%s], bg_lexp[%s]);\n",
                     indent, i, i, i, i, i);
@@ -438,11 +438,11 @@ static void emit_light_term(gpu_text *t, const char *i, const char *indent)
  * size over the light arrays where unrolling would inline too many shadow tests. */
 static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
 {
-    gpu_text_append(t, "// ---- generated: lights\n"
+    bgi_gpu_text_append(t, "// ---- generated: lights\n"
                        "void bg_fused_direct(vec3 p, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, vec3 view, float self, "
                        "vec3 lw, inout vec3 radiance)\n{\n");
     if (l->light_loop) {
-        gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
+        bgi_gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
         emit_light_term(t, "i", "        ");
     } else {
         for (uint32_t i = 0; i < l->light_count; i++) {
@@ -451,7 +451,7 @@ static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
             emit_light_term(t, k, "    ");
         }
     }
-    gpu_text_append(t, "}\n");
+    bgi_gpu_text_append(t, "}\n");
 }
 
 /* ---- main ---- */
@@ -462,7 +462,7 @@ static const char *const trace_call =
 /* The children of the hit just traced (docs/shading.md 9), by the multipass spawn function. */
 static void emit_spawn(gpu_text *t, bool transmitted, int child)
 {
-    gpu_text_printf(t,
+    bgi_gpu_text_printf(t,
                     "        bg_spawn(%s, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp.x, bg_xp.y, bg_rd, vec4(bg_cw.rgb, 1.0), "
                     "bg_min_weight, bg_o%d, bg_d%d, bg_w%d);\n",
                     transmitted ? "true" : "false", child, child, child);
@@ -471,20 +471,20 @@ static void emit_spawn(gpu_text *t, bool transmitted, int child)
 /* Makes child `c` the next ray (its level is the current one plus 1). */
 static void emit_follow(gpu_text *t, int c, const char *indent)
 {
-    gpu_text_printf(t, "%sbg_ro = bg_o%d;\n%sbg_rd = bg_d%d;\n%sbg_cw = vec4(bg_w%d.rgb, bg_cw.a + 1.0);\n", indent, c,
+    bgi_gpu_text_printf(t, "%sbg_ro = bg_o%d;\n%sbg_rd = bg_d%d;\n%sbg_cw = vec4(bg_w%d.rgb, bg_cw.a + 1.0);\n", indent, c,
                     indent, c, indent, c);
 }
 
 /* A chain of reflections: one child per hit, no stack. */
 static void emit_chain(const gpu_fused_layout *l, gpu_text *t)
 {
-    gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n", l->loop_rays);
-    gpu_text_printf(t, "    if (!%s || bg_cw.a >= %d.0)\n        break;\n", trace_call, l->max_depth);
-    gpu_text_append(t, "    vec4 bg_o1, bg_d1, bg_w1;\n    {\n");
+    bgi_gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n", l->loop_rays);
+    bgi_gpu_text_printf(t, "    if (!%s || bg_cw.a >= %d.0)\n        break;\n", trace_call, l->max_depth);
+    bgi_gpu_text_append(t, "    vec4 bg_o1, bg_d1, bg_w1;\n    {\n");
     emit_spawn(t, false, 1);
-    gpu_text_append(t, "    }\n    if (bg_w1.a <= 0.0)\n        break;\n");
+    bgi_gpu_text_append(t, "    }\n    if (bg_w1.a <= 0.0)\n        break;\n");
     emit_follow(t, 1, "    ");
-    gpu_text_append(t, "}\n");
+    bgi_gpu_text_append(t, "}\n");
 }
 
 /* The whole tree depth-first: the reflected child is followed and the transmitted one pushed. The
@@ -497,46 +497,46 @@ static void emit_tree(const gpu_fused_layout *l, gpu_text *t)
 {
     int n = l->stack;
     for (int k = 0; k < n; k++)
-        gpu_text_printf(t, "vec4 bg_s%d_o = vec4(0.0), bg_s%d_d = vec4(0.0), bg_s%d_w = vec4(0.0);\n", k, k, k);
-    gpu_text_append(t, "int bg_pending = 0;\n");
-    gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n    bool bg_next = false;\n", l->loop_rays);
-    gpu_text_printf(t, "    if (%s && bg_cw.a < %d.0) {\n", trace_call, l->max_depth);
-    gpu_text_append(t, "        vec4 bg_o1, bg_d1, bg_w1, bg_o2, bg_d2, bg_w2;\n");
+        bgi_gpu_text_printf(t, "vec4 bg_s%d_o = vec4(0.0), bg_s%d_d = vec4(0.0), bg_s%d_w = vec4(0.0);\n", k, k, k);
+    bgi_gpu_text_append(t, "int bg_pending = 0;\n");
+    bgi_gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n    bool bg_next = false;\n", l->loop_rays);
+    bgi_gpu_text_printf(t, "    if (%s && bg_cw.a < %d.0) {\n", trace_call, l->max_depth);
+    bgi_gpu_text_append(t, "        vec4 bg_o1, bg_d1, bg_w1, bg_o2, bg_d2, bg_w2;\n");
     emit_spawn(t, false, 1);
     emit_spawn(t, true, 2);
-    gpu_text_append(t, "        if (bg_w1.a > 0.0 && bg_w2.a > 0.0) {\n");
+    bgi_gpu_text_append(t, "        if (bg_w1.a > 0.0 && bg_w2.a > 0.0) {\n");
     for (int k = n - 1; k > 0; k--)
-        gpu_text_printf(t, "            bg_s%d_o = bg_s%d_o;\n            bg_s%d_d = bg_s%d_d;\n"
+        bgi_gpu_text_printf(t, "            bg_s%d_o = bg_s%d_o;\n            bg_s%d_d = bg_s%d_d;\n"
                            "            bg_s%d_w = bg_s%d_w;\n",
                         k, k - 1, k, k - 1, k, k - 1);
-    gpu_text_append(t, "            bg_s0_o = bg_o2;\n            bg_s0_d = bg_d2;\n"
+    bgi_gpu_text_append(t, "            bg_s0_o = bg_o2;\n            bg_s0_d = bg_d2;\n"
                        "            bg_s0_w = vec4(bg_w2.rgb, bg_cw.a + 1.0);\n            bg_pending++;\n");
-    gpu_text_append(t, "        }\n        if (bg_w1.a > 0.0) {\n");
+    bgi_gpu_text_append(t, "        }\n        if (bg_w1.a > 0.0) {\n");
     emit_follow(t, 1, "            ");
-    gpu_text_append(t, "            bg_next = true;\n        } else if (bg_w2.a > 0.0) {\n");
+    bgi_gpu_text_append(t, "            bg_next = true;\n        } else if (bg_w2.a > 0.0) {\n");
     emit_follow(t, 2, "            ");
-    gpu_text_append(t, "            bg_next = true;\n        }\n    }\n"
+    bgi_gpu_text_append(t, "            bg_next = true;\n        }\n    }\n"
                        "    if (!bg_next) {\n        if (bg_pending == 0)\n            break;\n"
                        "        bg_ro = bg_s0_o;\n        bg_rd = bg_s0_d;\n        bg_cw = bg_s0_w;\n");
     for (int k = 0; k + 1 < n; k++)
-        gpu_text_printf(t, "        bg_s%d_o = bg_s%d_o;\n        bg_s%d_d = bg_s%d_d;\n        bg_s%d_w = bg_s%d_w;\n", k,
+        bgi_gpu_text_printf(t, "        bg_s%d_o = bg_s%d_o;\n        bg_s%d_d = bg_s%d_d;\n        bg_s%d_w = bg_s%d_w;\n", k,
                         k + 1, k, k + 1, k, k + 1);
-    gpu_text_append(t, "        bg_pending--;\n    }\n}\n");
+    bgi_gpu_text_append(t, "        bg_pending--;\n    }\n}\n");
 }
 
 static void emit_main(const gpu_fused_layout *l, gpu_text *t)
 {
     /* The eye is the origin of the camera-relative frame (origin.c). bg_cw is the path weight and,
      * in a, the ray's level. */
-    gpu_text_append(t, "vec4 bg_ro, bg_rd, bg_w0;\n"
+    bgi_gpu_text_append(t, "vec4 bg_ro, bg_rd, bg_w0;\n"
                        "bg_camera_ray(gl_FragCoord.xy, bg_size, vec3(0.0), bg_forward, bg_right, bg_up, bg_tan_half, "
                        "bg_ro, bg_rd, bg_w0);\n"
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
-    if (gpu_fused_layout_walks(l))
-        gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
+    if (bgi_gpu_fused_layout_walks(l))
+        bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
     if (l->max_depth == 0)
-        gpu_text_printf(t, "%s;\n", trace_call);
+        bgi_gpu_text_printf(t, "%s;\n", trace_call);
     else if (l->stack == 0)
         emit_chain(l, t);
     else
@@ -544,12 +544,12 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
     /* The output encoding (docs/shading.md 10) is a uniform: RGBA8 in either encoding and RGBA32F
      * share the program. */
     /* Alpha 0 marks a pixel whose tree walks ran out of steps (fused_tree.c renders it again). */
-    gpu_text_printf(t, "float bg_alpha = %s;\nvec4 bg_out = vec4(bg_radiance, bg_alpha);\n"
+    bgi_gpu_text_printf(t, "float bg_alpha = %s;\nvec4 bg_out = vec4(bg_radiance, bg_alpha);\n"
                        "if (bg_output.x > 0.5)\n    bg_out = vec4(bg_encode(bg_radiance, bg_output.y > 0.5), bg_alpha);\n",
-                    gpu_fused_layout_walks(l) ? "1.0 - bg_tree_short" : "1.0");
+                    bgi_gpu_fused_layout_walks(l) ? "1.0 - bg_tree_short" : "1.0");
 }
 
-bool gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output)
+bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output)
 {
     bool ok = library(l, functions);
     emit_tree_walks(l, functions);

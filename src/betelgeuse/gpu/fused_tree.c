@@ -3,7 +3,7 @@
  *
  * The scene's object tree (common/bvh.h) goes to the GPU as it is, seen from the camera: the GPU's
  * frame is camera-relative (origin.c), so each frame's nodes are the tree's boxes minus the eye,
- * rounded outward again and ordered near to far (bg_bvh_view_nodes), with each leaf naming its object. Each object's
+ * rounded outward again and ordered near to far (bgi_bvh_view_nodes), with each leaf naming its object. Each object's
  * transforms and kinds go in a second texture, indexed by object (bg_fused_tree.glsl gives both
  * layouts). A frame of the commit they hold touches neither; after another commit both are rebuilt
  * on the host and uploaded only where they differ from what the textures hold, so a commit that
@@ -37,7 +37,7 @@ static bool geometry(int max_size, uint32_t items, int per, int *per_row, int *w
     return rows <= (uint64_t)max_size;
 }
 
-bool gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
+bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
 {
     int k, w, h;
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
@@ -60,7 +60,7 @@ static bg_status fill_nodes(const bg_scene_state *state, float *out)
 {
     const bg_vec3 *eye = &state->camera.camera.position;
     double origin[3] = {eye->x, eye->y, eye->z};
-    return state->tree ? bg_bvh_view_nodes(state->tree, origin, state->tree_objects, out) : BG_OK;
+    return state->tree ? bgi_bvh_view_nodes(state->tree, origin, state->tree_objects, out) : BG_OK;
 }
 
 /* Object i's texels, as bg_fused_tree.glsl reads them. */
@@ -68,7 +68,7 @@ static void fill_object(const bg_scene_state *state, uint32_t i, float *o)
 {
     const bg_object_data *obj = &state->objects[i];
     float m16[16];
-    gpu_origin_to_object(state, i, m16); /* column-major */
+    bgi_gpu_origin_to_object(state, i, m16); /* column-major */
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 4; c++)
             o[4 * r + c] = m16[c * 4 + r];
@@ -101,30 +101,30 @@ static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, cons
     size_t floats = (size_t)width * (size_t)height * 4;
     if (t->floats != floats || !t->held || !t->scratch) {
         macs_texture_destroy(t->texture);
-        bg_free(&r->allocator, t->held);
-        bg_free(&r->allocator, t->scratch);
+        bgi_free(&r->allocator, t->held);
+        bgi_free(&r->allocator, t->scratch);
         memset(t, 0, sizeof *t);
-        t->held = bg_alloc(&r->allocator, floats * sizeof(float));
-        t->scratch = bg_alloc(&r->allocator, floats * sizeof(float));
+        t->held = bgi_alloc(&r->allocator, floats * sizeof(float));
+        t->scratch = bgi_alloc(&r->allocator, floats * sizeof(float));
         if (!t->held || !t->scratch)
-            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the %s (%zu floats)", what,
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the %s (%zu floats)", what,
                             floats);
         t->floats = floats;
     }
     memset(t->scratch, 0, floats * sizeof(float));
     if (fill(state, t->scratch) != BG_OK)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the %s", what);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the %s", what);
     if (t->texture && memcmp(t->scratch, t->held, floats * sizeof(float)) == 0)
         return BG_OK;
     macs_status ms = MACS_OK;
     if (!t->texture) {
-        bg_status st = gpu_texture_ensure(r, width, height, MACS_FORMAT_RGBA32F, &t->texture, what);
+        bg_status st = bgi_gpu_texture_ensure(r, width, height, MACS_FORMAT_RGBA32F, &t->texture, what);
         if (st != BG_OK)
             return st;
     }
     ms = macs_texture_upload(t->texture, t->scratch, 0);
     if (ms)
-        return gpu_fail_macs(r, ms, what);
+        return bgi_gpu_fail_macs(r, ms, what);
     float *swap = t->held;
     t->held = t->scratch;
     t->scratch = swap;
@@ -134,8 +134,8 @@ static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, cons
 static void texture_release(const bg_allocator *a, gpu_fused_tree_texture *t)
 {
     macs_texture_destroy(t->texture);
-    bg_free(a, t->held);
-    bg_free(a, t->scratch);
+    bgi_free(a, t->held);
+    bgi_free(a, t->scratch);
     memset(t, 0, sizeof *t);
 }
 
@@ -147,14 +147,14 @@ static void set_dims(float dims[4], int per_row, int width, int height)
     dims[3] = 1.0f / (float)height;
 }
 
-bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
+bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
 {
     if (t->serial != 0 && t->serial == state->serial)
         return BG_OK; /* the same commit: the textures hold it, nothing to build or compare */
     t->serial = 0;
     char why[160];
-    if (!gpu_fused_tree_fits(r, state, why, sizeof why))
-        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
+    if (!bgi_gpu_fused_tree_fits(r, state, why, sizeof why))
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
     int k, w, h;
     geometry(r->limits.max_texture_size, nodes, NODE_TEXELS, &k, &w, &h);
@@ -171,7 +171,7 @@ bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_sce
     return st;
 }
 
-void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
+void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
 {
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
@@ -179,7 +179,7 @@ void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
     t->serial = 0;
 }
 
-uint64_t gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
+uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
                                  const bg_image *image, size_t stride)
 {
     uint64_t count = 0;
@@ -197,7 +197,7 @@ uint64_t gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_se
                 marked = row[(size_t)x * 4 + 3] == 0;
             }
             if (marked) {
-                bg_cpu_render_pixel(state, settings, image, stride, x, y);
+                bgi_cpu_render_pixel(state, settings, image, stride, x, y);
                 count++;
             }
         }

@@ -107,7 +107,7 @@ static void tree_node_count(const gpu_fused_values *v, uint32_t i, float *out)
     out[0] = v->tree->node_count;
 }
 
-/* One light packed as bg_light.glsl reads it (the packing of gpu_set_light_uniforms, for any
+/* One light packed as bg_light.glsl reads it (the packing of bgi_gpu_set_light_uniforms, for any
  * number of lights). */
 typedef struct packed_light {
     float pos[4], rad[3], att[3], spot[4], exponent;
@@ -123,7 +123,7 @@ static packed_light pack_light(const bg_scene_state *state, uint32_t k)
         p.pos[1] = (float)l->direction.y;
         p.pos[2] = (float)l->direction.z;
     } else {
-        gpu_origin_point(state, &l->position, p.pos);
+        bgi_gpu_origin_point(state, &l->position, p.pos);
     }
     p.pos[3] = directional ? 1.0f : 0.0f;
     for (int c = 0; c < 3; c++) {
@@ -192,7 +192,7 @@ static void object_id(const gpu_fused_values *v, uint32_t i, float *out)
 
 static void object_to_object(const gpu_fused_values *v, uint32_t i, float *out)
 {
-    gpu_origin_to_object(v->state, i, out);
+    bgi_gpu_origin_to_object(v->state, i, out);
 }
 
 static void object_normal(const gpu_fused_values *v, uint32_t i, float *out)
@@ -227,7 +227,7 @@ static void param_value(const gpu_fused_values *v, int param, uint32_t k, float 
     double c[3];
     uint32_t texture;
     int channel;
-    gpu_fused_param_of(&v->state->materials[k], (gpu_fused_param)param, c, &texture, &channel);
+    bgi_gpu_fused_param_of(&v->state->materials[k], (gpu_fused_param)param, c, &texture, &channel);
     if (param == GPU_FUSED_P_AMBIENT)
         for (int i = 0; i < 3; i++)
             c[i] *= v->state->ambient[i];
@@ -274,7 +274,7 @@ static int components(macs_uniform_type t)
     return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
 }
 
-void gpu_fused_uniform_name(const gpu_fused_layout *l, int r, uint32_t i, char *name, size_t size)
+void bgi_gpu_fused_uniform_name(const gpu_fused_layout *l, int r, uint32_t i, char *name, size_t size)
 {
     if (rows[r].scope == GPU_FUSED_OBJECT)
         snprintf(name, size, rows[r].name, (unsigned)l->objects[i].slot);
@@ -284,7 +284,7 @@ void gpu_fused_uniform_name(const gpu_fused_layout *l, int r, uint32_t i, char *
         snprintf(name, size, "%s", rows[r].name);
 }
 
-bool gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
+bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
 {
     const row *w = &rows[r];
     switch (w->scope) {
@@ -295,10 +295,10 @@ bool gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
     case GPU_FUSED_OBJECT:
         if (l->objects[i].in_tree)
             return false;
-        return w->need == GPU_FUSED_NEED_ALWAYS || (w->need == GPU_FUSED_NEED_TANGENT && gpu_fused_object_tangent(l, i)) ||
-               (w->need == GPU_FUSED_NEED_UV && gpu_fused_object_uv(l, i));
+        return w->need == GPU_FUSED_NEED_ALWAYS || (w->need == GPU_FUSED_NEED_TANGENT && bgi_gpu_fused_object_tangent(l, i)) ||
+               (w->need == GPU_FUSED_NEED_UV && bgi_gpu_fused_object_uv(l, i));
     case GPU_FUSED_MATERIAL:
-        return gpu_fused_material_has(&l->materials[i], w->need);
+        return bgi_gpu_fused_material_has(&l->materials[i], w->need);
     }
     return false;
 }
@@ -311,7 +311,7 @@ static bool each_uniform(const gpu_fused_layout *l, visit_fn fn, void *user)
     for (int r = 0; r < GPU_FUSED_ROW_COUNT; r++)
         for (uint32_t k = 0; k < repeats(l, &rows[r]); k++) {
             uint32_t i = repeat_index(l, &rows[r], k);
-            if (gpu_fused_uniform_present(l, r, i) && !fn(user, r, i))
+            if (bgi_gpu_fused_uniform_present(l, r, i) && !fn(user, r, i))
                 return false;
         }
     return true;
@@ -331,7 +331,7 @@ static bool add_components(void *user, int r, uint32_t i)
     return true;
 }
 
-int gpu_fused_uniform_components(const gpu_fused_layout *l)
+int bgi_gpu_fused_uniform_components(const gpu_fused_layout *l)
 {
     budget b = {l, 0};
     each_uniform(l, add_components, &b);
@@ -357,20 +357,20 @@ static bool declare_one(void *user, int r, uint32_t i)
 {
     declaring *d = user;
     char *name = d->names + (size_t)d->n * NAME_SIZE;
-    gpu_fused_uniform_name(d->l, r, i, name, NAME_SIZE);
+    bgi_gpu_fused_uniform_name(d->l, r, i, name, NAME_SIZE);
     d->desc[d->n++] = (macs_uniform_desc){name, rows[r].type, array_count(d->l, &rows[r])};
     return true;
 }
 
-bool gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l, macs_uniform_desc **out, int *count,
+bool bgi_gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l, macs_uniform_desc **out, int *count,
                                 char **names)
 {
     int n = 0;
     each_uniform(l, count_one, &n);
     size_t slots = n ? (size_t)n : 1;
-    declaring d = {l, bg_alloc(a, slots * sizeof *d.desc), bg_alloc(a, slots * NAME_SIZE), 0};
+    declaring d = {l, bgi_alloc(a, slots * sizeof *d.desc), bgi_alloc(a, slots * NAME_SIZE), 0};
     if (!d.desc || !d.names) {
-        gpu_fused_uniforms_free(a, d.desc, d.names);
+        bgi_gpu_fused_uniforms_free(a, d.desc, d.names);
         return false;
     }
     each_uniform(l, declare_one, &d);
@@ -380,10 +380,10 @@ bool gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l
     return true;
 }
 
-void gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names)
+void bgi_gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names)
 {
-    bg_free(a, desc);
-    bg_free(a, names);
+    bgi_free(a, desc);
+    bgi_free(a, names);
 }
 
 typedef struct setting {
@@ -403,19 +403,19 @@ static bool set_one(void *user, int r, uint32_t i)
     else
         param_value(s->v, w->param, i, s->scratch);
     char name[NAME_SIZE];
-    gpu_fused_uniform_name(s->l, r, i, name, sizeof name);
+    bgi_gpu_fused_uniform_name(s->l, r, i, name, sizeof name);
     s->ms = macs_pass_set_uniform(s->pass, name, s->scratch);
     return s->ms == MACS_OK;
 }
 
-bg_status gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v)
+bg_status bgi_gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v)
 {
     size_t n = 16 + 4 * (size_t)l->light_count;
-    setting s = {pass, l, v, bg_alloc(&r->allocator, n * sizeof(float)), MACS_OK};
+    setting s = {pass, l, v, bgi_alloc(&r->allocator, n * sizeof(float)), MACS_OK};
     if (!s.scratch)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory setting the fused pass's uniforms");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory setting the fused pass's uniforms");
     memset(s.scratch, 0, n * sizeof(float));
     each_uniform(l, set_one, &s);
-    bg_free(&r->allocator, s.scratch);
-    return s.ms ? gpu_fail_macs(r, s.ms, "fused pass uniforms") : BG_OK;
+    bgi_free(&r->allocator, s.scratch);
+    return s.ms ? bgi_gpu_fail_macs(r, s.ms, "fused pass uniforms") : BG_OK;
 }

@@ -77,8 +77,8 @@ typedef struct gpu_passes {
 typedef struct gpu_cache_key {
     const bg_scene *scene;
     uint64_t commit_count;
-    uint64_t fingerprint; /* gpu_scene_fingerprint of the committed state */
-    uint64_t textures;    /* gpu_textures_fingerprint of it */
+    uint64_t fingerprint; /* bgi_gpu_scene_fingerprint of the committed state */
+    uint64_t textures;    /* bgi_gpu_textures_fingerprint of it */
     int width, height;
     unsigned disable_skips;
     bg_output_encoding encoding;
@@ -96,7 +96,7 @@ struct bg_renderer {
     macs_context *ctx;
     macs_limits limits; /* effective */
     bool float_depth;
-    bool half_gbuffer; /* asked for and found renderable at creation (gpu_half_probe) */
+    bool half_gbuffer; /* asked for and found renderable at creation (bgi_gpu_half_probe) */
     bg_render_stats stats;
 
     /* Size-dependent targets. */
@@ -116,7 +116,7 @@ struct bg_renderer {
     uint32_t texture_count;
     macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
     gpu_passes passes;
-    gpu_passes retired; /* the previous scene's, alive while passes are built (gpu_passes_retire) */
+    gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
     struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
 };
 
@@ -128,21 +128,21 @@ struct bg_renderer {
 
 /* ---- fail.c: the error sink; calls nothing else in gpu/ ---- */
 /* Records the first error with a message and logs it; returns status. */
-bg_status gpu_fail(bg_renderer *r, bg_status status, const char *format, ...) GPU_PRINTF_(3, 4);
+bg_status bgi_gpu_fail(bg_renderer *r, bg_status status, const char *format, ...) GPU_PRINTF_(3, 4);
 /* Turns a MACS failure into a renderer error carrying MACS's message. */
-bg_status gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
+bg_status bgi_gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
 /* Logs a diagnostic that is not an error (a warning: something worked around; info: a choice made). */
-void gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...) GPU_PRINTF_(3, 4);
+void bgi_gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...) GPU_PRINTF_(3, 4);
 
 /* ---- renderer.c ---- */
 /* Frees every GPU object (passes, targets, textures) so the next render starts afresh. */
-void gpu_release_all(bg_renderer *r);
+void bgi_gpu_release_all(bg_renderer *r);
 
 /* ---- origin.c ---- */
 /* Every position the GPU sees is relative to the camera (float bits stay near the scene, not near
  * the world origin): the object's to_object for such points, column-major, and a moved point. */
-void gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16]);
-void gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3]);
+void bgi_gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16]);
+void bgi_gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3]);
 
 /* ---- shader_source.c ---- */
 /* A growing string built through the renderer's allocator; a failed append leaves it failed. */
@@ -152,152 +152,152 @@ typedef struct gpu_text {
     size_t len, cap;
     bool failed;
 } gpu_text;
-void gpu_text_init(gpu_text *t, const bg_allocator *a);
-void gpu_text_append(gpu_text *t, const char *s);
-void gpu_text_printf(gpu_text *t, const char *format, ...);
+void bgi_gpu_text_init(gpu_text *t, const bg_allocator *a);
+void bgi_gpu_text_append(gpu_text *t, const char *s);
+void bgi_gpu_text_printf(gpu_text *t, const char *format, ...);
 /* Appends a glsl110/ library file with everything its "// requires:" line names first (each file
  * once per text, tracked in seen), without the #version lines. False if a file is missing. */
-bool gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *seen_count, int seen_cap);
-void gpu_text_free(gpu_text *t);
-/* Like gpu_text_snippet, with each name in the NULL-terminated list renamed to name_suffix by
+bool bgi_gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *seen_count, int seen_cap);
+void bgi_gpu_text_free(gpu_text *t);
+/* Like bgi_gpu_text_snippet, with each name in the NULL-terminated list renamed to name_suffix by
  * #define around the file, which is then forgotten by seen so that the next suffix inlines it again:
  * one program can hold several shapes' copies of a function (hit_pass.c, shadow batches). */
-bool gpu_text_snippet_renamed(gpu_text *t, const char *file, const char *const *names, const char *suffix,
+bool bgi_gpu_text_snippet_renamed(gpu_text *t, const char *file, const char *const *names, const char *suffix,
                               const char **seen, int *seen_count, int seen_cap);
 
 /* ---- shape_source.c ---- */
 /* The suffix of a shape's functions in a pass (bg_hit_root_sphere): its name in common/shapes.h. */
-const char *gpu_shape_suffix(bg_shape shape);
+const char *bgi_gpu_shape_suffix(bg_shape shape);
 /* Appends, once per distinct shape of objects[0 .. count - 1] (indices into state->objects), the
  * shape's bg_shape_*.glsl and then stage_file, both with bg_shape_span and the NULL-terminated
  * stage_names renamed by the shape's suffix. False if a file is missing. */
-bool gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint32_t *objects, int count,
+bool bgi_gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint32_t *objects, int count,
                            const char *stage_file, const char *const *stage_names, const char **seen,
                            int *seen_count, int seen_cap);
 
 /* ---- features.c ---- */
 /* Whether a material can spawn a secondary ray somewhere (mirror share or transparency). */
-bool gpu_material_may_bounce(const bg_material *m);
+bool bgi_gpu_material_may_bounce(const bg_material *m);
 /* Decides slots and shader features from the committed scene; generic switches specialisation off. */
-void gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
+void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
 
 /* ---- fingerprint.c ---- */
 /* A hash of every committed value the renderer's passes and textures depend on. */
-uint64_t gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures);
+uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures);
 /* The part of it that the uploaded scene textures depend on (sizes, modes, texels), which the
  * fingerprint takes as its textures argument: a commit that leaves it alone keeps the uploads. */
-uint64_t gpu_textures_fingerprint(const bg_scene_state *state);
+uint64_t bgi_gpu_textures_fingerprint(const bg_scene_state *state);
 
 /* ---- bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
-void gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax);
+void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax);
 /* The pixel rectangle (GL window coordinates, bottom-up) that holds every camera ray able to hit a
  * bounded object; false when the object may cover the whole image (or is behind the camera). */
-bool gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
+bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
 
 /* ---- targets.c ---- */
 /* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
-bg_status gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what);
+bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what);
 /* (Re)creates the size-dependent targets for width x height and the features' G-buffer slots. */
-bg_status gpu_targets_prepare(bg_renderer *r, int width, int height);
+bg_status bgi_gpu_targets_prepare(bg_renderer *r, int width, int height);
 /* Whether RGBA16F works as a render target next to RGBA32F (one small pass, read back); false with
  * the reason in why. Leaves no MACS error behind that was not there before. */
-bool gpu_half_probe(bg_renderer *r, char *why, size_t why_size);
+bool bgi_gpu_half_probe(bg_renderer *r, char *why, size_t why_size);
 /* The texture format of a G-buffer slot under the renderer's half_gbuffer choice. */
-macs_format gpu_slot_format(const bg_renderer *r, gpu_slot slot);
+macs_format bgi_gpu_slot_format(const bg_renderer *r, gpu_slot slot);
 /* Ray set number index from the pool, creating it when needed. */
-bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out);
+bg_status bgi_gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out);
 /* Uploads the scene's textures (and the white texel) for the hit passes. */
-bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
-void gpu_targets_release(bg_renderer *r);
-void gpu_scene_textures_release(bg_renderer *r);
+bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
+void bgi_gpu_targets_release(bg_renderer *r);
+void bgi_gpu_scene_textures_release(bg_renderer *r);
 /* Uploads one scene texture as the samplers read it (RGBA32F, GL_LINEAR, its wrap). */
-bg_status gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
+bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
 
 /* ---- pass_create.c: making one pass; calls only shader_source.c and fail.c ---- */
 /* Fills the parts of a pass description every pass sets; depth, stencil, blend and colour mask stay
  * zero (off, default) for the caller to set. */
-void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
+void bgi_gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
                         macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,
                         int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
                         int output_count);
 /* Creates one pass whose functions are the listed glsl110/ files (plus extra text); reports errors. */
-bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
+bg_status bgi_gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
                           macs_pass_desc *desc, macs_pass **out);
 /* Creates a pass. With trial, a program GL refuses (compile or link) on a context with no earlier
  * error is not an error: *out stays NULL, *refused gets the status and why GL's message, and the
  * MACS error is forgotten; a caller then takes another way and says so. */
-bg_status gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
+bg_status bgi_gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
                                 macs_status *refused, char *why, size_t why_size);
 /* Creates a pass from assembled functions. With trial, a shader GL refuses (compile or link) is
  * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
-bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+bg_status bgi_gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
                        macs_pass **out, bool *rejected);
-/* gpu_pass_try over assembled texts (desc->main already points into main): fails with a message
+/* bgi_gpu_pass_try over assembled texts (desc->main already points into main): fails with a message
  * when a text ran out of memory or a glsl110 file was missing (files_found false); frees both. */
-bg_status gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
+bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
                               macs_pass_desc *desc, bool trial, macs_pass **out, bool *rejected);
 
 /* ---- ray_passes.c: the passes that make, count, end and spawn rays ---- */
 /* The camera, mark, background, reflection, refraction and resolve passes, as the renderer's key
  * decides them (background_on, bounces), over ray set 0's maps and the renderer's targets. */
-bg_status gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
+bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
 
 /* ---- passes.c: every pass of a frame, in the order the frame needs them ---- */
 /* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
-bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
-void gpu_passes_release(bg_renderer *r);
+bg_status bgi_gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
+void bgi_gpu_passes_release(bg_renderer *r);
 /* Moves the passes aside instead of destroying them, so that while the next ones are built MACS's
  * program cache still holds every program they share: a commit that changes only values compiles
- * nothing. gpu_passes_release_retired destroys them once the new passes exist (or failed). */
-void gpu_passes_retire(bg_renderer *r);
-void gpu_passes_release_retired(bg_renderer *r);
+ * nothing. bgi_gpu_passes_release_retired destroys them once the new passes exist (or failed). */
+void bgi_gpu_passes_retire(bg_renderer *r);
+void bgi_gpu_passes_release_retired(bg_renderer *r);
 
 /* ---- batch.c ---- */
 /* Plans the intersection batches (first, count) into out (room for every object); returns how many. */
-int gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out);
+int bgi_gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out);
 /* Plans the shadow batches of a group over casters[first .. first + n - 1] into out; returns how many. */
-int gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, int group, int first, int n,
+int bgi_gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state, int group, int first, int n,
                            gpu_batch *out);
 /* The camera-ray scissor rectangle of a batch (the union of its objects'); false when unbounded.
  * An empty rectangle means every object is off screen. */
-bool gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4]);
+bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4]);
 /* Uniform components of the declared uniforms u[0 .. count - 1] as old hardware allocates them
  * (every float, vec2 or vec3 a whole vec4; arrays per element): what batches are planned by. */
-int gpu_uniform_components(const macs_uniform_desc *u, int count);
+int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count);
 
 /* ---- hit_pass.c ---- */
 /* The intersection pass of objects first .. first + count - 1 (count <= GPU_BATCH_MAX), writing
- * the G-buffer slots of the features; trial as for gpu_pass_try. */
-bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
+ * the G-buffer slots of the features; trial as for bgi_gpu_pass_try. */
+bg_status bgi_gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
                              macs_pass **out, bool *rejected);
 /* Uniform components (in whole vec4s, as old hardware allocates them) one object adds to an
  * intersection pass, and the scene textures it samples (0 = the white texel). */
-int gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint32_t object,
+int bgi_gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint32_t object,
                          uint32_t textures[GPU_HIT_MAX_TEXTURES], int *texture_count);
 /* Uniform components every intersection pass has whatever its objects. */
-int gpu_hit_shared_components(void);
+int bgi_gpu_hit_shared_components(void);
 /* The lane of a scene texture (0 the white texel) among the distinct lanes[0 .. *lane_count - 1],
  * appended when it is not there yet: how a pass, and the planner, count each texture once. */
-int gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture);
+int bgi_gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture);
 /* Sets the per-frame uniforms of an object's intersection pass (dmax of the level). */
-bg_status gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax);
+bg_status bgi_gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax);
 
 /* ---- light_pass.c ---- */
 /* The shadow pass of a batch: objects casters[0 .. count - 1] (blocks[i] false: no test) against
- * the segments of light group `group`; trial as for gpu_pass_try. */
-bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
+ * the segments of light group `group`; trial as for bgi_gpu_pass_try. */
+bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
                                 const bool *blocks, int count, int group, bool trial, macs_pass **out,
                                 bool *rejected);
-/* Uniform components of a shadow pass (as gpu_uniform_components counts them, from what the pass
+/* Uniform components of a shadow pass (as bgi_gpu_uniform_components counts them, from what the pass
  * declares): per object, and shared for a group of 1 .. GPU_LIGHTS_PER_GROUP lights. */
-int gpu_shadow_object_components(void);
-int gpu_shadow_shared_components(int lights);
+int bgi_gpu_shadow_object_components(void);
+int bgi_gpu_shadow_shared_components(int lights);
 /* The light pass of a group of up to four lights (vis: read the visibility texture); a group past
  * the last light makes the ambient and emission pass instead. */
-bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out);
+bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out);
 /* Fills the uniform arrays of lights first .. first + count - 1 into a pass. */
-bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count);
+bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count);
 
 /* Fixed input positions of the ray maps, rebound for every ray set. */
 #define GPU_HIT_IN_ORIGIN 0
@@ -312,21 +312,21 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
 
 /* ---- phase_clock.c ---- */
 /* Milliseconds of a monotonic clock. */
-double gpu_now_ms(void);
+double bgi_gpu_now_ms(void);
 /* With timing, drains the GPU and starts *clock; without, does nothing. */
-void gpu_phase_start(bg_renderer *r, bool timing, double *clock);
+void bgi_gpu_phase_start(bg_renderer *r, bool timing, double *clock);
 /* With timing, drains the GPU, adds the time since *clock to the phase and restarts *clock. */
-void gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase);
+void bgi_gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase);
 
 /* ---- read_back.c ---- */
 /* Copies a finished RGBA8 or RGBA32F texture of the image's size into the caller's image, rows
  * flipped to top-down; with opaque, alpha 1 for float images (else the texture's, for the caller to
  * read and then set). */
-bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque);
+bg_status bgi_gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque);
 
 /* ---- rect.c ---- */
 /* Grows a to the smallest rectangle holding a and b ({x, y, width, height}; empty ones add nothing). */
-void gpu_rect_union(int a[4], const int b[4]);
+void bgi_gpu_rect_union(int a[4], const int b[4]);
 
 /* ---- frame.c ---- */
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
@@ -414,7 +414,7 @@ typedef enum gpu_fused_uniform {
 /* A material as the fused shader specialises it; only used materials get code and uniforms. */
 typedef struct gpu_fused_material {
     bool used, aniso, coat, transparent;
-    bool bounce;                          /* may spawn a secondary ray (gpu_material_may_bounce) */
+    bool bounce;                          /* may spawn a secondary ray (bgi_gpu_material_may_bounce) */
     bool textured;                        /* some parameter samples a texture: its objects need UVs */
     uint32_t texture[GPU_FUSED_P_COUNT_]; /* scene texture (1-based) of each parameter, 0 none */
     int channel[GPU_FUSED_P_COUNT_];      /* the texel channel of a textured scalar */
@@ -493,10 +493,10 @@ typedef struct gpu_fused_values {
 /* Renders the frame with the fused plan when settings (and, for BG_PLAN_AUTO, the scene and the GL
  * limits) choose it: *done true. Otherwise *done is false with BG_OK and the caller runs the
  * multipass (stats.plan says so). stride is the image's checked row stride. */
-bg_status gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                            bg_image *image, size_t stride, bool *done);
 /* Frees the fused plan's program, textures and cache. */
-void gpu_fused_release(bg_renderer *r);
+void bgi_gpu_fused_release(bg_renderer *r);
 
 /* ---- fused_tree.c ---- */
 /* One texture of the tree variant with the host copy of what it holds (held) and room to build the
@@ -514,51 +514,51 @@ typedef struct gpu_fused_tree {
 } gpu_fused_tree;
 
 /* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
-bool gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
+bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
 /* Makes the two textures hold the committed scene's tree and objects, as seen from its camera. */
-bg_status gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state);
-void gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
+bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state);
+void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
  * returns how many there were. */
-uint64_t gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
+uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
                                  const bg_image *image, size_t stride);
 
 /* ---- fused_layout.c ---- */
 /* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),
  * with tree the objects of the scene's object tree walked from textures; false when out of memory. */
-bool gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
+bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
                             bool tree, gpu_fused_layout *out);
-void gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
+void bgi_gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
 /* The constant and texture of material parameter p of m (rgb for colours; value in v[0] for scalars). */
-void gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel);
+void bgi_gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel);
 /* Whether a material has what a per-material uniform or parameter needs (the "need" columns). */
-bool gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);
+bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);
 /* Whether an object of the layout's material samples textures / needs a shading tangent. */
-bool gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
+bool bgi_gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
 /* Whether the program walks a tree: the tree variant with some object in the scene's tree. */
-bool gpu_fused_layout_walks(const gpu_fused_layout *l);
-bool gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object);
+bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l);
+bool bgi_gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object);
 
 /* ---- fused_uniforms.c ---- */
 /* The GLSL name of row `row` (a gpu_fused_uniform or GPU_FUSED_PARAM_ROW) for object or material i
  * (an object's uniforms are named by its slot). */
-void gpu_fused_uniform_name(const gpu_fused_layout *l, int row, uint32_t i, char *name, size_t size);
+void bgi_gpu_fused_uniform_name(const gpu_fused_layout *l, int row, uint32_t i, char *name, size_t size);
 /* Whether row exists for object or material i (frame and light rows: i is ignored). */
-bool gpu_fused_uniform_present(const gpu_fused_layout *l, int row, uint32_t i);
+bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int row, uint32_t i);
 /* Uniform components the layout declares, counted in whole vec4s as old hardware allocates them. */
-int gpu_fused_uniform_components(const gpu_fused_layout *l);
+int bgi_gpu_fused_uniform_components(const gpu_fused_layout *l);
 /* The uniform declarations of the layout into a new array (names kept in *names, both freed with
- * gpu_fused_uniforms_free); false when out of memory. */
-bool gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l, macs_uniform_desc **out,
+ * bgi_gpu_fused_uniforms_free); false when out of memory. */
+bool bgi_gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layout *l, macs_uniform_desc **out,
                                 int *count, char **names);
-void gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names);
+void bgi_gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names);
 /* Sets every uniform of the layout in the pass from the render's values; reports errors. */
-bg_status gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v);
+bg_status bgi_gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v);
 
 /* ---- fused_source.c ---- */
 /* The fused shader of a layout: its functions (the glsl110/ library and the generated scene code)
  * into functions, its main into main, and the expression written to the output. False when a
  * library file is missing or memory ran out. */
-bool gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output);
+bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output);
 
 #endif

@@ -7,7 +7,7 @@
  * Material constants are uniforms, so a value-only re-commit reuses the compiled program.
  *
  * What an object declares is described once (member_describe): the batch planner's uniform budget
- * (gpu_hit_object_needs) and the pass's declarations are both read from that description. */
+ * (bgi_gpu_hit_object_needs) and the pass's declarations are both read from that description. */
 #include <stdio.h>
 #include <string.h>
 
@@ -91,7 +91,7 @@ static const struct {
     [U_IOR] = {"bg_m%d_ior", MACS_UNIFORM_FLOAT},
 };
 
-/* The uniforms of every intersection pass whatever its objects (set per level: gpu_hit_pass_set_dmax). */
+/* The uniforms of every intersection pass whatever its objects (set per level: bgi_gpu_hit_pass_set_dmax). */
 static const macs_uniform_desc shared_uniforms[] = {{"bg_dmax", MACS_UNIFORM_FLOAT, 0}};
 #define SHARED_UNIFORM_COUNT ((int)(sizeof shared_uniforms / sizeof shared_uniforms[0]))
 
@@ -111,7 +111,7 @@ typedef struct member {
     int uniform_count;
 } member;
 
-int gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture)
+int bgi_gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture)
 {
     for (int k = 0; k < *lane_count; k++)
         if (lanes[k] == texture)
@@ -129,7 +129,7 @@ static void member_describe(const bg_renderer *r, const bg_scene_state *state, u
     mb->texture_count = 0;
     for (int i = 0; i < P_COUNT; i++)
         if (samples_texture(&mb->p[i], f))
-            gpu_hit_texture_lane(mb->textures, &mb->texture_count, mb->p[i].texture);
+            bgi_gpu_hit_texture_lane(mb->textures, &mb->texture_count, mb->p[i].texture);
     mb->need_uv = mb->texture_count > 0;
 
     mb->declares[U_INDEX] = mb->declares[U_TO_OBJECT] = mb->declares[U_NORMAL_TO_WORLD] = true;
@@ -151,19 +151,19 @@ static void member_describe(const bg_renderer *r, const bg_scene_state *state, u
     }
 }
 
-int gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint32_t object,
+int bgi_gpu_hit_object_needs(const bg_renderer *r, const bg_scene_state *state, uint32_t object,
                          uint32_t textures[GPU_HIT_MAX_TEXTURES], int *texture_count)
 {
     member mb;
     member_describe(r, state, object, 0, &mb);
     memcpy(textures, mb.textures, (size_t)mb.texture_count * sizeof *textures);
     *texture_count = mb.texture_count;
-    return gpu_uniform_components(mb.uniforms, mb.uniform_count);
+    return bgi_gpu_uniform_components(mb.uniforms, mb.uniform_count);
 }
 
-int gpu_hit_shared_components(void)
+int bgi_gpu_hit_shared_components(void)
 {
-    return gpu_uniform_components(shared_uniforms, SHARED_UNIFORM_COUNT);
+    return bgi_gpu_uniform_components(shared_uniforms, SHARED_UNIFORM_COUNT);
 }
 
 /* The functions of the pass: each distinct shape's root and each distinct UV mapping, renamed by
@@ -172,21 +172,21 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
 {
     const char *seen[48];
     int n = 0;
-    bool ok = gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, 48);
+    bool ok = bgi_gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, 48);
     if (need_tangent)
-        ok = ok && gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, 48);
+        ok = ok && bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, 48);
     uint32_t objects[GPU_BATCH_MAX];
     for (int j = 0; j < count; j++)
         objects[j] = m[j].object;
     static const char *const root[] = {"bg_hit_root", NULL};
-    ok = ok && gpu_text_shape_stages(t, state, objects, count, "bg_hit_root.glsl", root, seen, &n, 48);
+    ok = ok && bgi_gpu_text_shape_stages(t, state, objects, count, "bg_hit_root.glsl", root, seen, &n, 48);
     static const char *const uv[] = {"bg_uv_map", NULL};
     bool uv_done[BG_UV_COUNT_] = {false};
     for (int j = 0; j < count && ok; j++) {
         bg_uv_mapping mapping = state->objects[m[j].object].uv_mapping;
         if ((m[j].need_uv || need_tangent) && !uv_done[mapping]) {
             uv_done[mapping] = true;
-            ok = uv_file[mapping] && gpu_text_snippet_renamed(t, uv_file[mapping], uv, uv_name[mapping], seen, &n, 48);
+            ok = uv_file[mapping] && bgi_gpu_text_snippet_renamed(t, uv_file[mapping], uv, uv_name[mapping], seen, &n, 48);
         }
     }
     return ok;
@@ -198,7 +198,7 @@ static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *st
     const bg_object_data *obj = &state->objects[mb->object];
     float fi = (float)mb->object, m16[16], m9[9];
     macs_status ms = macs_pass_set_uniform(pass, mb->object_uniform[U_INDEX], &fi);
-    gpu_origin_to_object(state, mb->object, m16);
+    bgi_gpu_origin_to_object(state, mb->object, m16);
     if (!ms)
         ms = macs_pass_set_uniform(pass, mb->object_uniform[U_TO_OBJECT], m16);
     column_major(&obj->normal_to_world[0][0], 3, m9);
@@ -265,15 +265,15 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
 {
     const bg_object_data *obj = &state->objects[mb->object];
     const char *thin = bg_shape_thin(obj->shape) ? "true" : "false";
-    gpu_text_printf(t, "    bg_n = bg_hit_normal(bg_normal_to_world_%d, bg_no, bg_rd.xyz, %s, bg_first, bg_entering);\n",
+    bgi_gpu_text_printf(t, "    bg_n = bg_hit_normal(bg_normal_to_world_%d, bg_no, bg_rd.xyz, %s, bg_first, bg_entering);\n",
                     j, thin);
-    gpu_text_printf(t, "    bg_code = bg_hit_code(bg_index_%d, %s, bg_entering);\n", j, thin);
+    bgi_gpu_text_printf(t, "    bg_code = bg_hit_code(bg_index_%d, %s, bg_entering);\n", j, thin);
     if (mb->need_uv || need_tangent)
-        gpu_text_printf(t, "    vec3 bg_dpdu;\n    vec2 bg_uv = bg_uv_map_%s(bg_po, bg_dpdu);\n", uv_name[obj->uv_mapping]);
+        bgi_gpu_text_printf(t, "    vec3 bg_dpdu;\n    vec2 bg_uv = bg_uv_map_%s(bg_po, bg_dpdu);\n", uv_name[obj->uv_mapping]);
     if (mb->need_uv)
-        gpu_text_printf(t, "    bg_uv *= bg_uv_scale_%d;\n", j);
+        bgi_gpu_text_printf(t, "    bg_uv *= bg_uv_scale_%d;\n", j);
     if (need_tangent)
-        gpu_text_printf(t, "    bg_tg = bg_tangent(bg_to_world3_%d * bg_dpdu, bg_n);\n", j);
+        bgi_gpu_text_printf(t, "    bg_tg = bg_tangent(bg_to_world3_%d * bg_dpdu, bg_n);\n", j);
     const param *p = mb->p;
     for (int i = 0; i < P_COUNT; i++) {
         if (!p[i].used)
@@ -292,13 +292,13 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
         }
         char clamped[192];
         snprintf(clamped, sizeof clamped, p[i].clamp, value);
-        gpu_text_printf(t, "    bg_%s = %s;\n", p[i].name, clamped);
+        bgi_gpu_text_printf(t, "    bg_%s = %s;\n", p[i].name, clamped);
     }
     /* A negative coat roughness uniform marks a material without a coat. */
     if (coat)
-        gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->param_uniform[P_COAT_R]);
+        bgi_gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->param_uniform[P_COAT_R]);
     if (transparent)
-        gpu_text_printf(t, "    bg_ior = %s;\n", mb->object_uniform[U_IOR]);
+        bgi_gpu_text_printf(t, "    bg_ior = %s;\n", mb->object_uniform[U_IOR]);
 }
 
 /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
@@ -333,7 +333,7 @@ static void describe_members(const bg_renderer *r, const bg_scene_state *state, 
         member_describe(r, state, first + (uint32_t)j, j, mb);
         for (int i = 0; i < P_COUNT; i++)
             if (samples_texture(&mb->p[i], &r->features))
-                mb->p[i].sampler = gpu_hit_texture_lane(hp->lane_texture, &hp->lanes, mb->p[i].texture);
+                mb->p[i].sampler = bgi_gpu_hit_texture_lane(hp->lane_texture, &hp->lanes, mb->p[i].texture);
     }
 }
 
@@ -396,10 +396,10 @@ static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state,
 {
     /* Writing gl_FragDepth makes GL test the stencil after the shader, so a dead ray is also
      * rejected here, before any intersection work (the same pixels as the stencil rejects). */
-    gpu_text_append(main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n");
+    bgi_gpu_text_append(main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n");
     if (!(r->key.disable_skips & BG_SKIP_STENCIL))
-        gpu_text_append(main, "if (bg_w.a <= 0.0)\n    discard;\n");
-    gpu_text_append(main,
+        bgi_gpu_text_append(main, "if (bg_w.a <= 0.0)\n    discard;\n");
+    bgi_gpu_text_append(main,
                     "vec4 bg_ro = texture2D(bg_ray_origin, macs_uv);\n"
                     "vec4 bg_rd = texture2D(bg_ray_dir, macs_uv);\n"
                     "float bg_t = 0.0, bg_z = 1.0, bg_key = 33554432.0, bg_win = -1.0;\n"
@@ -407,7 +407,7 @@ static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state,
     const char *fixed24 = r->float_depth ? "false" : "true";
     for (int j = 0; j < hp->count; j++) {
         const bg_object_data *obj = &state->objects[hp->members[j].object];
-        gpu_text_printf(main,
+        bgi_gpu_text_printf(main,
                         "{\n    float bg_tj, bg_zj;\n    vec3 bg_poj, bg_noj;\n    bool bg_fj;\n"
                         "    if (bg_hit_root_%s(bg_ro, bg_rd, bg_index_%d, bg_to_object_%d, bg_tj, bg_poj, bg_noj, bg_fj)) {\n"
                         "        bg_zj = bg_depth(bg_tj, bg_dmax);\n"
@@ -416,7 +416,7 @@ static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state,
                         "            bg_key = bg_kj; bg_win = %d.0; bg_t = bg_tj; bg_z = bg_zj;\n"
                         "            bg_po = bg_poj; bg_no = bg_noj; bg_first = bg_fj;\n"
                         "        }\n    }\n}\n",
-                        gpu_shape_suffix(obj->shape), j, j, fixed24, j);
+                        bgi_gpu_shape_suffix(obj->shape), j, j, fixed24, j);
     }
 }
 
@@ -426,30 +426,30 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
 {
     const gpu_features *f = &r->features;
     bool need_tangent = f->slot[GPU_SLOT_TANGENT];
-    gpu_text_append(main, "if (bg_win < 0.0)\n    discard;\ngl_FragDepth = bg_z;\n"
+    bgi_gpu_text_append(main, "if (bg_win < 0.0)\n    discard;\ngl_FragDepth = bg_z;\n"
                           "vec3 bg_p = bg_ro.xyz + bg_t * bg_rd.xyz;\n"
                           "bool bg_entering;\nvec3 bg_n;\nfloat bg_code;\n");
     if (need_tangent)
-        gpu_text_append(main, "vec3 bg_tg;\n");
+        bgi_gpu_text_append(main, "vec3 bg_tg;\n");
     const param *p0 = hp->members[0].p; /* which parameters are used depends on the features only */
     for (int i = 0; i < P_COUNT; i++)
         if (p0[i].used)
-            gpu_text_printf(main, "%s bg_%s;\n", p0[i].color ? "vec3" : "float", p0[i].name);
+            bgi_gpu_text_printf(main, "%s bg_%s;\n", p0[i].color ? "vec3" : "float", p0[i].name);
     if (f->transparent)
-        gpu_text_append(main, "float bg_ior;\n");
+        bgi_gpu_text_append(main, "float bg_ior;\n");
     for (int j = 0; j < hp->count; j++) {
         if (hp->count == 1)
-            gpu_text_append(main, "{\n");
+            bgi_gpu_text_append(main, "{\n");
         else if (j == hp->count - 1)
-            gpu_text_append(main, "else {\n");
+            bgi_gpu_text_append(main, "else {\n");
         else
-            gpu_text_printf(main, "%sif (bg_win == %d.0) {\n", j ? "else " : "", j);
+            bgi_gpu_text_printf(main, "%sif (bg_win == %d.0) {\n", j ? "else " : "", j);
         emit_surface(main, state, &hp->members[j], j, need_tangent, f->transparent, f->coat);
-        gpu_text_append(main, "}\n");
+        bgi_gpu_text_append(main, "}\n");
     }
     if (!f->transparent)
-        gpu_text_append(main, "float bg_transparency = 0.0;\n");
-    gpu_text_append(main, "float bg_opaque = 1.0 - bg_transparency;\n");
+        bgi_gpu_text_append(main, "float bg_transparency = 0.0;\n");
+    bgi_gpu_text_append(main, "float bg_opaque = 1.0 - bg_transparency;\n");
 }
 
 /* Depth LESS as between one-object passes; the stencil keeps live rays and marks their hits. */
@@ -468,23 +468,23 @@ static void set_depth_stencil(const bg_renderer *r, macs_pass_desc *desc)
     desc->stencil.pass = MACS_STENCIL_OP_REPLACE;
 }
 
-/* Assembles the shader and makes the pass (with trial, *out may stay NULL: gpu_pass_try). */
+/* Assembles the shader and makes the pass (with trial, *out may stay NULL: bgi_gpu_pass_try). */
 static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pass_parts *hp, bool trial,
                              macs_pass **out, bool *rejected)
 {
     bool need_tangent = r->features.slot[GPU_SLOT_TANGENT];
     gpu_text main, functions;
-    gpu_text_init(&main, &r->allocator);
-    gpu_text_init(&functions, &r->allocator);
+    bgi_gpu_text_init(&main, &r->allocator);
+    bgi_gpu_text_init(&functions, &r->allocator);
     emit_nearest_root(r, state, hp, &main);
     emit_winner_surface(r, state, hp, &main);
     bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent);
 
     macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,
+    bgi_gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,
                        hp->outputs, hp->output_tex, hp->output_count);
     set_depth_stencil(r, &desc);
-    return gpu_pass_from_texts(r, "intersection pass", &main, &functions, have, &desc, trial, out, rejected);
+    return bgi_gpu_pass_from_texts(r, "intersection pass", &main, &functions, have, &desc, trial, out, rejected);
 }
 
 /* Sets every member's constants into the made pass. */
@@ -497,21 +497,21 @@ static bg_status set_members_uniforms(bg_renderer *r, macs_pass *pass, const bg_
         if (!ms)
             ms = set_material_uniforms(pass, state, &hp->members[j]);
     }
-    return ms ? gpu_fail_macs(r, ms, "intersection pass uniforms") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "intersection pass uniforms") : BG_OK;
 }
 
-bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
+bg_status bgi_gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32_t first, int count, bool trial,
                              macs_pass **out, bool *rejected)
 {
     *out = NULL;
     if (rejected)
         *rejected = false;
     if (count < 1 || count > GPU_BATCH_MAX)
-        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: intersection batch of %d objects", count);
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: intersection batch of %d objects", count);
     hit_pass_parts hp;
-    hp.members = bg_alloc(&r->allocator, (size_t)count * sizeof *hp.members);
+    hp.members = bgi_alloc(&r->allocator, (size_t)count * sizeof *hp.members);
     if (!hp.members)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building an intersection pass");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building an intersection pass");
     hp.count = count;
     describe_members(r, state, first, &hp);
     add_inputs(r, &hp);
@@ -520,13 +520,13 @@ bg_status gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, uint32
     bg_status st = create_pass(r, state, &hp, trial, out, rejected);
     if (st == BG_OK && *out)
         st = set_members_uniforms(r, *out, state, &hp);
-    bg_free(&r->allocator, hp.members);
+    bgi_free(&r->allocator, hp.members);
     return st;
 }
 
-bg_status gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax)
+bg_status bgi_gpu_hit_pass_set_dmax(bg_renderer *r, macs_pass *pass, double dmax)
 {
     float v = (float)dmax;
     macs_status ms = macs_pass_set_uniform(pass, "bg_dmax", &v);
-    return ms ? gpu_fail_macs(r, ms, "intersection pass dmax") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "intersection pass dmax") : BG_OK;
 }

@@ -30,7 +30,7 @@ static void light_uniforms(macs_uniform_desc *u, int *n, int count)
     u[(*n)++] = (macs_uniform_desc){"bg_lexp", MACS_UNIFORM_FLOAT, count};
 }
 
-bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count)
+bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count)
 {
     float pos[4 * GPU_LIGHTS_PER_GROUP], rad[3 * GPU_LIGHTS_PER_GROUP], att[3 * GPU_LIGHTS_PER_GROUP];
     float spot[4 * GPU_LIGHTS_PER_GROUP], ex[GPU_LIGHTS_PER_GROUP];
@@ -42,7 +42,7 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
             pos[4 * i + 1] = (float)l->direction.y;
             pos[4 * i + 2] = (float)l->direction.z;
         } else {
-            gpu_origin_point(state, &l->position, &pos[4 * i]);
+            bgi_gpu_origin_point(state, &l->position, &pos[4 * i]);
         }
         pos[4 * i + 3] = dir ? 1.0f : 0.0f;
         for (int k = 0; k < 3; k++) {
@@ -66,7 +66,7 @@ bg_status gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene
         ms = macs_pass_set_uniform(pass, "bg_lspot", spot);
     if (!ms)
         ms = macs_pass_set_uniform(pass, "bg_lexp", ex);
-    return ms ? gpu_fail_macs(r, ms, "light uniforms") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "light uniforms") : BG_OK;
 }
 
 /* Live hit pixels only: both stencil bits set (or only the hit bit when the stencil skip is off). */
@@ -102,20 +102,20 @@ static void caster_uniforms(int j, caster_names names, macs_uniform_desc *u)
     }
 }
 
-int gpu_shadow_object_components(void)
+int bgi_gpu_shadow_object_components(void)
 {
     caster_names names;
     macs_uniform_desc u[C_COUNT];
     caster_uniforms(0, names, u);
-    return gpu_uniform_components(u, C_COUNT);
+    return bgi_gpu_uniform_components(u, C_COUNT);
 }
 
-int gpu_shadow_shared_components(int lights)
+int bgi_gpu_shadow_shared_components(int lights)
 {
     macs_uniform_desc u[LIGHT_UNIFORM_COUNT];
     int n = 0;
     light_uniforms(u, &n, lights);
-    return gpu_uniform_components(u, n);
+    return bgi_gpu_uniform_components(u, n);
 }
 
 /* What a shadow pass description points at while the pass is made. */
@@ -145,33 +145,33 @@ static void emit_shadow_main(const bg_renderer *r, const bg_scene_state *state, 
                              gpu_text *main)
 {
     bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
-    gpu_text_append(main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
+    bgi_gpu_text_append(main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
     bool any = false;
     for (int j = 0; j < sp->count; j++)
         any = any || sp->blocks[j];
     /* One that casts nothing blocks nothing. */
     if (!any)
-        gpu_text_append(main, "if (true)\n    discard;\n");
-    gpu_text_append(main, "float bg_self = bg_hit_index(bg_h.w);\n");
+        bgi_gpu_text_append(main, "if (true)\n    discard;\n");
+    bgi_gpu_text_append(main, "float bg_self = bg_hit_index(bg_h.w);\n");
     if (sp->count == 1)
-        gpu_text_append(main, "if (bg_self == bg_index_0) discard;\n");
-    gpu_text_append(main, "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
+        bgi_gpu_text_append(main, "if (bg_self == bg_index_0) discard;\n");
+    bgi_gpu_text_append(main, "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
                           "vec4 bg_vis = vec4(1.0);\nvec3 bg_l, bg_e;\nfloat bg_dist;\n");
     for (int i = 0; i < sp->lights; i++) {
-        gpu_text_printf(main,
+        bgi_gpu_text_printf(main,
                         "if (bg_light_at(bg_h.xyz, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], bg_lexp[%d], "
                         "bg_l, bg_dist, bg_e)%s) {\n    if (false",
                         i, i, i, i, i, skip_facing ? " && !(dot(bg_n, bg_l) <= 0.0)" : "");
         for (int j = 0; j < sp->count; j++) {
             if (!sp->blocks[j])
                 continue;
-            const char *shape = gpu_shape_suffix(state->objects[sp->casters[j]].shape);
-            gpu_text_printf(main, "\n        || (bg_self != bg_index_%d && bg_segment_blocked_%s(bg_h.xyz, bg_l, bg_dist, "
+            const char *shape = bgi_gpu_shape_suffix(state->objects[sp->casters[j]].shape);
+            bgi_gpu_text_printf(main, "\n        || (bg_self != bg_index_%d && bg_segment_blocked_%s(bg_h.xyz, bg_l, bg_dist, "
                                   "bg_to_object_%d))", j, shape, j);
         }
-        gpu_text_printf(main, ")\n        bg_vis.%c = 0.0;\n}\n", "xyzw"[i]);
+        bgi_gpu_text_printf(main, ")\n        bg_vis.%c = 0.0;\n}\n", "xyzw"[i]);
     }
-    gpu_text_append(main, "if (min(min(bg_vis.x, bg_vis.y), min(bg_vis.z, bg_vis.w)) > 0.5) discard;\n");
+    bgi_gpu_text_append(main, "if (min(min(bg_vis.x, bg_vis.y), min(bg_vis.z, bg_vis.w)) > 0.5) discard;\n");
 }
 
 /* The light functions and each caster shape's segment test, renamed so that shapes share the program. */
@@ -180,8 +180,8 @@ static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const sha
     const char *seen[32];
     int n = 0;
     static const char *const stage[] = {"bg_segment_blocked", "bg_shadow_visibility", NULL};
-    return gpu_text_snippet(t, "bg_hit_code.glsl", seen, &n, 32) && gpu_text_snippet(t, "bg_light.glsl", seen, &n, 32) &&
-           gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
+    return bgi_gpu_text_snippet(t, "bg_hit_code.glsl", seen, &n, 32) && bgi_gpu_text_snippet(t, "bg_light.glsl", seen, &n, 32) &&
+           bgi_gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
 }
 
 /* Sets each caster's index and transform, then the group's lights. */
@@ -191,17 +191,17 @@ static bg_status set_shadow_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
     macs_status ms = MACS_OK;
     for (int j = 0; j < sp->count && !ms; j++) {
         float m16[16], fi = (float)sp->casters[j];
-        gpu_origin_to_object(state, sp->casters[j], m16);
+        bgi_gpu_origin_to_object(state, sp->casters[j], m16);
         ms = macs_pass_set_uniform(pass, sp->names[j][C_INDEX], &fi);
         if (!ms)
             ms = macs_pass_set_uniform(pass, sp->names[j][C_TO_OBJECT], m16);
     }
     if (ms)
-        return gpu_fail_macs(r, ms, "shadow pass uniforms");
-    return gpu_set_light_uniforms(r, pass, state, sp->group * GPU_LIGHTS_PER_GROUP, sp->lights);
+        return bgi_gpu_fail_macs(r, ms, "shadow pass uniforms");
+    return bgi_gpu_set_light_uniforms(r, pass, state, sp->group * GPU_LIGHTS_PER_GROUP, sp->lights);
 }
 
-bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
+bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, const uint32_t *casters,
                                 const bool *blocks, int count, int group, bool trial, macs_pass **out,
                                 bool *rejected)
 {
@@ -209,7 +209,7 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, con
     if (rejected)
         *rejected = false;
     if (count < 1 || count > GPU_BATCH_MAX)
-        return gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: shadow batch of %d objects", count);
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: shadow batch of %d objects", count);
     shadow_pass_parts sp;
     sp.casters = casters;
     sp.blocks = blocks;
@@ -219,8 +219,8 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, con
     add_shadow_uniforms(&sp);
 
     gpu_text main, functions;
-    gpu_text_init(&main, &r->allocator);
-    gpu_text_init(&functions, &r->allocator);
+    bgi_gpu_text_init(&main, &r->allocator);
+    bgi_gpu_text_init(&functions, &r->allocator);
     emit_shadow_main(r, state, &sp, &main);
     bool have = shadow_functions(&functions, state, &sp);
 
@@ -229,18 +229,18 @@ bg_status gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state, con
     macs_output_desc output = {"visibility", "bg_vis"};
     macs_texture *output_tex[1] = {r->vis};
     macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, main.s, inputs, input_tex, 2, sp.uniforms, sp.uniform_count, &output, output_tex, 1);
+    bgi_gpu_pass_desc_init(&desc, main.s, inputs, input_tex, 2, sp.uniforms, sp.uniform_count, &output, output_tex, 1);
     desc.depth_stencil = r->depth;
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_MULTIPLY;
 
-    bg_status st = gpu_pass_from_texts(r, "shadow pass", &main, &functions, have, &desc, trial, out, rejected);
+    bg_status st = bgi_gpu_pass_from_texts(r, "shadow pass", &main, &functions, have, &desc, trial, out, rejected);
     if (st != BG_OK || !*out)
         return st;
     return set_shadow_uniforms(r, *out, state, &sp);
 }
 
-bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out)
+bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out)
 {
     const gpu_features *f = &r->features;
     int count = group_size(state, group);
@@ -252,12 +252,12 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
         macs_output_desc output = {"radiance", "vec4(texture2D(bg_g_once, macs_uv).rgb, 0.0)"};
         macs_texture *output_tex[1] = {r->accum};
         macs_pass_desc desc;
-        gpu_pass_desc_init(&desc, NULL, in, in_tex, 1, NULL, 0, &output, output_tex, 1);
+        bgi_gpu_pass_desc_init(&desc, NULL, in, in_tex, 1, NULL, 0, &output, output_tex, 1);
         desc.depth_stencil = r->depth;
         hit_stencil(r, &desc.stencil);
         desc.blend = MACS_BLEND_ADD;
         (void)vis;
-        return gpu_pass_create(r, "ambient and emission pass", NULL, NULL, &desc, out);
+        return bgi_gpu_pass_create(r, "ambient and emission pass", NULL, NULL, &desc, out);
     }
     macs_input_desc inputs[10];
     macs_texture *input_tex[10];
@@ -285,51 +285,51 @@ bg_status gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int 
         light_uniforms(uniforms, &nu, count);
 
     gpu_text main;
-    gpu_text_init(&main, &r->allocator);
-    gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n"
+    bgi_gpu_text_init(&main, &r->allocator);
+    bgi_gpu_text_append(&main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n"
                            "vec4 bg_nr = texture2D(bg_g_normal, macs_uv);\n"
                            "vec4 bg_b = texture2D(bg_g_base, macs_uv);\n"
                            "vec3 bg_view = -texture2D(bg_ray_dir, macs_uv).xyz;\n");
-    gpu_text_printf(&main, "vec3 bg_lw = texture2D(%s, macs_uv).rgb;\n",
+    bgi_gpu_text_printf(&main, "vec3 bg_lw = texture2D(%s, macs_uv).rgb;\n",
                     f->slot[GPU_SLOT_XPARENT] ? "bg_g_xparent" : "bg_ray_weight");
     /* Without the tangent slot every isotropy is 1, where the azimuth term is exactly 1 whatever
      * the tangent, so the normal stands in for it. */
-    gpu_text_append(&main, f->slot[GPU_SLOT_TANGENT] ? "vec4 bg_tg = texture2D(bg_g_tangent, macs_uv);\n"
+    bgi_gpu_text_append(&main, f->slot[GPU_SLOT_TANGENT] ? "vec4 bg_tg = texture2D(bg_g_tangent, macs_uv);\n"
                                                      : "vec4 bg_tg = vec4(bg_nr.xyz, 1.0);\n");
-    gpu_text_append(&main, f->slot[GPU_SLOT_COAT] ? "vec4 bg_c = texture2D(bg_g_coat, macs_uv);\n"
+    bgi_gpu_text_append(&main, f->slot[GPU_SLOT_COAT] ? "vec4 bg_c = texture2D(bg_g_coat, macs_uv);\n"
                                                   : "vec4 bg_c = vec4(0.0, 0.0, 0.0, -1.0);\n");
-    gpu_text_append(&main, vis ? "vec4 bg_v = texture2D(bg_vis, macs_uv);\n" : "vec4 bg_v = vec4(1.0);\n");
-    gpu_text_append(&main, "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\n");
+    bgi_gpu_text_append(&main, vis ? "vec4 bg_v = texture2D(bg_vis, macs_uv);\n" : "vec4 bg_v = vec4(1.0);\n");
+    bgi_gpu_text_append(&main, "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\n");
     {
         /* A dead ray (weight 0) gets no light work, like the stencil does for it; with the stencil
          * skip off it is shaded and multiplied by 0, as every pixel is. */
-        gpu_text_printf(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0%s) {\n    vec4 bg_term;\n",
+        bgi_gpu_text_printf(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0%s) {\n    vec4 bg_term;\n",
                         (r->key.disable_skips & BG_SKIP_STENCIL) ? "" : " && bg_max3(bg_lw) > 0.0");
         for (int i = 0; i < count; i++)
-            gpu_text_printf(&main,
+            bgi_gpu_text_printf(&main,
                             "    bg_term = bg_light_term(bg_h.xyz, bg_nr.xyz, bg_view, bg_tg.xyz, bg_b.rgb, bg_nr.w, bg_b.a, "
                             "bg_c.w >= 0.0, bg_c.rgb, bg_c.w, bg_tg.w, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], "
                             "bg_lexp[%d], bg_v.%c, %s);\n"
                             "    bg_sum += bg_lw * bg_term.rgb;\n    bg_any += bg_term.a;\n",
                             i, i, i, i, i, "xyzw"[i], skip_facing ? "true" : "false");
-        gpu_text_append(&main, "}\n");
+        bgi_gpu_text_append(&main, "}\n");
     }
     /* Adding nothing changes nothing: a pixel no light reaches skips the blend. */
-    gpu_text_append(&main, "if (bg_any == 0.0) discard;\n");
+    bgi_gpu_text_append(&main, "if (bg_any == 0.0) discard;\n");
 
     macs_output_desc output = {"radiance", "vec4(bg_sum, 0.0)"};
     macs_texture *output_tex[1] = {r->accum};
     macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, main.s, inputs, input_tex, ni, uniforms, nu, &output, output_tex, 1);
+    bgi_gpu_pass_desc_init(&desc, main.s, inputs, input_tex, ni, uniforms, nu, &output, output_tex, 1);
     desc.depth_stencil = r->depth;
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_ADD;
 
     const char *files[] = {"bg_hit_code.glsl", "bg_stage_light.glsl", NULL};
-    bg_status st = main.failed ? gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a light shader")
-                               : gpu_pass_create(r, "light pass", files, NULL, &desc, out);
-    gpu_text_free(&main);
+    bg_status st = main.failed ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a light shader")
+                               : bgi_gpu_pass_create(r, "light pass", files, NULL, &desc, out);
+    bgi_gpu_text_free(&main);
     if (st != BG_OK)
         return st;
-    return gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
+    return bgi_gpu_set_light_uniforms(r, *out, state, group * GPU_LIGHTS_PER_GROUP, count);
 }

@@ -16,7 +16,7 @@ static const double *origin_of(const bg_scene_state *state)
     return &state->camera.camera.position.x;
 }
 
-void gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16])
+void bgi_gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16])
 {
     const double *o = origin_of(state);
     const double(*m)[4] = state->objects[object].to_object;
@@ -32,7 +32,7 @@ void gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m1
     }
 }
 
-void gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3])
+void bgi_gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3])
 {
     const double *o = origin_of(state);
     out[0] = (float)(p->x - o[0]);

@@ -5,7 +5,7 @@
 
 #include "gpu_internal.h"
 
-void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
+void bgi_gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
                         macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,
                         int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
                         int output_count)
@@ -22,36 +22,36 @@ void gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_de
     d->output_textures = output_tex;
 }
 
-bg_status gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
+bg_status bgi_gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
                           macs_pass_desc *desc, macs_pass **out)
 {
     gpu_text t;
-    gpu_text_init(&t, &r->allocator);
+    bgi_gpu_text_init(&t, &r->allocator);
     const char *seen[32];
     int n = 0;
     for (int i = 0; files && files[i]; i++) {
-        if (!gpu_text_snippet(&t, files[i], seen, &n, 32)) {
-            gpu_text_free(&t);
-            return gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: shader file %s (or one it requires) is missing", what,
+        if (!bgi_gpu_text_snippet(&t, files[i], seen, &n, 32)) {
+            bgi_gpu_text_free(&t);
+            return bgi_gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: shader file %s (or one it requires) is missing", what,
                             files[i]);
         }
     }
-    gpu_text_append(&t, extra);
+    bgi_gpu_text_append(&t, extra);
     if (t.failed) {
-        gpu_text_free(&t);
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory assembling the %s", what);
+        bgi_gpu_text_free(&t);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory assembling the %s", what);
     }
     desc->functions = t.s;
     macs_status ms = macs_pass_create(r->ctx, desc, out);
-    gpu_text_free(&t);
+    bgi_gpu_text_free(&t);
     if (ms != MACS_OK) {
         *out = NULL;
-        return gpu_fail_macs(r, ms, what);
+        return bgi_gpu_fail_macs(r, ms, what);
     }
     return BG_OK;
 }
 
-bg_status gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
+bg_status bgi_gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
                                 macs_status *refused, char *why, size_t why_size)
 {
     *refused = MACS_OK;
@@ -67,19 +67,19 @@ bg_status gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc
         macs_context_clear_error(r->ctx);
         return BG_OK;
     }
-    return gpu_fail_macs(r, ms, what);
+    return bgi_gpu_fail_macs(r, ms, what);
 }
 
-bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+bg_status bgi_gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
                        macs_pass **out, bool *rejected)
 {
     desc->functions = functions;
     macs_status refused;
     char why[MACS_MESSAGE_SIZE];
-    bg_status st = gpu_pass_create_trial(r, what, desc, trial, out, &refused, why, sizeof why);
+    bg_status st = bgi_gpu_pass_create_trial(r, what, desc, trial, out, &refused, why, sizeof why);
     if (st == BG_OK && refused != MACS_OK) {
         /* The longer shader of a batch is beyond this GL: the caller falls back to smaller passes. */
-        gpu_log(r, BG_LOG_WARNING,
+        bgi_gpu_log(r, BG_LOG_WARNING,
                 "bg_render_gpu: %s: the batched shader was refused (%s), falling back to one object per pass: %s",
                 what, macs_status_string(refused), why);
         if (rejected)
@@ -88,17 +88,17 @@ bg_status gpu_pass_try(bg_renderer *r, const char *what, const char *functions, 
     return st;
 }
 
-bg_status gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
+bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
                               macs_pass_desc *desc, bool trial, macs_pass **out, bool *rejected)
 {
     bg_status st;
     if (main->failed || functions->failed)
-        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the %s shader", what);
+        st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the %s shader", what);
     else if (!files_found)
-        st = gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: a glsl110 file its shader needs is missing", what);
+        st = bgi_gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: a glsl110 file its shader needs is missing", what);
     else
-        st = gpu_pass_try(r, what, functions->s, desc, trial, out, rejected);
-    gpu_text_free(main);
-    gpu_text_free(functions);
+        st = bgi_gpu_pass_try(r, what, functions->s, desc, trial, out, rejected);
+    bgi_gpu_text_free(main);
+    bgi_gpu_text_free(functions);
     return st;
 }

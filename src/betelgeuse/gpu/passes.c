@@ -77,13 +77,13 @@ static bg_status allocate_pass_lists(bg_renderer *r, const bg_scene_state *state
     size_t n_shadow = (size_t)state->object_count * (size_t)(groups ? groups : 1);
     if (!n_shadow)
         n_shadow = 1;
-    p->hit = bg_alloc(&r->allocator, n_hit * sizeof *p->hit);
-    p->shadow = bg_alloc(&r->allocator, n_shadow * sizeof *p->shadow);
-    p->casters = bg_alloc(&r->allocator, n_shadow * sizeof *p->casters);
-    p->caster_blocks = bg_alloc(&r->allocator, n_shadow * sizeof *p->caster_blocks);
-    p->light = bg_alloc(&r->allocator, (size_t)(groups ? groups : 1) * sizeof *p->light);
+    p->hit = bgi_alloc(&r->allocator, n_hit * sizeof *p->hit);
+    p->shadow = bgi_alloc(&r->allocator, n_shadow * sizeof *p->shadow);
+    p->casters = bgi_alloc(&r->allocator, n_shadow * sizeof *p->casters);
+    p->caster_blocks = bgi_alloc(&r->allocator, n_shadow * sizeof *p->caster_blocks);
+    p->light = bgi_alloc(&r->allocator, (size_t)(groups ? groups : 1) * sizeof *p->light);
     if (!p->hit || !p->shadow || !p->casters || !p->caster_blocks || !p->light)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
     memset(p->light, 0, (size_t)(groups ? groups : 1) * sizeof *p->light);
     return BG_OK;
 }
@@ -94,16 +94,16 @@ static bg_status build_hit_batches(bg_renderer *r, const bg_scene_state *state)
 {
     gpu_passes *p = &r->passes;
     int n = (int)state->object_count;
-    gpu_batch *plan = bg_alloc(&r->allocator, (size_t)(n ? n : 1) * sizeof *plan);
+    gpu_batch *plan = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * sizeof *plan);
     if (!plan)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
-    int planned = gpu_batch_plan_hits(r, state, plan);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
+    int planned = bgi_gpu_batch_plan_hits(r, state, plan);
     bg_status st = BG_OK;
     for (int b = 0; b < planned && st == BG_OK; b++) {
         bool rejected = false;
         gpu_batch *out = &p->hit[p->hit_count];
         *out = plan[b];
-        st = gpu_hit_pass_build(r, state, (uint32_t)plan[b].first, plan[b].count, plan[b].count > 1, &out->pass,
+        st = bgi_gpu_hit_pass_build(r, state, (uint32_t)plan[b].first, plan[b].count, plan[b].count > 1, &out->pass,
                                 &rejected);
         if (st == BG_OK && !rejected) {
             p->hit_count++;
@@ -112,12 +112,12 @@ static bg_status build_hit_batches(bg_renderer *r, const bg_scene_state *state)
         for (int j = 0; j < plan[b].count && st == BG_OK; j++) {
             out = &p->hit[p->hit_count];
             *out = (gpu_batch){NULL, plan[b].first + j, 1, 0};
-            st = gpu_hit_pass_build(r, state, (uint32_t)out->first, 1, false, &out->pass, NULL);
+            st = bgi_gpu_hit_pass_build(r, state, (uint32_t)out->first, 1, false, &out->pass, NULL);
             if (st == BG_OK)
                 p->hit_count++;
         }
     }
-    bg_free(&r->allocator, plan);
+    bgi_free(&r->allocator, plan);
     return st;
 }
 
@@ -128,7 +128,7 @@ static bg_status build_shadow_batch(bg_renderer *r, const bg_scene_state *state,
     bool rejected = false;
     gpu_batch *out = &p->shadow[p->shadow_count];
     *out = *planned;
-    bg_status st = gpu_shadow_pass_build(r, state, &p->casters[planned->first], &p->caster_blocks[planned->first],
+    bg_status st = bgi_gpu_shadow_pass_build(r, state, &p->casters[planned->first], &p->caster_blocks[planned->first],
                                          planned->count, planned->group, planned->count > 1, &out->pass, &rejected);
     if (st == BG_OK && !rejected) {
         p->shadow_count++;
@@ -137,7 +137,7 @@ static bg_status build_shadow_batch(bg_renderer *r, const bg_scene_state *state,
     for (int j = 0; j < planned->count && st == BG_OK; j++) {
         out = &p->shadow[p->shadow_count];
         *out = (gpu_batch){NULL, planned->first + j, 1, planned->group};
-        st = gpu_shadow_pass_build(r, state, &p->casters[out->first], &p->caster_blocks[out->first], 1,
+        st = bgi_gpu_shadow_pass_build(r, state, &p->casters[out->first], &p->caster_blocks[out->first], 1,
                                    planned->group, false, &out->pass, NULL);
         if (st == BG_OK)
             p->shadow_count++;
@@ -162,14 +162,14 @@ static int collect_casters(gpu_passes *p, const bg_scene_state *state, int g, bo
 /* Plans and builds the shadow batches of casters[first .. first + n - 1] in group g. */
 static bg_status build_shadow_batches(bg_renderer *r, const bg_scene_state *state, int g, int first, int n)
 {
-    gpu_batch *plan = bg_alloc(&r->allocator, (size_t)n * sizeof *plan);
+    gpu_batch *plan = bgi_alloc(&r->allocator, (size_t)n * sizeof *plan);
     if (!plan)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for shadow passes");
-    int planned = gpu_batch_plan_shadows(r, state, g, first, n, plan);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for shadow passes");
+    int planned = bgi_gpu_batch_plan_shadows(r, state, g, first, n, plan);
     bg_status st = BG_OK;
     for (int b = 0; b < planned && st == BG_OK; b++)
         st = build_shadow_batch(r, state, &plan[b]);
-    bg_free(&r->allocator, plan);
+    bgi_free(&r->allocator, plan);
     return st;
 }
 
@@ -205,18 +205,18 @@ static bg_status build_light_passes(bg_renderer *r, const bg_scene_state *state,
     gpu_passes *p = &r->passes;
     bg_status st = BG_OK;
     for (int g = 0; g < p->group_count && st == BG_OK; g++)
-        st = gpu_light_pass_build(r, state, g, any_shadow, &p->light[g]);
+        st = bgi_gpu_light_pass_build(r, state, g, any_shadow, &p->light[g]);
     if (st == BG_OK)
-        st = gpu_light_pass_build(r, state, p->group_count, false, &p->once);
+        st = bgi_gpu_light_pass_build(r, state, p->group_count, false, &p->once);
     return st;
 }
 
-bg_status gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
+bg_status bgi_gpu_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
 {
     bool any_shadow = false;
     bg_status st = allocate_pass_lists(r, state);
     if (st == BG_OK)
-        st = gpu_ray_passes_build(r, state, settings);
+        st = bgi_gpu_ray_passes_build(r, state, settings);
     if (st == BG_OK)
         st = build_hit_batches(r, state);
     if (st == BG_OK)
@@ -242,28 +242,28 @@ static void release(bg_renderer *r, gpu_passes *p)
         macs_pass_destroy(p->shadow[b].pass);
     for (int g = 0; p->light && g < groups; g++)
         macs_pass_destroy(p->light[g]);
-    bg_free(&r->allocator, p->hit);
-    bg_free(&r->allocator, p->shadow);
-    bg_free(&r->allocator, p->casters);
-    bg_free(&r->allocator, p->caster_blocks);
-    bg_free(&r->allocator, p->light);
+    bgi_free(&r->allocator, p->hit);
+    bgi_free(&r->allocator, p->shadow);
+    bgi_free(&r->allocator, p->casters);
+    bgi_free(&r->allocator, p->caster_blocks);
+    bgi_free(&r->allocator, p->light);
     memset(p, 0, sizeof *p);
 }
 
-void gpu_passes_release(bg_renderer *r)
+void bgi_gpu_passes_release(bg_renderer *r)
 {
     release(r, &r->passes);
     release(r, &r->retired);
 }
 
-void gpu_passes_retire(bg_renderer *r)
+void bgi_gpu_passes_retire(bg_renderer *r)
 {
     release(r, &r->retired);
     r->retired = r->passes;
     memset(&r->passes, 0, sizeof r->passes);
 }
 
-void gpu_passes_release_retired(bg_renderer *r)
+void bgi_gpu_passes_release_retired(bg_renderer *r)
 {
     release(r, &r->retired);
 }

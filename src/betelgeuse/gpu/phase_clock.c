@@ -4,7 +4,7 @@
 
 #include "gpu_internal.h"
 
-double gpu_now_ms(void)
+double bgi_gpu_now_ms(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -12,20 +12,20 @@ double gpu_now_ms(void)
 }
 
 /* A phase's time is only its own once the GPU has drained its work, so timing waits at both ends. */
-void gpu_phase_start(bg_renderer *r, bool timing, double *clock)
+void bgi_gpu_phase_start(bg_renderer *r, bool timing, double *clock)
 {
     if (!timing)
         return;
     macs_context_finish(r->ctx);
-    *clock = gpu_now_ms();
+    *clock = bgi_gpu_now_ms();
 }
 
-void gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase)
+void bgi_gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase)
 {
     if (!timing)
         return;
     macs_context_finish(r->ctx);
-    double t = gpu_now_ms();
+    double t = bgi_gpu_now_ms();
     r->stats.phase_ms[phase] += t - *clock;
     *clock = t;
 }

@@ -17,7 +17,7 @@ static bg_status simple_pass(bg_renderer *r, const char *what, const char *const
 {
     macs_output_desc out_desc[3] = {{"out0", value}, {"out1", NULL}, {"out2", NULL}};
     macs_pass_desc desc;
-    gpu_pass_desc_init(&desc, main, inputs, input_tex, input_count, uniforms, uniform_count, out_desc, outputs,
+    bgi_gpu_pass_desc_init(&desc, main, inputs, input_tex, input_count, uniforms, uniform_count, out_desc, outputs,
                        output_count);
     desc.blend = blend;
     if (stencil) {
@@ -32,7 +32,7 @@ static bg_status simple_pass(bg_renderer *r, const char *what, const char *const
         out_desc[1].name = "out1";
         out_desc[2].name = "out2";
     }
-    return gpu_pass_create(r, what, files, NULL, &desc, out);
+    return bgi_gpu_pass_create(r, what, files, NULL, &desc, out);
 }
 
 static macs_stencil_state stencil_equal(unsigned ref, unsigned mask)
@@ -58,7 +58,7 @@ static bg_status set_camera_uniforms(bg_renderer *r, const bg_scene_state *state
     const bg_camera_data *c = &state->camera;
     float size[2] = {(float)r->width, (float)r->height};
     float eye[3];
-    gpu_origin_point(state, &c->camera.position, eye); /* (0, 0, 0): the frame's origin */
+    bgi_gpu_origin_point(state, &c->camera.position, eye); /* (0, 0, 0): the frame's origin */
     float fw[3], rt[3], up[3];
     for (int i = 0; i < 3; i++) {
         fw[i] = (float)c->forward[i];
@@ -73,7 +73,7 @@ static bg_status set_camera_uniforms(bg_renderer *r, const bg_scene_state *state
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_right", rt);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_up", up);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_tan_half", th);
-    return ms ? gpu_fail_macs(r, ms, "camera pass uniforms") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "camera pass uniforms") : BG_OK;
 }
 
 /* Camera rays: one per pixel centre into ray set 0. */
@@ -110,12 +110,12 @@ static bg_status build_mark_pass(bg_renderer *r)
     }
     macs_pass_desc desc;
     macs_output_desc od = {"none", "vec4(0.0)"};
-    gpu_pass_desc_init(&desc, "if (texture2D(bg_ray_weight, macs_uv).a <= 0.0) discard;\n", in, in_tex, 1, NULL, 0,
+    bgi_gpu_pass_desc_init(&desc, "if (texture2D(bg_ray_weight, macs_uv).a <= 0.0) discard;\n", in, in_tex, 1, NULL, 0,
                        &od, outs, 1);
     desc.depth_stencil = r->depth;
     desc.stencil = s;
     desc.color_mask = MACS_COLOR_MASK_NONE;
-    return gpu_pass_create(r, "mark pass", NULL, NULL, &desc, &r->passes.mark);
+    return bgi_gpu_pass_create(r, "mark pass", NULL, NULL, &desc, &r->passes.mark);
 }
 
 /* Background where a live ray missed every object: the hit bit is clear. Its colour is a plain
@@ -135,7 +135,7 @@ static bg_status build_background_pass(bg_renderer *r, const double background[3
         return st;
     float bgc[3] = {(float)background[0], (float)background[1], (float)background[2]};
     macs_status ms = macs_pass_set_uniform(r->passes.background, "bg_background", bgc);
-    return ms ? gpu_fail_macs(r, ms, "background uniforms") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "background uniforms") : BG_OK;
 }
 
 /* Whether children are spawned at all: the settings ask for bounces (the key's choice) and some
@@ -174,8 +174,8 @@ static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
 {
     const gpu_features *f = &r->features;
     bool reflect = kind == SPAWN_REFLECT;
-    gpu_text_append(main, "vec4 bg_o0, bg_o1, bg_o2;\n");
-    gpu_text_printf(main,
+    bgi_gpu_text_append(main, "vec4 bg_o0, bg_o1, bg_o2;\n");
+    bgi_gpu_text_printf(main,
                     "bg_spawn(%s, texture2D(bg_g_hit, macs_uv), texture2D(bg_g_normal, macs_uv), %s, %s, %s, %s, "
                     "texture2D(bg_ray_dir, macs_uv), texture2D(bg_ray_weight, macs_uv), bg_min_weight, "
                     "bg_o0, bg_o1, bg_o2);\n",
@@ -200,20 +200,20 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
                                            : stencil_equal(GPU_STENCIL_HIT, GPU_STENCIL_HIT);
     const char *files[] = {"bg_stage_spawn.glsl", NULL};
     gpu_text main;
-    gpu_text_init(&main, &r->allocator);
+    bgi_gpu_text_init(&main, &r->allocator);
     spawn_main(r, kind, &main);
     bg_status st;
     if (main.failed)
-        st = gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the spawn shader");
+        st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the spawn shader");
     else
         st = simple_pass(r, kind == SPAWN_REFRACT ? "refraction pass" : "reflection pass", files, main.s, in, ni,
                          in_tex, u, 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);
-    gpu_text_free(&main);
+    bgi_gpu_text_free(&main);
     if (st != BG_OK)
         return st;
     float mw = (float)r->key.min_weight;
     macs_status ms = macs_pass_set_uniform(*out, "bg_min_weight", &mw);
-    return ms ? gpu_fail_macs(r, ms, "spawn uniforms") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "spawn uniforms") : BG_OK;
 }
 
 /* Resolve to the output encoding, into an RGBA8 target read back by frame.c. */
@@ -230,10 +230,10 @@ static bg_status build_resolve_pass(bg_renderer *r)
                        outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve);
 }
 
-bg_status gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
+bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
 {
     gpu_ray_set *set0 = NULL;
-    bg_status st = gpu_ray_set_get(r, 0, &set0);
+    bg_status st = bgi_gpu_ray_set_get(r, 0, &set0);
     if (st == BG_OK)
         st = build_camera_pass(r, state, set0);
     if (st == BG_OK)

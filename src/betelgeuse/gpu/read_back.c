@@ -4,21 +4,21 @@
 #include "../common/alloc.h"
 #include "gpu_internal.h"
 
-bg_status gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque)
+bg_status bgi_gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque)
 {
     size_t w = (size_t)image->width, h = (size_t)image->height;
     bool as_float = image->format == BG_PIXEL_RGBA32F;
     size_t row = w * (as_float ? 16 : 4);
     if (r->readback_size < row * h) {
-        bg_free(&r->allocator, r->readback);
-        r->readback = bg_alloc(&r->allocator, row * h);
+        bgi_free(&r->allocator, r->readback);
+        r->readback = bgi_alloc(&r->allocator, row * h);
         r->readback_size = r->readback ? row * h : 0;
         if (!r->readback)
-            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the read-back buffer");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the read-back buffer");
     }
     macs_status ms = macs_texture_read(texture, r->readback, 0);
     if (ms)
-        return gpu_fail_macs(r, ms, "reading the image back");
+        return bgi_gpu_fail_macs(r, ms, "reading the image back");
     /* GL rows run bottom-up, the caller's top-down. */
     const unsigned char *src = (const unsigned char *)r->readback;
     for (size_t y = 0; y < h; y++) {

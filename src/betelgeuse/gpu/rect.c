@@ -2,7 +2,7 @@
  * and adds nothing, so a union may start from {0, 0, 0, 0}. */
 #include "gpu_internal.h"
 
-void gpu_rect_union(int a[4], const int b[4])
+void bgi_gpu_rect_union(int a[4], const int b[4])
 {
     if (b[2] == 0 || b[3] == 0)
         return;

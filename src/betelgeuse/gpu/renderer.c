@@ -28,9 +28,9 @@ static bg_status create_fail(const bg_renderer_desc *desc, char *message, size_t
 static void choose_half_gbuffer(bg_renderer *r)
 {
     char why[512];
-    r->half_gbuffer = gpu_half_probe(r, why, sizeof why);
+    r->half_gbuffer = bgi_gpu_half_probe(r, why, sizeof why);
     if (!r->half_gbuffer)
-        gpu_log(r, BG_LOG_WARNING, "bg_renderer_create: RGBA16F G-buffer unsupported (%s); using RGBA32F", why);
+        bgi_gpu_log(r, BG_LOG_WARNING, "bg_renderer_create: RGBA16F G-buffer unsupported (%s); using RGBA32F", why);
 }
 
 bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer, char *message,
@@ -46,10 +46,10 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
     if (!desc->context)
         return create_fail(desc, message, message_size, BG_ERR_INVALID_ARGUMENT,
                            "desc->context is NULL (a MACS context is required)");
-    if (!bg_allocator_valid(&desc->allocator))
+    if (!bgi_allocator_valid(&desc->allocator))
         return create_fail(desc, message, message_size, BG_ERR_INVALID_ARGUMENT,
                            "desc->allocator must set alloc and free together (realloc is optional), or nothing");
-    bg_renderer *r = bg_alloc(&desc->allocator, sizeof *r);
+    bg_renderer *r = bgi_alloc(&desc->allocator, sizeof *r);
     if (!r)
         return create_fail(desc, message, message_size, BG_ERR_OUT_OF_MEMORY,
                            "out of memory: desc->allocator returned NULL for the renderer");
@@ -67,12 +67,12 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
     return BG_OK;
 }
 
-void gpu_release_all(bg_renderer *r)
+void bgi_gpu_release_all(bg_renderer *r)
 {
-    gpu_passes_release(r);
-    gpu_targets_release(r);
-    gpu_scene_textures_release(r);
-    gpu_fused_release(r);
+    bgi_gpu_passes_release(r);
+    bgi_gpu_targets_release(r);
+    bgi_gpu_scene_textures_release(r);
+    bgi_gpu_fused_release(r);
     memset(&r->key, 0, sizeof r->key);
 }
 
@@ -80,9 +80,9 @@ void bg_renderer_destroy(bg_renderer *renderer)
 {
     if (!renderer)
         return;
-    gpu_release_all(renderer);
+    bgi_gpu_release_all(renderer);
     bg_allocator a = renderer->allocator;
-    bg_free(&a, renderer);
+    bgi_free(&a, renderer);
 }
 
 bg_status bg_renderer_error(const bg_renderer *renderer)

@@ -16,12 +16,12 @@ static const char *const shape_file[BG_SHAPE_COUNT_] = {BG_SHAPES(FILE_OF)};
 /* The most names a stage renames besides bg_shape_span. */
 #define MAX_STAGE_NAMES 7
 
-const char *gpu_shape_suffix(bg_shape shape)
+const char *bgi_gpu_shape_suffix(bg_shape shape)
 {
     return shape_suffix[shape];
 }
 
-bool gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint32_t *objects, int count,
+bool bgi_gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint32_t *objects, int count,
                            const char *stage_file, const char *const *stage_names, const char **seen,
                            int *seen_count, int seen_cap)
 {
@@ -42,8 +42,8 @@ bool gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint3
         if (done[shape])
             continue;
         done[shape] = true;
-        ok = gpu_text_snippet_renamed(t, shape_file[shape], span, shape_suffix[shape], seen, seen_count, seen_cap) &&
-             gpu_text_snippet_renamed(t, stage_file, renamed, shape_suffix[shape], seen, seen_count, seen_cap);
+        ok = bgi_gpu_text_snippet_renamed(t, shape_file[shape], span, shape_suffix[shape], seen, seen_count, seen_cap) &&
+             bgi_gpu_text_snippet_renamed(t, stage_file, renamed, shape_suffix[shape], seen, seen_count, seen_cap);
     }
     return ok;
 }

@@ -7,7 +7,7 @@
 #include "../common/alloc.h"
 #include "gpu_internal.h"
 
-bg_status gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
+bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
 {
     if (*out)
         return BG_OK;
@@ -17,10 +17,10 @@ bg_status gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, m
     d.height = h;
     d.format = format;
     macs_status ms = macs_texture_create(r->ctx, &d, out);
-    return ms ? gpu_fail_macs(r, ms, what) : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, what) : BG_OK;
 }
 
-macs_format gpu_slot_format(const bg_renderer *r, gpu_slot slot)
+macs_format bgi_gpu_slot_format(const bg_renderer *r, gpu_slot slot)
 {
     if (!r->half_gbuffer)
         return MACS_FORMAT_RGBA32F;
@@ -44,7 +44,7 @@ macs_format gpu_slot_format(const bg_renderer *r, gpu_slot slot)
     }
 }
 
-bool gpu_half_probe(bg_renderer *r, char *why, size_t why_size)
+bool bgi_gpu_half_probe(bg_renderer *r, char *why, size_t why_size)
 {
     /* Exact in half and float, not in 8 bits: an implementation that quietly stores RGBA16F with
      * fewer bits fails the comparison. Values stay in [0, 1] so that missing ARB_color_buffer_float
@@ -71,7 +71,7 @@ bool gpu_half_probe(bg_renderer *r, char *why, size_t why_size)
          * (MACS's fallback) wants every colour attachment of a framebuffer in one format. */
         macs_output_desc outputs[2] = {{"full", value}, {"half", value}};
         macs_pass_desc desc;
-        gpu_pass_desc_init(&desc, NULL, NULL, NULL, 0, NULL, 0, outputs, tex, 2);
+        bgi_gpu_pass_desc_init(&desc, NULL, NULL, NULL, 0, NULL, 0, outputs, tex, 2);
         ms = macs_pass_create(r->ctx, &desc, &pass);
     }
     if (!ms)
@@ -99,7 +99,7 @@ bool gpu_half_probe(bg_renderer *r, char *why, size_t why_size)
     return ok;
 }
 
-void gpu_targets_release(bg_renderer *r)
+void bgi_gpu_targets_release(bg_renderer *r)
 {
     for (int s = 0; s < GPU_SLOT_COUNT; s++) {
         macs_texture_destroy(r->gbuffer[s]);
@@ -116,76 +116,76 @@ void gpu_targets_release(bg_renderer *r)
         macs_texture_destroy(r->sets[i].dir);
         macs_texture_destroy(r->sets[i].weight);
     }
-    bg_free(&r->allocator, r->sets);
+    bgi_free(&r->allocator, r->sets);
     r->sets = NULL;
     r->set_count = 0;
-    bg_free(&r->allocator, r->readback);
+    bgi_free(&r->allocator, r->readback);
     r->readback = NULL;
     r->readback_size = 0;
     r->width = r->height = 0;
 }
 
-bg_status gpu_targets_prepare(bg_renderer *r, int w, int h)
+bg_status bgi_gpu_targets_prepare(bg_renderer *r, int w, int h)
 {
     if (r->width != w || r->height != h)
-        gpu_targets_release(r);
+        bgi_gpu_targets_release(r);
     r->width = w;
     r->height = h;
     bg_status st = BG_OK;
     for (int s = 0; s < GPU_SLOT_COUNT && st == BG_OK; s++)
         if (r->features.slot[s])
-            st = gpu_texture_ensure(r, w, h, gpu_slot_format(r, (gpu_slot)s), &r->gbuffer[s], "G-buffer texture");
+            st = bgi_gpu_texture_ensure(r, w, h, bgi_gpu_slot_format(r, (gpu_slot)s), &r->gbuffer[s], "G-buffer texture");
     if (st == BG_OK)
-        st = gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
+        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
     /* Visibility is 0 or 1 per channel: 8 bits hold it exactly. */
     if (st == BG_OK)
-        st = gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->vis, "visibility texture");
+        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->vis, "visibility texture");
     if (st == BG_OK)
-        st = gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->encoded, "output texture");
+        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->encoded, "output texture");
     if (st == BG_OK && !r->depth) {
         macs_depth_stencil_desc d = {w, h, r->float_depth ? MACS_DEPTH32F_STENCIL8 : MACS_DEPTH24_STENCIL8};
         macs_status ms = macs_depth_stencil_create(r->ctx, &d, &r->depth);
         if (ms)
-            st = gpu_fail_macs(r, ms, "depth/stencil buffer");
+            st = bgi_gpu_fail_macs(r, ms, "depth/stencil buffer");
     }
     return st;
 }
 
-bg_status gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
+bg_status bgi_gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
 {
     if (index >= r->set_count) {
         size_t old = (size_t)r->set_count * sizeof *r->sets, need = (size_t)(index + 1) * sizeof *r->sets;
-        gpu_ray_set *grown = bg_realloc(&r->allocator, r->sets, old, need);
+        gpu_ray_set *grown = bgi_realloc(&r->allocator, r->sets, old, need);
         if (!grown)
-            return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for ray set %d", index);
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for ray set %d", index);
         memset((char *)grown + old, 0, need - old);
         r->sets = grown;
         r->set_count = index + 1;
     }
     gpu_ray_set *s = &r->sets[index];
-    bg_status st = gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
+    bg_status st = bgi_gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
     if (st == BG_OK)
-        st = gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
+        st = bgi_gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
     if (st == BG_OK)
-        st = gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
+        st = bgi_gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
     *out = s;
     return st;
 }
 
-void gpu_scene_textures_release(bg_renderer *r)
+void bgi_gpu_scene_textures_release(bg_renderer *r)
 {
     for (uint32_t i = 0; i < r->texture_count; i++)
         macs_texture_destroy(r->textures[i]);
-    bg_free(&r->allocator, r->textures);
+    bgi_free(&r->allocator, r->textures);
     r->textures = NULL;
     r->texture_count = 0;
     macs_texture_destroy(r->white);
     r->white = NULL;
 }
 
-bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state)
+bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state)
 {
-    gpu_scene_textures_release(r);
+    bgi_gpu_scene_textures_release(r);
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     macs_texture_desc d;
     memset(&d, 0, sizeof d);
@@ -195,23 +195,23 @@ bg_status gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state
     d.data = white;
     macs_status ms = macs_texture_create(r->ctx, &d, &r->white);
     if (ms)
-        return gpu_fail_macs(r, ms, "white texture");
+        return bgi_gpu_fail_macs(r, ms, "white texture");
     if (state->texture_count == 0)
         return BG_OK;
-    r->textures = bg_alloc(&r->allocator, state->texture_count * sizeof *r->textures);
+    r->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *r->textures);
     if (!r->textures)
-        return gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
     memset(r->textures, 0, state->texture_count * sizeof *r->textures);
     r->texture_count = state->texture_count;
     for (uint32_t i = 0; i < state->texture_count; i++) {
-        bg_status st = gpu_scene_texture_upload(r, &state->textures[i], &r->textures[i]);
+        bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &r->textures[i]);
         if (st != BG_OK)
             return st;
     }
     return BG_OK;
 }
 
-bg_status gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
+bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
 {
     macs_texture_desc d;
     memset(&d, 0, sizeof d);
@@ -222,5 +222,5 @@ bg_status gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, mac
     d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
     d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
     macs_status ms = macs_texture_create(r->ctx, &d, out);
-    return ms ? gpu_fail_macs(r, ms, "scene texture") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "scene texture") : BG_OK;
 }

@@ -18,13 +18,13 @@ static bg_status io_fail(const char *path, const png_image *png, const char *wha
 {
     char buf[BG_MESSAGE_SIZE];
     snprintf(buf, sizeof buf, "%s: %s: %s", path, what, png->message[0] ? png->message : "unknown libpng error");
-    bg_message_copy(message, size, buf);
+    bgi_message_copy(message, size, buf);
     return BG_ERR_IO;
 }
 
 static bg_status arg_fail(const char *text, char *message, size_t size)
 {
-    bg_message_copy(message, size, text);
+    bgi_message_copy(message, size, text);
     return BG_ERR_INVALID_ARGUMENT;
 }
 
@@ -32,13 +32,13 @@ static bg_status arg_fail(const char *text, char *message, size_t size)
 static bg_status check_file_and_image(const char *fn, const char *path, const bg_image *image,
                                       size_t *stride, char *message, size_t size)
 {
-    bg_message_copy(message, size, "");
+    bgi_message_copy(message, size, "");
     char buf[BG_MESSAGE_SIZE], detail[256];
     if (!path) {
         snprintf(buf, sizeof buf, "%s: path is NULL", fn);
         return arg_fail(buf, message, size);
     }
-    if (bg_image_check(image, stride, detail, sizeof detail) != BG_OK) {
+    if (bgi_image_check(image, stride, detail, sizeof detail) != BG_OK) {
         snprintf(buf, sizeof buf, "%s: %s", fn, detail);
         return arg_fail(buf, message, size);
     }
@@ -51,7 +51,7 @@ static bg_status check_file_and_image(const char *fn, const char *path, const bg
 
 bg_status bg_png_size(const char *path, int *width, int *height, char *message, size_t message_size)
 {
-    bg_message_copy(message, message_size, "");
+    bgi_message_copy(message, message_size, "");
     if (!path)
         return arg_fail("bg_png_size: path is NULL", message, message_size);
     if (!width || !height)
@@ -59,12 +59,12 @@ bg_status bg_png_size(const char *path, int *width, int *height, char *message, 
                                : "bg_png_size: height is NULL (it receives the image height)",
                         message, message_size);
     bg_png_reader r;
-    bg_status st = bg_png_reader_open(&r, path, message, message_size);
+    bg_status st = bgi_png_reader_open(&r, path, message, message_size);
     if (st != BG_OK)
         return st;
     *width = r.width;
     *height = r.height;
-    bg_png_reader_close(&r);
+    bgi_png_reader_close(&r);
     return BG_OK;
 }
 
@@ -73,20 +73,20 @@ bg_status bg_png_size(const char *path, int *width, int *height, char *message, 
 static bg_status read_samples(bg_png_reader *r, const bg_allocator *a, unsigned char **out, char *message,
                               size_t size)
 {
-    size_t row = bg_png_reader_row_bytes(r);
-    *out = bg_alloc(a, row * (size_t)r->height);
+    size_t row = bgi_png_reader_row_bytes(r);
+    *out = bgi_alloc(a, row * (size_t)r->height);
     if (!*out) {
         char buf[BG_MESSAGE_SIZE];
         snprintf(buf, sizeof buf, "%s: out of memory for %dx%d %d-bit RGBA samples", r->path, r->width,
                  r->height, r->bits);
-        bg_message_copy(message, size, buf);
-        bg_png_reader_close(r);
+        bgi_message_copy(message, size, buf);
+        bgi_png_reader_close(r);
         return BG_ERR_OUT_OF_MEMORY;
     }
-    bg_status st = bg_png_reader_read(r, *out, row, message, size);
-    bg_png_reader_close(r);
+    bg_status st = bgi_png_reader_read(r, *out, row, message, size);
+    bgi_png_reader_close(r);
     if (st != BG_OK) {
-        bg_free(a, *out);
+        bgi_free(a, *out);
         *out = NULL;
     }
     return st;
@@ -134,18 +134,18 @@ bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t m
     if (st != BG_OK)
         return st;
     bg_png_reader r;
-    if ((st = bg_png_reader_open(&r, path, message, message_size)) != BG_OK)
+    if ((st = bgi_png_reader_open(&r, path, message, message_size)) != BG_OK)
         return st;
     if (r.width != image->width || r.height != image->height) {
         char buf[BG_MESSAGE_SIZE];
         snprintf(buf, sizeof buf, "bg_png_load: %s is %dx%d but image is %dx%d", path, r.width, r.height,
                  image->width, image->height);
-        bg_png_reader_close(&r);
+        bgi_png_reader_close(&r);
         return arg_fail(buf, message, message_size);
     }
     if (image->format == BG_PIXEL_RGBA8 && r.bits == 8) {
-        st = bg_png_reader_read(&r, image->pixels, stride, message, message_size);
-        bg_png_reader_close(&r);
+        st = bgi_png_reader_read(&r, image->pixels, stride, message, message_size);
+        bgi_png_reader_close(&r);
         return st;
     }
     static const bg_allocator heap = {NULL, NULL, NULL, NULL};
@@ -154,7 +154,7 @@ bg_status bg_png_load(const char *path, bg_image *image, char *message, size_t m
     if ((st = read_samples(&r, &heap, &samples, message, message_size)) != BG_OK)
         return st;
     store_samples(samples, bits, image, stride);
-    bg_free(&heap, samples);
+    bgi_free(&heap, samples);
     return BG_OK;
 }
 
@@ -187,9 +187,9 @@ bg_status bg_png_save(const char *path, const bg_image *image, char *message, si
     unsigned char *tmp = NULL;
     if (image->format == BG_PIXEL_RGBA32F) {
         row_stride = (size_t)image->width * 4;
-        tmp = bg_alloc(&heap, row_stride * (size_t)image->height);
+        tmp = bgi_alloc(&heap, row_stride * (size_t)image->height);
         if (!tmp) {
-            bg_message_copy(message, message_size, "bg_png_save: out of memory");
+            bgi_message_copy(message, message_size, "bg_png_save: out of memory");
             return BG_ERR_OUT_OF_MEMORY;
         }
         for (int y = 0; y < image->height; y++) {
@@ -200,7 +200,7 @@ bg_status bg_png_save(const char *path, const bg_image *image, char *message, si
         bytes = tmp;
     }
     int ok = png_image_write_to_file(&png, path, 0, bytes, (png_int_32)row_stride, NULL);
-    bg_free(&heap, tmp);
+    bgi_free(&heap, tmp);
     if (!ok) {
         st = io_fail(path, &png, "cannot write PNG", message, message_size);
         png_image_free(&png);
@@ -210,29 +210,29 @@ bg_status bg_png_save(const char *path, const bg_image *image, char *message, si
     return BG_OK;
 }
 
-/* A 16-bit file as the linear float RGBA image bg_texture_add takes, keeping all 16 bits: colour as
+/* A 16-bit file as the linear float RGBA image bgi_texture_add takes, keeping all 16 bits: colour as
  * desc's encoding says (the sRGB EOTF of v / 65535, or v / 65535 as it is), alpha always v / 65535.
- * That is bg_texture_add's rule for 8-bit texels, at the file's precision; any encoding other than
- * sRGB is read as linear here and then rejected by bg_texture_add if it is not a valid one. */
+ * That is bgi_texture_add's rule for 8-bit texels, at the file's precision; any encoding other than
+ * sRGB is read as linear here and then rejected by bgi_texture_add if it is not a valid one. */
 static bg_status texels_from_16(bg_scene *scene, const unsigned char *samples, const bg_texture_desc *desc,
                                 bg_image *image)
 {
     size_t count = (size_t)image->width * (size_t)image->height * 4;
-    float *texels = bg_alloc(&scene->allocator, count * sizeof(float));
-    float *decode = bg_alloc(&scene->allocator, 65536 * sizeof(float));
+    float *texels = bgi_alloc(&scene->allocator, count * sizeof(float));
+    float *decode = bgi_alloc(&scene->allocator, 65536 * sizeof(float));
     if (!texels || !decode) {
-        bg_free(&scene->allocator, texels);
-        bg_free(&scene->allocator, decode);
+        bgi_free(&scene->allocator, texels);
+        bgi_free(&scene->allocator, decode);
         return BG_ERR_OUT_OF_MEMORY;
     }
     bool srgb = !desc || desc->encoding == BG_TEXTURE_SRGB;
     for (unsigned v = 0; v < 65536; v++)
-        decode[v] = (float)(srgb ? bg_srgb_to_linear(v / 65535.0) : v / 65535.0);
+        decode[v] = (float)(srgb ? bgi_srgb_to_linear(v / 65535.0) : v / 65535.0);
     for (size_t i = 0; i < count; i++) {
         unsigned v = sample_16(samples + 2 * i);
         texels[i] = i % 4 == 3 ? (float)(v / 65535.0) : decode[v];
     }
-    bg_free(&scene->allocator, decode);
+    bgi_free(&scene->allocator, decode);
     image->format = BG_PIXEL_RGBA32F;
     image->pixels = texels;
     return BG_OK;
@@ -245,26 +245,26 @@ bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!path)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: path is NULL", where);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: path is NULL", where);
     if (!out_texture)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_texture is NULL", where);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_texture is NULL", where);
     char msg[BG_MESSAGE_SIZE];
     bg_png_reader r;
     unsigned char *samples;
-    bg_status st = bg_png_reader_open(&r, path, msg, sizeof msg);
+    bg_status st = bgi_png_reader_open(&r, path, msg, sizeof msg);
     if (st == BG_OK)
         st = read_samples(&r, &scene->allocator, &samples, msg, sizeof msg);
     if (st != BG_OK)
-        return bg_scene_fail(scene, st, "%s: %s", where, msg);
+        return bgi_scene_fail(scene, st, "%s: %s", where, msg);
     /* 8-bit samples are an RGBA8 image as they stand; 16-bit ones become linear floats. */
     bg_image image = {r.width, r.height, BG_PIXEL_RGBA8, 0, samples};
     if (r.bits == 16 && texels_from_16(scene, samples, desc, &image) != BG_OK) {
-        bg_free(&scene->allocator, samples);
-        return bg_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: %s: out of memory", where, path);
+        bgi_free(&scene->allocator, samples);
+        return bgi_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: %s: out of memory", where, path);
     }
     if (image.pixels != samples)
-        bg_free(&scene->allocator, samples);
-    st = bg_texture_add(scene, where, &image, desc, out_texture);
-    bg_free(&scene->allocator, image.pixels);
+        bgi_free(&scene->allocator, samples);
+    st = bgi_texture_add(scene, where, &image, desc, out_texture);
+    bgi_free(&scene->allocator, image.pixels);
     return st;
 }

@@ -14,7 +14,7 @@
 static void keep_reason(bg_png_reader *r, const char *text)
 {
     if (!r->reason[0])
-        bg_message_copy(r->reason, sizeof r->reason, text);
+        bgi_message_copy(r->reason, sizeof r->reason, text);
 }
 
 static void on_libpng_error(png_structp png, png_const_charp text)
@@ -52,7 +52,7 @@ static void read_from_file(png_structp png, png_bytep data, size_t length)
     }
 }
 
-void bg_png_reader_close(bg_png_reader *r)
+void bgi_png_reader_close(bg_png_reader *r)
 {
     if (r->png)
         png_destroy_read_struct(&r->png, r->info ? &r->info : NULL, NULL);
@@ -77,7 +77,7 @@ static void write_message(char *message, size_t size, const char *format, ...)
 static bg_status reader_fail(bg_png_reader *r, bg_status status, const char *what, char *message, size_t size)
 {
     write_message(message, size, "%s: %s: %s", r->path, what, r->reason[0] ? r->reason : "unknown libpng error");
-    bg_png_reader_close(r);
+    bgi_png_reader_close(r);
     return status;
 }
 
@@ -132,11 +132,11 @@ static bg_status check_size(bg_png_reader *r, char *message, size_t size)
     snprintf(r->reason, sizeof r->reason, "PNG size %ux%u is outside [1, %d] per side", (unsigned)r->width,
              (unsigned)r->height, BG_MAX_IMAGE_SIDE);
     write_message(message, size, "%s: %s", r->path, r->reason);
-    bg_png_reader_close(r);
+    bgi_png_reader_close(r);
     return BG_ERR_IO;
 }
 
-bg_status bg_png_reader_open(bg_png_reader *r, const char *path, char *message, size_t size)
+bg_status bgi_png_reader_open(bg_png_reader *r, const char *path, char *message, size_t size)
 {
     memset(r, 0, sizeof *r);
     r->path = path;
@@ -160,7 +160,7 @@ bg_status bg_png_reader_open(bg_png_reader *r, const char *path, char *message, 
     return check_size(r, message, size);
 }
 
-size_t bg_png_reader_row_bytes(const bg_png_reader *r)
+size_t bgi_png_reader_row_bytes(const bg_png_reader *r)
 {
     return (size_t)r->width * 4 * (size_t)(r->bits / 8);
 }
@@ -175,7 +175,7 @@ static void read_rows(bg_png_reader *r, unsigned char *pixels, size_t stride)
     png_read_end(r->png, NULL);
 }
 
-bg_status bg_png_reader_read(bg_png_reader *r, unsigned char *pixels, size_t stride, char *message, size_t size)
+bg_status bgi_png_reader_read(bg_png_reader *r, unsigned char *pixels, size_t stride, char *message, size_t size)
 {
     if (setjmp(png_jmpbuf(r->png)))
         return reader_fail(r, BG_ERR_IO, "cannot read PNG data", message, size);

@@ -24,14 +24,14 @@ typedef struct bg_png_reader {
 
 /* Opens path and reads its header, checking the size against BG_MAX_IMAGE_SIDE. On failure writes
  * "path: what: reason" and leaves nothing open. */
-bg_status bg_png_reader_open(bg_png_reader *r, const char *path, char *message, size_t size);
+bg_status bgi_png_reader_open(bg_png_reader *r, const char *path, char *message, size_t size);
 /* Bytes of one row of samples: width * 4 channels * bits / 8. */
-size_t bg_png_reader_row_bytes(const bg_png_reader *r);
+size_t bgi_png_reader_row_bytes(const bg_png_reader *r);
 /* Reads every row as RGBA into pixels, rows stride bytes apart, 16-bit samples big-endian as the
  * file stores them; then reads the rest of the file, so that truncation and bad CRCs are caught.
  * On failure writes "path: cannot read PNG data: reason" and closes the reader. */
-bg_status bg_png_reader_read(bg_png_reader *r, unsigned char *pixels, size_t stride, char *message, size_t size);
+bg_status bgi_png_reader_read(bg_png_reader *r, unsigned char *pixels, size_t stride, char *message, size_t size);
 /* Frees what open allocated; safe after a failed open and when called twice. */
-void bg_png_reader_close(bg_png_reader *r);
+void bgi_png_reader_close(bg_png_reader *r);
 
 #endif

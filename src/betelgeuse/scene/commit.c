@@ -66,7 +66,7 @@ static void object_bounds(half_extent_fn half_extent, const bg_mat4 *transform, 
     }
 }
 
-bool bg_object_world_box(const bg_object_desc *desc, double lo[3], double hi[3])
+bool bgi_object_world_box(const bg_object_desc *desc, double lo[3], double hi[3])
 {
     half_extent_fn half_extent = shape_half_extent[desc->shape];
     if (half_extent) {
@@ -82,7 +82,7 @@ bool bg_object_world_box(const bg_object_desc *desc, double lo[3], double hi[3])
 
 static void normalize3(double v[3])
 {
-    double l = bg_vec3_length(bg_vec3_make(v[0], v[1], v[2]));
+    double l = bgi_vec3_length(bg_vec3_make(v[0], v[1], v[2]));
     v[0] /= l; v[1] /= l; v[2] /= l;
 }
 
@@ -115,35 +115,35 @@ static bg_status validate_all(bg_scene *s)
 {
     char where[64];
     bg_status st;
-    if ((st = bg_validate_camera(s, "bg_scene_commit: camera", &s->camera)) != BG_OK ||
-        (st = bg_validate_color3(s, where_commit, "ambient", s->ambient)) != BG_OK)
+    if ((st = bgi_validate_camera(s, "bg_scene_commit: camera", &s->camera)) != BG_OK ||
+        (st = bgi_validate_color3(s, where_commit, "ambient", s->ambient)) != BG_OK)
         return st;
     const bg_texture_data *t = s->textures.data;
     for (uint32_t i = 0; i < s->textures.count; i++)
         if (!t[i].texels || t[i].width <= 0 || t[i].height <= 0)
-            return bg_scene_fail(s, BG_ERR_INVALID_ARGUMENT, "%s: texture %u has no texels", where_commit, i + 1);
+            return bgi_scene_fail(s, BG_ERR_INVALID_ARGUMENT, "%s: texture %u has no texels", where_commit, i + 1);
     const bg_material *m = s->materials.data;
     for (uint32_t i = 0; i < s->materials.count; i++) {
         snprintf(where, sizeof where, "%s: material %u", where_commit, i + 1);
-        if ((st = bg_validate_material(s, where, &m[i], s->textures.count)) != BG_OK)
+        if ((st = bgi_validate_material(s, where, &m[i], s->textures.count)) != BG_OK)
             return st;
     }
     const bg_light *l = s->lights.data;
     for (uint32_t i = 0; i < s->lights.count; i++) {
         snprintf(where, sizeof where, "%s: light %u", where_commit, i + 1);
-        if ((st = bg_validate_light(s, where, &l[i])) != BG_OK)
+        if ((st = bgi_validate_light(s, where, &l[i])) != BG_OK)
             return st;
     }
     const bg_object_desc *o = s->objects.data;
     for (uint32_t i = 0; i < s->objects.count; i++) {
         snprintf(where, sizeof where, "%s: object %u", where_commit, i + 1);
-        if ((st = bg_validate_object(s, where, &o[i], s->materials.count)) != BG_OK)
+        if ((st = bgi_validate_object(s, where, &o[i], s->materials.count)) != BG_OK)
             return st;
         /* The inverse itself must be finite too (validate_object only tests the ratio). */
         double inv[4][4];
-        bg_affine_check c = bg_affine_inverse(&o[i].transform, inv);
+        bg_affine_check c = bgi_affine_inverse(&o[i].transform, inv);
         if (c != BG_AFFINE_OK)
-            return bg_scene_fail(s, BG_ERR_INVALID_ARGUMENT, "%s: transform %s", where, bg_affine_check_string(c));
+            return bgi_scene_fail(s, BG_ERR_INVALID_ARGUMENT, "%s: transform %s", where, bgi_affine_check_string(c));
     }
     return BG_OK;
 }
@@ -153,16 +153,16 @@ static bg_status validate_all(bg_scene *s)
 static bg_status reserve_all(bg_scene *s)
 {
     bg_status st;
-    if ((st = bg_array_reserve(s, &s->c_objects, s->objects.count, sizeof(bg_object_data), where_commit)) != BG_OK)
+    if ((st = bgi_array_reserve(s, &s->c_objects, s->objects.count, sizeof(bg_object_data), where_commit)) != BG_OK)
         return st;
     s->state.objects = s->c_objects.data;
-    if ((st = bg_array_reserve(s, &s->c_materials, s->materials.count, sizeof(bg_material), where_commit)) != BG_OK)
+    if ((st = bgi_array_reserve(s, &s->c_materials, s->materials.count, sizeof(bg_material), where_commit)) != BG_OK)
         return st;
     s->state.materials = s->c_materials.data;
-    if ((st = bg_array_reserve(s, &s->c_lights, s->lights.count, sizeof(bg_light), where_commit)) != BG_OK)
+    if ((st = bgi_array_reserve(s, &s->c_lights, s->lights.count, sizeof(bg_light), where_commit)) != BG_OK)
         return st;
     s->state.lights = s->c_lights.data;
-    if ((st = bg_array_reserve(s, &s->c_textures, s->textures.count, sizeof(bg_texture_data), where_commit)) != BG_OK)
+    if ((st = bgi_array_reserve(s, &s->c_textures, s->textures.count, sizeof(bg_texture_data), where_commit)) != BG_OK)
         return st;
     s->state.textures = s->c_textures.data;
     return BG_OK;
@@ -172,7 +172,7 @@ static void commit_object(const bg_object_desc *d, bg_object_data *o)
 {
     o->shape = d->shape;
     memcpy(o->to_world, d->transform.m, sizeof o->to_world);
-    bg_affine_inverse(&d->transform, o->to_object); /* checked in validate_all */
+    bgi_affine_inverse(&d->transform, o->to_object); /* checked in validate_all */
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
             o->normal_to_world[i][j] = o->to_object[j][i];
@@ -181,14 +181,14 @@ static void commit_object(const bg_object_desc *d, bg_object_data *o)
     o->uv_scale[0] = d->uv_scale[0];
     o->uv_scale[1] = d->uv_scale[1];
     o->casts_shadows = d->casts_shadows;
-    o->bounded = bg_object_world_box(d, o->bounds_min, o->bounds_max);
+    o->bounded = bgi_object_world_box(d, o->bounds_min, o->bounds_max);
 }
 
 static void commit_light(const bg_light *in, bg_light *out)
 {
     *out = *in;
     double d[3] = {in->direction.x, in->direction.y, in->direction.z};
-    if (bg_vec3_length(in->direction) == 0.0) {
+    if (bgi_vec3_length(in->direction) == 0.0) {
         /* Unused (a point light without a cone); keep the committed state normalised anyway. */
         d[0] = 0; d[1] = -1; d[2] = 0;
     }
@@ -216,7 +216,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     if (st == BG_OK)
         st = reserve_all(scene);
     if (st == BG_OK)
-        st = bg_scene_tree_prepare(scene);
+        st = bgi_scene_tree_prepare(scene);
     if (st != BG_OK)
         return st;
 
@@ -258,7 +258,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->materials = scene->c_materials.data;
     state->textures = scene->c_textures.data;
     state->lights = scene->c_lights.data;
-    bg_scene_tree_install(scene);
+    bgi_scene_tree_install(scene);
     state->commit_count++;
     state->serial = next_serial();
     scene->committed = true;
@@ -270,7 +270,7 @@ uint64_t bg_scene_commit_count(const bg_scene *scene)
     return scene ? scene->state.commit_count : 0;
 }
 
-const bg_scene_state *bg_scene_committed(const bg_scene *scene)
+const bg_scene_state *bgi_scene_committed(const bg_scene *scene)
 {
     return scene && scene->committed ? &scene->state : NULL;
 }

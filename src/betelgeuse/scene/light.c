@@ -26,12 +26,12 @@ bg_status bg_scene_add_light(bg_scene *scene, const bg_light *light, uint32_t *o
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!light)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: light is NULL", where);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: light is NULL", where);
     if (!out_light)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_light is NULL", where);
-    bg_status st = bg_validate_light(scene, where, light);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_light is NULL", where);
+    bg_status st = bgi_validate_light(scene, where, light);
     if (st == BG_OK)
-        st = bg_array_reserve(scene, &scene->lights, scene->lights.count + 1, sizeof(bg_light), where);
+        st = bgi_array_reserve(scene, &scene->lights, scene->lights.count + 1, sizeof(bg_light), where);
     if (st != BG_OK)
         return st;
     ((bg_light *)scene->lights.data)[scene->lights.count++] = *light;
@@ -44,14 +44,14 @@ bg_status bg_scene_set_light(bg_scene *scene, uint32_t light, const bg_light *va
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     uint32_t index;
-    bg_status st = bg_scene_handle(scene, "bg_scene_set_light", "light", light, scene->lights.count, &index);
+    bg_status st = bgi_scene_handle(scene, "bg_scene_set_light", "light", light, scene->lights.count, &index);
     if (st != BG_OK)
         return st;
     if (!values)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_light: values is NULL");
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_light: values is NULL");
     char where[64];
     snprintf(where, sizeof where, "bg_scene_set_light: light %u", light);
-    st = bg_validate_light(scene, where, values);
+    st = bgi_validate_light(scene, where, values);
     if (st != BG_OK)
         return st;
     ((bg_light *)scene->lights.data)[index] = *values;

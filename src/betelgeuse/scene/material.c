@@ -41,12 +41,12 @@ bg_status bg_scene_add_material(bg_scene *scene, const bg_material *material, ui
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!material)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: material is NULL", where);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: material is NULL", where);
     if (!out_material)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_material is NULL", where);
-    bg_status st = bg_validate_material(scene, where, material, scene->textures.count);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_material is NULL", where);
+    bg_status st = bgi_validate_material(scene, where, material, scene->textures.count);
     if (st == BG_OK)
-        st = bg_array_reserve(scene, &scene->materials, scene->materials.count + 1, sizeof(bg_material), where);
+        st = bgi_array_reserve(scene, &scene->materials, scene->materials.count + 1, sizeof(bg_material), where);
     if (st != BG_OK)
         return st;
     ((bg_material *)scene->materials.data)[scene->materials.count++] = *material;
@@ -59,15 +59,15 @@ bg_status bg_scene_set_material(bg_scene *scene, uint32_t material, const bg_mat
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     uint32_t index;
-    bg_status st = bg_scene_handle(scene, "bg_scene_set_material", "material", material,
+    bg_status st = bgi_scene_handle(scene, "bg_scene_set_material", "material", material,
                                    scene->materials.count, &index);
     if (st != BG_OK)
         return st;
     if (!values)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_material: values is NULL");
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_material: values is NULL");
     char where[64];
     snprintf(where, sizeof where, "bg_scene_set_material: material %u", material);
-    st = bg_validate_material(scene, where, values, scene->textures.count);
+    st = bgi_validate_material(scene, where, values, scene->textures.count);
     if (st != BG_OK)
         return st;
     ((bg_material *)scene->materials.data)[index] = *values;

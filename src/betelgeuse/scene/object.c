@@ -21,9 +21,9 @@ bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material)
 
 static bg_status add(bg_scene *scene, const char *where, const bg_object_desc *desc, uint32_t *out_object)
 {
-    bg_status st = bg_validate_object(scene, where, desc, scene->materials.count);
+    bg_status st = bgi_validate_object(scene, where, desc, scene->materials.count);
     if (st == BG_OK)
-        st = bg_array_reserve(scene, &scene->objects, scene->objects.count + 1, sizeof(bg_object_desc), where);
+        st = bgi_array_reserve(scene, &scene->objects, scene->objects.count + 1, sizeof(bg_object_desc), where);
     if (st != BG_OK)
         return st;
     ((bg_object_desc *)scene->objects.data)[scene->objects.count++] = *desc;
@@ -37,9 +37,9 @@ bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint3
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!desc)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc is NULL", where);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc is NULL", where);
     if (!out_object)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
     return add(scene, where, desc, out_object);
 }
 
@@ -50,12 +50,12 @@ bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, ui
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!out_object)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
-    if (!bg_vec3_finite(center))
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: center = (%g, %g, %g) is not finite",
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
+    if (!bgi_vec3_finite(center))
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: center = (%g, %g, %g) is not finite",
                              where, center.x, center.y, center.z);
     if (!isfinite(radius) || radius <= 0.0)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: radius = %g must be finite and > 0",
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: radius = %g must be finite and > 0",
                              where, radius);
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_SPHERE, material);
     d.transform = bg_mat4_mul(bg_mat4_translate(center.x, center.y, center.z),
@@ -72,7 +72,7 @@ static bg_mat4 plane_frame(bg_vec3 n)
     bg_vec3 r = fabs(n.x) < 0.9 ? bg_vec3_make(1, 0, 0) : bg_vec3_make(0, 0, 1);
     double d = r.x * n.x + r.y * n.y + r.z * n.z;
     bg_vec3 u = bg_vec3_make(r.x - d * n.x, r.y - d * n.y, r.z - d * n.z);
-    double ul = bg_vec3_length(u);
+    double ul = bgi_vec3_length(u);
     u.x /= ul; u.y /= ul; u.z /= ul;
     bg_vec3 w = bg_vec3_make(u.y * n.z - u.z * n.y, u.z * n.x - u.x * n.z, u.x * n.y - u.y * n.x);
     bg_mat4 m = bg_mat4_identity();
@@ -90,13 +90,13 @@ bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uin
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!out_object)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
-    if (!bg_vec3_finite(point))
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: point = (%g, %g, %g) is not finite",
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
+    if (!bgi_vec3_finite(point))
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: point = (%g, %g, %g) is not finite",
                              where, point.x, point.y, point.z);
-    double len = bg_vec3_length(normal);
-    if (!bg_vec3_finite(normal) || len == 0.0)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: normal = (%g, %g, %g) must be finite and non-zero",
+    double len = bgi_vec3_length(normal);
+    if (!bgi_vec3_finite(normal) || len == 0.0)
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: normal = (%g, %g, %g) must be finite and non-zero",
                              where, normal.x, normal.y, normal.z);
     bg_vec3 n = bg_vec3_make(normal.x / len, normal.y / len, normal.z / len);
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, material);
@@ -109,15 +109,15 @@ bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     uint32_t index;
-    bg_status st = bg_scene_handle(scene, "bg_scene_set_transform", "object", object,
+    bg_status st = bgi_scene_handle(scene, "bg_scene_set_transform", "object", object,
                                    scene->objects.count, &index);
     if (st != BG_OK)
         return st;
     if (!transform)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_transform: transform is NULL");
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_transform: transform is NULL");
     char where[64];
     snprintf(where, sizeof where, "bg_scene_set_transform: object %u", object);
-    st = bg_validate_transform(scene, where, transform);
+    st = bgi_validate_transform(scene, where, transform);
     if (st != BG_OK)
         return st;
     ((bg_object_desc *)scene->objects.data)[index].transform = *transform;

@@ -23,10 +23,10 @@ bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
     if (!out_scene)
         return create_fail(&d, BG_ERR_INVALID_ARGUMENT, "bg_scene_create: out_scene is NULL");
     *out_scene = NULL;
-    if (!bg_allocator_valid(&d.allocator))
+    if (!bgi_allocator_valid(&d.allocator))
         return create_fail(&d, BG_ERR_INVALID_ARGUMENT, "bg_scene_create: allocator must set alloc and free "
                                                         "together (realloc is optional), or nothing");
-    bg_scene *s = bg_alloc(&d.allocator, sizeof *s);
+    bg_scene *s = bgi_alloc(&d.allocator, sizeof *s);
     if (!s)
         return create_fail(&d, BG_ERR_OUT_OF_MEMORY, "bg_scene_create: out of memory");
     memset(s, 0, sizeof *s);
@@ -44,14 +44,14 @@ void bg_scene_destroy(bg_scene *scene)
         return;
     bg_texture_data *t = scene->textures.data;
     for (uint32_t i = 0; i < scene->textures.count; i++)
-        bg_free(&scene->allocator, t[i].texels);
+        bgi_free(&scene->allocator, t[i].texels);
     bg_array *arrays[] = {&scene->objects, &scene->materials, &scene->lights, &scene->textures,
                           &scene->c_objects, &scene->c_materials, &scene->c_lights, &scene->c_textures};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
-        bg_array_release(scene, arrays[i]);
-    bg_scene_tree_release(scene);
+        bgi_array_release(scene, arrays[i]);
+    bgi_scene_tree_release(scene);
     bg_allocator a = scene->allocator;
-    bg_free(&a, scene);
+    bgi_free(&a, scene);
 }
 
 bg_status bg_scene_error(const bg_scene *scene)
@@ -71,7 +71,7 @@ void bg_scene_clear_error(bg_scene *scene)
     macs_first_error_clear(&scene->error);
 }
 
-bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, ...)
+bg_status bgi_scene_fail(bg_scene *scene, bg_status status, const char *format, ...)
 {
     if (!scene)
         return status;
@@ -85,37 +85,37 @@ bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, .
     return status;
 }
 
-bg_status bg_array_reserve(bg_scene *scene, bg_array *array, uint32_t need, size_t elem,
+bg_status bgi_array_reserve(bg_scene *scene, bg_array *array, uint32_t need, size_t elem,
                            const char *where)
 {
     if (need <= array->capacity)
         return BG_OK;
     if (need > BG_MAX_ITEMS)
-        return bg_scene_fail(scene, BG_ERR_LIMIT, "%s: more than %u items", where, BG_MAX_ITEMS);
+        return bgi_scene_fail(scene, BG_ERR_LIMIT, "%s: more than %u items", where, BG_MAX_ITEMS);
     uint32_t cap = array->capacity ? array->capacity : 4;
     while (cap < need)
         cap = cap > BG_MAX_ITEMS / 2 ? BG_MAX_ITEMS : cap * 2;
-    void *p = bg_realloc(&scene->allocator, array->data, (size_t)array->capacity * elem,
+    void *p = bgi_realloc(&scene->allocator, array->data, (size_t)array->capacity * elem,
                          (size_t)cap * elem);
     if (!p)
-        return bg_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: out of memory growing to %u items",
+        return bgi_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: out of memory growing to %u items",
                              where, cap);
     array->data = p;
     array->capacity = cap;
     return BG_OK;
 }
 
-void bg_array_release(bg_scene *scene, bg_array *array)
+void bgi_array_release(bg_scene *scene, bg_array *array)
 {
-    bg_free(&scene->allocator, array->data);
+    bgi_free(&scene->allocator, array->data);
     memset(array, 0, sizeof *array);
 }
 
-bg_status bg_scene_handle(bg_scene *scene, const char *where, const char *kind, uint32_t handle,
+bg_status bgi_scene_handle(bg_scene *scene, const char *where, const char *kind, uint32_t handle,
                           uint32_t count, uint32_t *out_index)
 {
     if (handle == 0 || handle > count)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: %s = %u is not a handle of this scene (%u added)",
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: %s = %u is not a handle of this scene (%u added)",
                              where, kind, handle, count);
     *out_index = handle - 1;
     return BG_OK;
@@ -136,8 +136,8 @@ bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera)
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!camera)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_camera: camera is NULL");
-    bg_status st = bg_validate_camera(scene, "bg_scene_set_camera", camera);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_camera: camera is NULL");
+    bg_status st = bgi_validate_camera(scene, "bg_scene_set_camera", camera);
     if (st != BG_OK)
         return st;
     scene->camera = *camera;
@@ -149,8 +149,8 @@ bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3])
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!rgb)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_ambient: rgb is NULL");
-    bg_status st = bg_validate_color3(scene, "bg_scene_set_ambient", "rgb", rgb);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_ambient: rgb is NULL");
+    bg_status st = bgi_validate_color3(scene, "bg_scene_set_ambient", "rgb", rgb);
     if (st != BG_OK)
         return st;
     memcpy(scene->ambient, rgb, sizeof scene->ambient);

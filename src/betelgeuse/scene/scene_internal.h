@@ -62,9 +62,9 @@ typedef struct bg_scene_state {
 } bg_scene_state;
 
 /* The committed state, or NULL when the scene was never committed successfully. */
-const bg_scene_state *bg_scene_committed(const bg_scene *scene);
+const bg_scene_state *bgi_scene_committed(const bg_scene *scene);
 
 /* Records an error on the scene (first one sticks) and sends it to the logger; returns status. */
-bg_status bg_scene_fail(bg_scene *scene, bg_status status, const char *format, ...);
+bg_status bgi_scene_fail(bg_scene *scene, bg_status status, const char *format, ...);
 
 #endif

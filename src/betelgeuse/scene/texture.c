@@ -9,24 +9,24 @@
 #include "scene_private.h"
 #include "../common/srgb.h"
 
-bg_status bg_texture_add(bg_scene *scene, const char *where, const bg_image *image,
+bg_status bgi_texture_add(bg_scene *scene, const char *where, const bg_image *image,
                          const bg_texture_desc *desc, uint32_t *out_texture)
 {
     char msg[256];
     size_t stride;
-    bg_status st = bg_image_check(image, &stride, msg, sizeof msg);
+    bg_status st = bgi_image_check(image, &stride, msg, sizeof msg);
     if (st != BG_OK)
-        return bg_scene_fail(scene, st, "%s: %s", where, msg);
+        return bgi_scene_fail(scene, st, "%s: %s", where, msg);
     bg_texture_desc d = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB, BG_FILTER_LINEAR};
     if (desc)
         d = *desc;
     if ((int)d.wrap < 0 || d.wrap > BG_WRAP_CLAMP)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.wrap = %d is not a bg_texture_wrap", where, (int)d.wrap);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.wrap = %d is not a bg_texture_wrap", where, (int)d.wrap);
     if ((int)d.filter < 0 || d.filter > BG_FILTER_NEAREST)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.filter = %d is not a bg_texture_filter", where,
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.filter = %d is not a bg_texture_filter", where,
                              (int)d.filter);
     if ((int)d.encoding < 0 || d.encoding > BG_TEXTURE_LINEAR)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.encoding = %d is not a bg_texture_encoding",
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc.encoding = %d is not a bg_texture_encoding",
                              where, (int)d.encoding);
 
     int w = image->width, h = image->height;
@@ -36,22 +36,22 @@ bg_status bg_texture_add(bg_scene *scene, const char *where, const bg_image *ima
             const float *row = (const float *)((const unsigned char *)image->pixels + (size_t)y * stride);
             for (int i = 0; i < w * 4; i++)
                 if (!isfinite(row[i]) || row[i] < 0.0f)
-                    return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                    return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
                                          "%s: image pixel (%d, %d) channel %d = %g is not finite and >= 0",
                                          where, i / 4, y, i % 4, (double)row[i]);
         }
     }
-    st = bg_array_reserve(scene, &scene->textures, scene->textures.count + 1, sizeof(bg_texture_data), where);
+    st = bgi_array_reserve(scene, &scene->textures, scene->textures.count + 1, sizeof(bg_texture_data), where);
     if (st != BG_OK)
         return st;
     size_t bytes = (size_t)w * (size_t)h * 4 * sizeof(float);
-    float *texels = bg_alloc(&scene->allocator, bytes);
+    float *texels = bgi_alloc(&scene->allocator, bytes);
     if (!texels)
-        return bg_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d texture", where, w, h);
+        return bgi_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d texture", where, w, h);
 
     float table[256];
     for (int i = 0; i < 256; i++)
-        table[i] = d.encoding == BG_TEXTURE_SRGB ? (float)bg_srgb_to_linear(i / 255.0) : (float)(i / 255.0);
+        table[i] = d.encoding == BG_TEXTURE_SRGB ? (float)bgi_srgb_to_linear(i / 255.0) : (float)(i / 255.0);
     for (int y = 0; y < h; y++) {
         const unsigned char *src = (const unsigned char *)image->pixels + (size_t)(h - 1 - y) * stride;
         float *dst = texels + (size_t)y * (size_t)w * 4;
@@ -81,6 +81,6 @@ bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
     if (!out_texture)
-        return bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_add_texture: out_texture is NULL");
-    return bg_texture_add(scene, "bg_scene_add_texture", image, desc, out_texture);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_add_texture: out_texture is NULL");
+    return bgi_texture_add(scene, "bg_scene_add_texture", image, desc, out_texture);
 }

@@ -26,7 +26,7 @@ static bg_status reserve_lists(bg_scene *s, uint32_t n)
     const size_t elem[3] = {sizeof(bg_bvh_box), sizeof(uint32_t), sizeof(uint32_t)};
     for (int i = 0; i < 3; i++)
         for (int side = 0; side < 2; side++) {
-            bg_status st = bg_array_reserve(s, lists[i][side], n, elem[i], where_tree);
+            bg_status st = bgi_array_reserve(s, lists[i][side], n, elem[i], where_tree);
             if (st != BG_OK)
                 return st;
         }
@@ -44,7 +44,7 @@ static void split_objects(bg_scene *s)
     uint32_t nt = 0, na = 0;
     for (uint32_t i = 0; i < s->objects.count; i++) {
         bg_bvh_box b;
-        if (bg_object_world_box(&descs[i], b.min, b.max) && bg_bvh_check_boxes(&b, 1, NULL) == BG_OK) {
+        if (bgi_object_world_box(&descs[i], b.min, b.max) && bgi_bvh_check_boxes(&b, 1, NULL) == BG_OK) {
             boxes[nt] = b;
             tree[nt++] = i;
         } else {
@@ -60,7 +60,7 @@ static bool same_list(const bg_array *a, const bg_array *b, size_t elem)
     return a->count == b->count && (a->count == 0 || memcmp(a->data, b->data, a->count * elem) == 0);
 }
 
-bg_status bg_scene_tree_prepare(bg_scene *s)
+bg_status bgi_scene_tree_prepare(bg_scene *s)
 {
     bg_status st = reserve_lists(s, s->objects.count);
     if (st != BG_OK)
@@ -75,12 +75,12 @@ bg_status bg_scene_tree_prepare(bg_scene *s)
         s->tree_action = TREE_REFIT;
         return BG_OK;
     }
-    st = bg_bvh_build(&s->allocator, s->p_boxes.data, s->p_boxes.count, &s->rebuilt);
+    st = bgi_bvh_build(&s->allocator, s->p_boxes.data, s->p_boxes.count, &s->rebuilt);
     if (st == BG_ERR_OUT_OF_MEMORY)
-        return bg_scene_fail(s, st, "%s: out of memory building the tree of %u objects", where_tree,
+        return bgi_scene_fail(s, st, "%s: out of memory building the tree of %u objects", where_tree,
                              s->p_boxes.count);
     if (st != BG_OK)
-        return bg_scene_fail(s, st, "%s: %s", where_tree, bg_status_string(st));
+        return bgi_scene_fail(s, st, "%s: %s", where_tree, bg_status_string(st));
     s->tree_action = TREE_REBUILD;
     return BG_OK;
 }
@@ -92,19 +92,19 @@ static void swap(bg_array *a, bg_array *b)
     *b = t;
 }
 
-void bg_scene_tree_install(bg_scene *s)
+void bgi_scene_tree_install(bg_scene *s)
 {
     swap(&s->c_boxes, &s->p_boxes);
     swap(&s->c_tree_objects, &s->p_tree_objects);
     swap(&s->c_always, &s->p_always);
     if (s->tree_action == TREE_REBUILD) {
-        bg_bvh_destroy(&s->tree);
+        bgi_bvh_destroy(&s->tree);
         s->tree = s->rebuilt;
         memset(&s->rebuilt, 0, sizeof s->rebuilt);
         s->state.tree_builds++;
     } else if (s->tree_action == TREE_REFIT) {
-        /* Same primitive count and boxes that passed bg_bvh_check_boxes: refit cannot fail. */
-        bg_bvh_refit(&s->tree, s->c_boxes.data, s->c_boxes.count);
+        /* Same primitive count and boxes that passed bgi_bvh_check_boxes: refit cannot fail. */
+        bgi_bvh_refit(&s->tree, s->c_boxes.data, s->c_boxes.count);
         s->state.tree_refits++;
     }
     s->state.tree = &s->tree;
@@ -114,12 +114,12 @@ void bg_scene_tree_install(bg_scene *s)
     s->state.always_count = s->c_always.count;
 }
 
-void bg_scene_tree_release(bg_scene *s)
+void bgi_scene_tree_release(bg_scene *s)
 {
-    bg_bvh_destroy(&s->tree);
-    bg_bvh_destroy(&s->rebuilt);
+    bgi_bvh_destroy(&s->tree);
+    bgi_bvh_destroy(&s->rebuilt);
     bg_array *arrays[] = {&s->c_boxes, &s->p_boxes, &s->c_tree_objects, &s->p_tree_objects, &s->c_always,
                           &s->p_always};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
-        bg_array_release(s, arrays[i]);
+        bgi_array_release(s, arrays[i]);
 }

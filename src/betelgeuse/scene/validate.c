@@ -6,7 +6,7 @@
 #include "../common/affine.h"
 #include "scene_private.h"
 
-#define FAIL(...) bg_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, __VA_ARGS__)
+#define FAIL(...) bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, __VA_ARGS__)
 
 /* Cosine of the angle below which the up vector counts as parallel to the view (about 0.06 deg). */
 #define BG_UP_PARALLEL_SIN 1e-3
@@ -18,12 +18,12 @@ static bool finite3(const double v[3])
 
 static bg_status vec3_finite(bg_scene *scene, const char *where, const char *field, bg_vec3 v)
 {
-    if (!bg_vec3_finite(v))
+    if (!bgi_vec3_finite(v))
         return FAIL("%s: %s = (%g, %g, %g) is not finite", where, field, v.x, v.y, v.z);
     return BG_OK;
 }
 
-bg_status bg_validate_camera(bg_scene *scene, const char *where, const bg_camera *c)
+bg_status bgi_validate_camera(bg_scene *scene, const char *where, const bg_camera *c)
 {
     bg_status st;
     if ((st = vec3_finite(scene, where, "position", c->position)) != BG_OK ||
@@ -34,25 +34,25 @@ bg_status bg_validate_camera(bg_scene *scene, const char *where, const bg_camera
         return FAIL("%s: fov_y_degrees = %g is outside (0, 180)", where, c->fov_y_degrees);
     bg_vec3 f = bg_vec3_make(c->look_at.x - c->position.x, c->look_at.y - c->position.y,
                              c->look_at.z - c->position.z);
-    double fl = bg_vec3_length(f);
+    double fl = bgi_vec3_length(f);
     if (fl == 0.0)
         return FAIL("%s: look_at equals position (%g, %g, %g)", where, c->position.x,
                     c->position.y, c->position.z);
     if (!isfinite(fl))
         return FAIL("%s: look_at - position overflows", where);
-    double ul = bg_vec3_length(c->up);
+    double ul = bgi_vec3_length(c->up);
     if (ul == 0.0)
         return FAIL("%s: up = (0, 0, 0) is zero", where);
     f.x /= fl; f.y /= fl; f.z /= fl;
     bg_vec3 u = bg_vec3_make(c->up.x / ul, c->up.y / ul, c->up.z / ul);
     bg_vec3 x = bg_vec3_make(f.y * u.z - f.z * u.y, f.z * u.x - f.x * u.z, f.x * u.y - f.y * u.x);
-    if (bg_vec3_length(x) < BG_UP_PARALLEL_SIN)
+    if (bgi_vec3_length(x) < BG_UP_PARALLEL_SIN)
         return FAIL("%s: up = (%g, %g, %g) is parallel to the view direction", where, c->up.x,
                     c->up.y, c->up.z);
     return BG_OK;
 }
 
-bg_status bg_validate_color3(bg_scene *scene, const char *where, const char *field, const double rgb[3])
+bg_status bgi_validate_color3(bg_scene *scene, const char *where, const char *field, const double rgb[3])
 {
     if (!finite3(rgb))
         return FAIL("%s: %s = (%g, %g, %g) is not finite", where, field, rgb[0], rgb[1], rgb[2]);
@@ -109,7 +109,7 @@ static bg_status layer(bg_scene *scene, const char *where, const char *name, con
     return scalar_param(scene, where, field, &l->isotropy, texture_count);
 }
 
-bg_status bg_validate_material(bg_scene *scene, const char *where, const bg_material *m,
+bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_material *m,
                                uint32_t texture_count)
 {
     bg_status st;
@@ -125,14 +125,14 @@ bg_status bg_validate_material(bg_scene *scene, const char *where, const bg_mate
     return BG_OK;
 }
 
-bg_status bg_validate_light(bg_scene *scene, const char *where, const bg_light *l)
+bg_status bgi_validate_light(bg_scene *scene, const char *where, const bg_light *l)
 {
     bg_status st;
     if ((int)l->type < 0 || l->type >= BG_LIGHT_TYPE_COUNT_)
         return FAIL("%s: type = %d is not a bg_light_type", where, (int)l->type);
     if ((st = vec3_finite(scene, where, "position", l->position)) != BG_OK ||
         (st = vec3_finite(scene, where, "direction", l->direction)) != BG_OK ||
-        (st = bg_validate_color3(scene, where, "color", l->color)) != BG_OK)
+        (st = bgi_validate_color3(scene, where, "color", l->color)) != BG_OK)
         return st;
     if (!isfinite(l->intensity) || l->intensity < 0.0)
         return FAIL("%s: intensity = %g must be finite and >= 0", where, l->intensity);
@@ -149,21 +149,21 @@ bg_status bg_validate_light(bg_scene *scene, const char *where, const bg_light *
     if (!isfinite(l->spot_exponent) || l->spot_exponent < 0.0)
         return FAIL("%s: spot_exponent = %g must be finite and >= 0", where, l->spot_exponent);
     bool needs_direction = l->type == BG_LIGHT_DIRECTIONAL || cut != 180.0;
-    if (needs_direction && bg_vec3_length(l->direction) == 0.0)
+    if (needs_direction && bgi_vec3_length(l->direction) == 0.0)
         return FAIL("%s: direction = (0, 0, 0) is zero but the %s needs it", where,
                     l->type == BG_LIGHT_DIRECTIONAL ? "directional light" : "spot cone");
     return BG_OK;
 }
 
-bg_status bg_validate_transform(bg_scene *scene, const char *where, const bg_mat4 *t)
+bg_status bgi_validate_transform(bg_scene *scene, const char *where, const bg_mat4 *t)
 {
-    bg_affine_check c = bg_affine_inverse(t, NULL);
+    bg_affine_check c = bgi_affine_inverse(t, NULL);
     if (c != BG_AFFINE_OK)
-        return FAIL("%s: transform %s", where, bg_affine_check_string(c));
+        return FAIL("%s: transform %s", where, bgi_affine_check_string(c));
     return BG_OK;
 }
 
-bg_status bg_validate_object(bg_scene *scene, const char *where, const bg_object_desc *d,
+bg_status bgi_validate_object(bg_scene *scene, const char *where, const bg_object_desc *d,
                              uint32_t material_count)
 {
     if ((int)d->shape < 0 || d->shape >= BG_SHAPE_COUNT_)
@@ -176,5 +176,5 @@ bg_status bg_validate_object(bg_scene *scene, const char *where, const bg_object
     if (d->material == 0 || d->material > material_count)
         return FAIL("%s: material = %u is not a material of this scene (%u added)", where,
                     d->material, material_count);
-    return bg_validate_transform(scene, where, &d->transform);
+    return bgi_validate_transform(scene, where, &d->transform);
 }

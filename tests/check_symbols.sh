@@ -1,0 +1,46 @@
+#!/bin/sh
+# Holds both libraries to their headers. A shared library must export exactly the functions its
+# header marks public (MACS_API, BG_API), nothing more and nothing less; a static archive may hold
+# internal symbols too, but each one must carry the library's internal prefix (macsi_, bgi_), so
+# that a program can define any name outside the four reserved prefixes without replacing or
+# colliding with the library's own (a user's gpu_release_all once did both).
+# Usage: check_symbols.sh BUILD_DIR
+build=$1
+failed=0
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# lib header api public-prefix internal-prefix
+check() {
+	lib=$1 header=$2 api=$3 pub=$4 internal=$5
+	sed -n "s/^$api .*\b\($pub[a-z0-9_]*\)(.*/\1/p" "$header" | sort -u >"$work/public"
+	if [ ! -s "$work/public" ]; then
+		echo "FAIL $header: no function marked $api"
+		failed=1
+		return
+	fi
+	nm -D --defined-only "$build/lib$lib.so" | awk 'NF == 3 {print $3}' | sort -u >"$work/exported"
+	if ! diff "$work/public" "$work/exported" >"$work/diff"; then
+		echo "FAIL lib$lib.so exports other than $header marks ('>' exported but not public, '<' public but not exported):"
+		grep '^[<>]' "$work/diff" | sed 's/^/    /'
+		failed=1
+	fi
+	nm -g --defined-only "$build/lib$lib.a" | awk 'NF == 3 {print $3}' | sort -u >"$work/archive"
+	grep -v "^$pub" "$work/archive" | grep -v "^$internal" >"$work/unprefixed"
+	if [ -s "$work/unprefixed" ]; then
+		echo "FAIL lib$lib.a holds symbols outside $pub and $internal:"
+		sed 's/^/    /' "$work/unprefixed"
+		failed=1
+	fi
+	grep "^$pub" "$work/archive" | grep -v "^$internal" >"$work/archive_public"
+	if ! diff "$work/public" "$work/archive_public" >"$work/diff"; then
+		echo "FAIL lib$lib.a: $pub names that $header does not declare public ('>') or lacks ('<'); internal names take $internal:"
+		grep '^[<>]' "$work/diff" | sed 's/^/    /'
+		failed=1
+	fi
+	echo "lib$lib: $(wc -l <"$work/public") public functions exported, $(grep -c "^$internal" "$work/archive") internal symbols, all prefixed $internal"
+}
+
+check macs include/macs.h MACS_API macs_ macsi_
+check betelgeuse include/betelgeuse.h BG_API bg_ bgi_
+exit $failed
