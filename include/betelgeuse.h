@@ -7,8 +7,14 @@
  *
  * Conventions: right-handed world, y up by default (the camera's up vector decides); angles in
  * degrees; colours are linear RGB; matrices are row-major, m[row][col], and transform column
- * vectors (p' = M p), so bg_mat4_mul(a, b) applies b first. Handles (object, material, texture,
- * light ids) are small positive integers; 0 is never a valid handle and means "none".
+ * vectors (p' = M p), so bg_mat4_mul(a, b) applies b first.
+ *
+ * Handles (object, material, texture, light ids) are non-zero 32-bit numbers; 0 is never a valid
+ * handle and means "none". A scene that never removes anything hands out 1, 2, 3, ... per kind, in
+ * the order of the adds. Each handle names one item for good: after bg_scene_remove_* every call
+ * given the removed handle fails with BG_ERR_INVALID_ARGUMENT ("... = 0x01000003 was removed"),
+ * also once a later item reuses its storage (that item gets a different handle). Treat handles as
+ * opaque beyond that (the low 24 bits are a slot, the high 8 bits count its reuses).
  */
 #ifndef BETELGEUSE_H
 #define BETELGEUSE_H
@@ -184,6 +190,9 @@ typedef struct bg_texture_desc {
 /* Copies a caller image into the scene as a texture (stored as linear float); desc may be NULL. */
 BG_API bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
                                       uint32_t *out_texture);
+/* Removes a texture; refused (BG_ERR_INVALID_ARGUMENT, naming the material and field) while a
+ * material still references it, also through an unused coat. Takes effect at the next commit. */
+BG_API bg_status bg_scene_remove_texture(bg_scene *scene, uint32_t texture);
 /* Loads a PNG file as a texture: its samples as bg_png_load keeps them, decoded as desc says like an
  * RGBA8 image's, except that 16-bit files keep all 16 bits (v / 65535 is decoded); missing or
  * corrupt files give BG_ERR_IO naming the path and why. */
@@ -236,6 +245,9 @@ BG_API bg_material bg_material_init(void);
 BG_API bg_status bg_scene_add_material(bg_scene *scene, const bg_material *material, uint32_t *out_material);
 /* Replaces a material's values (cheap re-commit: no new geometry). */
 BG_API bg_status bg_scene_set_material(bg_scene *scene, uint32_t material, const bg_material *values);
+/* Removes a material; refused (BG_ERR_INVALID_ARGUMENT, naming the object) while an object still
+ * uses it. Takes effect at the next commit. */
+BG_API bg_status bg_scene_remove_material(bg_scene *scene, uint32_t material);
 
 /* ---- objects ------------------------------------------------------------------------------- */
 
@@ -266,9 +278,16 @@ typedef enum bg_uv_mapping {
 } bg_uv_mapping;
 
 /* Defaults (bg_object_desc_init): identity transform, the default UV mapping with scale (1, 1),
- * casts shadows. material must name an added material. transform must be finite and affine
- * (bottom row 0 0 0 1) with a non-singular linear part L: |det L| / (|L|_F / sqrt 3)^3 >= 1e-12,
- * a test that ignores overall scale and rotation but rejects slabs thinner than 1e-12 of their size. */
+ * casts shadows. material must name a material of the scene. transform must be finite and affine
+ * (bottom row 0 0 0 1). Its linear part L has the overall scale s = |L|_F / sqrt 3 (the radius of a
+ * sphere, the half size of a cube), which must lie in [1e-100, 1e100], so that the inverse (at most
+ * about 1e13 / s) and the squares the renderers form from object-space rays stay far inside the
+ * double range; and it must be non-singular for that scale: |det(L / s)| >= 1e-12, computed on
+ * L / s so that no scale in range overflows it, a test that ignores overall scale and rotation but
+ * rejects slabs thinner than 1e-12 of their size.
+ * Its inverse and the object's world box must be finite in double (a translation near the double
+ * range can break either). Every add and set_transform runs the very checks a commit runs, so an
+ * accepted object never makes a commit fail. */
 typedef struct bg_object_desc {
     bg_shape shape;
     bg_mat4 transform;
@@ -281,17 +300,20 @@ typedef struct bg_object_desc {
 
 /* The default object of a shape, described above. */
 BG_API bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material);
-/* Adds an object; singular or non-finite transforms, unknown shapes or materials are rejected. */
+/* Adds an object; transforms outside the rules above, unknown shapes or materials are rejected. */
 BG_API bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object);
-/* Shorthand: a sphere of the given centre and radius (> 0). */
+/* Shorthand: a sphere of the given centre and radius, in [1e-100, 1e100] (the scale rule above). */
 BG_API bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, uint32_t material,
                                      uint32_t *out_object);
 /* Shorthand: the plane through point with the given normal (non-zero); its planar UV axes are
  * chosen from the normal as docs/shading.md says. */
 BG_API bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t material,
                                     uint32_t *out_object);
-/* Moves an object (cheap re-commit). */
+/* Moves an object (cheap re-commit); the transform is checked as bg_object_desc says. */
 BG_API bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4 *transform);
+/* Removes an object. Like every pending change it takes effect at the next commit: until then
+ * both renderers still draw the last committed scene, object included. */
+BG_API bg_status bg_scene_remove_object(bg_scene *scene, uint32_t object);
 
 /* ---- lights -------------------------------------------------------------------------------- */
 
@@ -318,6 +340,8 @@ BG_API bg_light bg_light_init(void);
 BG_API bg_status bg_scene_add_light(bg_scene *scene, const bg_light *light, uint32_t *out_light);
 /* Replaces a light's values (cheap re-commit). */
 BG_API bg_status bg_scene_set_light(bg_scene *scene, uint32_t light, const bg_light *values);
+/* Removes a light; it takes effect at the next commit. */
+BG_API bg_status bg_scene_remove_light(bg_scene *scene, uint32_t light);
 /* Sets the scene's ambient light colour (linear, >= 0; default (1, 1, 1)); each material's
  * ambient colour multiplies it. */
 BG_API bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
@@ -325,8 +349,10 @@ BG_API bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
 /* ---- commit -------------------------------------------------------------------------------- */
 
 /* Validates the whole scene and makes it what the renderers see: computes bounds, inverse
- * transforms (in double) and what the renderers need. Cheap when only values changed (no
- * allocation). A stored error does not block it; if it fails, the previous commit stays. */
+ * transforms (in double) and what the renderers need, and applies removals. Cheap when only values
+ * changed (no allocation). A stored error does not block it; if it fails (out of memory or a
+ * library limit: every field check already ran when its item was added or set), the previous
+ * commit stays, removed items included. */
 BG_API bg_status bg_scene_commit(bg_scene *scene);
 /* Bumped by every successful commit; renderers use it to tell what changed. */
 BG_API uint64_t bg_scene_commit_count(const bg_scene *scene);

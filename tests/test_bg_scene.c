@@ -1,5 +1,6 @@
 /* The scene API: validation of every field, the sticky first error, nothing half-applied, commit
  * (inverses, bounds, resolved UV mapping, camera basis) and cheap re-commits. */
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -436,6 +437,94 @@ static void test_object_validation(void **state)
     bg_scene_destroy(s);
 }
 
+static void mat_times(const double a[4][4], const double b[4][4], double r[4][4]);
+
+/* What commit derives per object is checked at add, through the same function: the three adds that
+ * once passed and then blocked every commit (an inverse that overflowed or underflowed) are refused
+ * where they are made, naming the field, and the scene goes on committing. */
+static void test_add_refuses_what_commit_would(void **state)
+{
+    (void)state;
+    bg_scene *s = small_scene();
+    uint32_t id;
+    expect_rejected(s, bg_scene_add_sphere(s, bg_vec3_make(0, 0, -2e300), 1e300, 1, &id), BG_ERR_INVALID_ARGUMENT,
+                    "bg_scene_add_sphere: radius = 1e+300 is outside [1e-100, 1e100]");
+    expect_rejected(s, bg_scene_add_sphere(s, bg_vec3_make(0, 0, 0), 1e-300, 1, &id), BG_ERR_INVALID_ARGUMENT,
+                    "bg_scene_add_sphere: radius = 1e-300 is outside");
+    bg_object_desc d = bg_object_desc_init(BG_SHAPE_SPHERE, 1);
+    d.transform = bg_mat4_scale(1e200, 1e200, 1e200);
+    expect_rejected(s, add_object(s, d), BG_ERR_INVALID_ARGUMENT,
+                    "bg_scene_add_object: transform has an overall scale (|L|_F / sqrt 3) outside [1e-100, 1e100]: it is 1e+200");
+    expect_rejected(s, bg_scene_set_transform(s, 1, &d.transform), BG_ERR_INVALID_ARGUMENT,
+                    "bg_scene_set_transform: object 1: transform has an overall scale");
+    /* The inverse and the world box are checked as commit derives them. */
+    d.transform = bg_mat4_mul(bg_mat4_translate(1e300, 0, 0), bg_mat4_scale(1e-10, 1e-10, 1e-10));
+    expect_rejected(s, add_object(s, d), BG_ERR_INVALID_ARGUMENT, "transform has an inverse beyond the double range");
+    expect_rejected(s, bg_scene_add_sphere(s, bg_vec3_make(DBL_MAX, 0, 0), 1, 1, &id), BG_ERR_INVALID_ARGUMENT,
+                    "bg_scene_add_sphere: transform (from center and radius) puts the world box beyond the double range (axis 0");
+    d.transform = bg_mat4_translate(0, -DBL_MAX, 0);
+    d.shape = BG_SHAPE_BOX;
+    expect_rejected(s, add_object(s, d), BG_ERR_INVALID_ARGUMENT, "transform puts the world box beyond the double range (axis 1");
+    /* An unbounded plane has no world box to overflow. */
+    d.shape = BG_SHAPE_PLANE;
+    assert_int_equal(add_object(s, d), BG_OK);
+    /* A good add after the refused ones commits. */
+    assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(0, 0, -2), 1, 1, &id), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    assert_int_equal(bgi_scene_committed(s)->object_count, 4);
+    bg_scene_destroy(s);
+}
+
+/* The accepted overall scale is [1e-100, 1e100], both ends included; within it the singularity
+ * test ignores scale and the committed inverse is exact to rounding. */
+static void test_object_scale_range(void **state)
+{
+    (void)state;
+    bg_scene *s = small_scene();
+    uint32_t id;
+    const double inside[] = {1e100, 1e-100, 3e99, 2e-99};
+    for (size_t i = 0; i < sizeof inside / sizeof inside[0]; i++) {
+        double k = inside[i];
+        bg_object_desc d = bg_object_desc_init(BG_SHAPE_BOX, 1);
+        d.transform = bg_mat4_mul(bg_mat4_translate(k, 0, 0), bg_mat4_mul(bg_mat4_rotate(bg_vec3_make(1, 2, 3), 30),
+                                                                          bg_mat4_scale(k, 0.5 * k, k)));
+        if (i < 2)
+            d.transform = bg_mat4_scale(k, k, k);
+        assert_int_equal(add_object(s, d), BG_OK);
+        assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(0, 0, 0), k, 1, &id), BG_OK);
+        assert_int_equal(bg_scene_commit(s), BG_OK);
+        const bg_scene_state *st = bgi_scene_committed(s);
+        const bg_object_data *o = &st->objects[st->object_count - 2];
+        double p[4][4];
+        mat_times(o->to_world, o->to_object, p);
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                assert_true(fabs(p[r][c] - (r == c)) < 1e-12);
+        if (i < 2)
+            assert_true(fabs(o->to_object[0][0] * k - 1) < 1e-15);
+    }
+    const double outside[] = {1.01e100, 0.99e-100, 1e101, 1e-101};
+    for (size_t i = 0; i < sizeof outside / sizeof outside[0]; i++) {
+        double k = outside[i];
+        bg_object_desc d = bg_object_desc_init(BG_SHAPE_BOX, 1);
+        d.transform = bg_mat4_scale(k, k, k);
+        expect_rejected(s, add_object(s, d), BG_ERR_INVALID_ARGUMENT, "transform has an overall scale");
+        expect_rejected(s, bg_scene_add_sphere(s, bg_vec3_make(0, 0, 0), k, 1, &id), BG_ERR_INVALID_ARGUMENT, "radius");
+    }
+    /* Scale-free singularity at both ends: a slab 1e-14 of its size is singular, 1e-11 is not. */
+    const double ends[] = {1e100, 2e-100}; /* s = 0.82 k for these slabs */
+    for (size_t i = 0; i < 2; i++) {
+        double k = ends[i];
+        bg_object_desc d = bg_object_desc_init(BG_SHAPE_BOX, 1);
+        d.transform = bg_mat4_scale(k, k, 1e-14 * k);
+        expect_rejected(s, add_object(s, d), BG_ERR_INVALID_ARGUMENT, "transform is singular");
+        d.transform = bg_mat4_scale(k, k, 1e-11 * k);
+        assert_int_equal(add_object(s, d), BG_OK);
+        assert_int_equal(bg_scene_commit(s), BG_OK);
+    }
+    bg_scene_destroy(s);
+}
+
 static void test_camera_validation(void **state)
 {
     (void)state;
@@ -460,6 +549,16 @@ static void test_camera_validation(void **state)
     expect_rejected(s, bg_scene_set_camera(s, NULL), BG_ERR_INVALID_ARGUMENT, "camera");
     /* The camera is unchanged by the rejected calls. */
     assert_true(bgi_scene_committed(s)->camera.camera.position.z == 5.0);
+    c = bg_camera_init(); c.position = bg_vec3_make(0, 0, 1.5e308); c.look_at = bg_vec3_make(0, 0, -1.5e308);
+    expect_rejected(s, set_camera(s, c), BG_ERR_INVALID_ARGUMENT, "look_at - position overflows");
+    /* Vectors whose length overflows a double, though each component is finite, are fine: the
+     * check normalises them as the commit does. */
+    c = bg_camera_init(); c.position = bg_vec3_make(1.5e308, 0, 1.5e308); c.up = bg_vec3_make(0, DBL_MAX, DBL_MAX);
+    assert_int_equal(set_camera(s, c), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    const bg_camera_data *cd = &bgi_scene_committed(s)->camera;
+    assert_true(fabs(cd->forward[0] + sqrt(0.5)) < 1e-15 && fabs(cd->forward[2] + sqrt(0.5)) < 1e-15);
+    assert_true(cd->up[1] > 0.5);
     c = bg_camera_init(); c.fov_y_degrees = 179.5;
     assert_int_equal(set_camera(s, c), BG_OK);
     bg_scene_destroy(s);
@@ -722,6 +821,12 @@ static void test_commit_camera_and_lights(void **state)
     assert_true(c->up[1] > 0.9);
     assert_true(fabs(c->tan_half_fov_y - 1.0) < 1e-15);
     assert_true(st->lights[1].direction.x == 0 && st->lights[1].direction.y == -1 && st->lights[1].direction.z == 0);
+    /* A direction whose length overflows a double still normalises (not to zero). */
+    sun.direction = bg_vec3_make(DBL_MAX, -DBL_MAX, DBL_MAX);
+    assert_int_equal(bg_scene_set_light(s, id, &sun), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    double third = 1 / sqrt(3.0);
+    assert_true(fabs(st->lights[1].direction.x - third) < 1e-15 && fabs(st->lights[1].direction.y + third) < 1e-15);
     assert_true(st->ambient[0] == 0.2 && st->ambient[2] == 0.4);
     bg_scene_destroy(s);
 }
@@ -835,6 +940,8 @@ int main(void)
         cmocka_unit_test(test_logger_and_sticky_error),
         cmocka_unit_test(test_material_validation),
         cmocka_unit_test(test_object_validation),
+        cmocka_unit_test(test_add_refuses_what_commit_would),
+        cmocka_unit_test(test_object_scale_range),
         cmocka_unit_test(test_camera_validation),
         cmocka_unit_test(test_light_validation),
         cmocka_unit_test(test_texture_validation),

@@ -8,7 +8,7 @@
  *   2. one row below;
  *   3. glsl110/bg_shape_<name>.glsl defining bg_shape_span (the float port of the CPU intersector);
  *   4. its CPU intersector in cpu/intersect.c, under the name its row gives;
- *   5. its half extent in scene/commit.c, under the name its row gives, unless it is unbounded
+ *   5. its half extent in scene/object_data.c, under the name its row gives, unless it is unbounded
  *      (its world box then feeds the object tree, scene/tree.c).
  * Outside the library, the benchmark peers (bench/) and the test scenes name shapes of their own.
  *
@@ -21,7 +21,7 @@
  *               on); false for a closed solid (an entry and an exit root, Fresnel at the interface)
  *   default_uv  the mapping BG_UV_DEFAULT resolves to at commit
  *   cpu_span    void f(const double o[3], const double d[3], bg_cpu_span *span) in cpu/intersect.c
- *   half_extent double f(double a, double b, double c) in scene/commit.c: the half extent along one
+ *   half_extent double f(double a, double b, double c) in scene/object_data.c: the half extent along one
  *               world axis of the transformed prototype, from that axis's row (a b c) of the linear
  *               part; NULL for an unbounded shape (no world box, never scissored or cut) */
 #ifndef BG_SHAPES_H

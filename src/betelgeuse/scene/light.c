@@ -1,4 +1,4 @@
-/* Lights: defaults, add and replace. */
+/* Lights: defaults, add, replace and remove. */
 #include <stdio.h>
 #include <string.h>
 
@@ -29,31 +29,42 @@ bg_status bg_scene_add_light(bg_scene *scene, const bg_light *light, uint32_t *o
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: light is NULL", where);
     if (!out_light)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_light is NULL", where);
-    bg_status st = bgi_validate_light(scene, where, light);
-    if (st == BG_OK)
-        st = bgi_array_reserve(scene, &scene->lights, scene->lights.count + 1, sizeof(bg_light), where);
+    bg_light derived;
+    bg_status st = bgi_light_derive(scene, where, light, &derived);
     if (st != BG_OK)
         return st;
-    ((bg_light *)scene->lights.data)[scene->lights.count++] = *light;
-    *out_light = scene->lights.count;
-    return BG_OK;
+    return bgi_pool_add(scene, &scene->lights, where, light, out_light);
 }
 
 bg_status bg_scene_set_light(bg_scene *scene, uint32_t light, const bg_light *values)
 {
+    static const char call[] = "bg_scene_set_light";
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
-    uint32_t index;
-    bg_status st = bgi_scene_handle(scene, "bg_scene_set_light", "light", light, scene->lights.count, &index);
+    uint32_t slot;
+    bg_status st = bgi_pool_lookup(scene, &scene->lights, call, "light", light, &slot);
     if (st != BG_OK)
         return st;
     if (!values)
-        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_light: values is NULL");
-    char where[64];
-    snprintf(where, sizeof where, "bg_scene_set_light: light %u", light);
-    st = bgi_validate_light(scene, where, values);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: values is NULL", call);
+    char where[64], text[BG_HANDLE_TEXT_SIZE];
+    snprintf(where, sizeof where, "%s: light %s", call, bgi_handle_text(light, text));
+    bg_light derived;
+    st = bgi_light_derive(scene, where, values, &derived);
     if (st != BG_OK)
         return st;
-    ((bg_light *)scene->lights.data)[index] = *values;
+    *(bg_light *)bgi_pool_item(&scene->lights, slot) = *values;
+    return BG_OK;
+}
+
+bg_status bg_scene_remove_light(bg_scene *scene, uint32_t light)
+{
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    uint32_t slot;
+    bg_status st = bgi_pool_lookup(scene, &scene->lights, "bg_scene_remove_light", "light", light, &slot);
+    if (st != BG_OK)
+        return st;
+    bgi_pool_remove(&scene->lights, slot);
     return BG_OK;
 }

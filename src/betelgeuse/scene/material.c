@@ -1,4 +1,4 @@
-/* Materials: defaults, add and replace. */
+/* Materials: defaults, add, replace and remove (refused while an object uses the material). */
 #include <stdio.h>
 #include <string.h>
 
@@ -44,32 +44,51 @@ bg_status bg_scene_add_material(bg_scene *scene, const bg_material *material, ui
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: material is NULL", where);
     if (!out_material)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_material is NULL", where);
-    bg_status st = bgi_validate_material(scene, where, material, scene->textures.count);
-    if (st == BG_OK)
-        st = bgi_array_reserve(scene, &scene->materials, scene->materials.count + 1, sizeof(bg_material), where);
+    bg_status st = bgi_validate_material(scene, where, material);
     if (st != BG_OK)
         return st;
-    ((bg_material *)scene->materials.data)[scene->materials.count++] = *material;
-    *out_material = scene->materials.count;
-    return BG_OK;
+    return bgi_pool_add(scene, &scene->materials, where, material, out_material);
 }
 
 bg_status bg_scene_set_material(bg_scene *scene, uint32_t material, const bg_material *values)
 {
+    static const char call[] = "bg_scene_set_material";
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
-    uint32_t index;
-    bg_status st = bgi_scene_handle(scene, "bg_scene_set_material", "material", material,
-                                   scene->materials.count, &index);
+    uint32_t slot;
+    bg_status st = bgi_pool_lookup(scene, &scene->materials, call, "material", material, &slot);
     if (st != BG_OK)
         return st;
     if (!values)
-        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_material: values is NULL");
-    char where[64];
-    snprintf(where, sizeof where, "bg_scene_set_material: material %u", material);
-    st = bgi_validate_material(scene, where, values, scene->textures.count);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: values is NULL", call);
+    char where[64], text[BG_HANDLE_TEXT_SIZE];
+    snprintf(where, sizeof where, "%s: material %s", call, bgi_handle_text(material, text));
+    st = bgi_validate_material(scene, where, values);
     if (st != BG_OK)
         return st;
-    ((bg_material *)scene->materials.data)[index] = *values;
+    *(bg_material *)bgi_pool_item(&scene->materials, slot) = *values;
+    return BG_OK;
+}
+
+bg_status bg_scene_remove_material(bg_scene *scene, uint32_t material)
+{
+    static const char where[] = "bg_scene_remove_material";
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    uint32_t slot;
+    bg_status st = bgi_pool_lookup(scene, &scene->materials, where, "material", material, &slot);
+    if (st != BG_OK)
+        return st;
+    /* An object keeps its material's id, so the material must outlive every object using it. */
+    for (uint32_t o = 0; o < bgi_pool_slot_count(&scene->objects); o++) {
+        const bg_object_desc *d = bgi_pool_item(&scene->objects, o);
+        if (!bgi_pool_live(&scene->objects, o) || d->material != material)
+            continue;
+        char m_text[BG_HANDLE_TEXT_SIZE], o_text[BG_HANDLE_TEXT_SIZE];
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                             "%s: material %s is used by object %s (remove the object first)", where,
+                             bgi_handle_text(material, m_text), bgi_handle_text(bgi_pool_id(&scene->objects, o), o_text));
+    }
+    bgi_pool_remove(&scene->materials, slot);
     return BG_OK;
 }

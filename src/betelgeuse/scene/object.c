@@ -1,4 +1,4 @@
-/* Objects: defaults, add, the sphere and plane shorthands, and moving an object. */
+/* Objects: defaults, add, the sphere and plane shorthands, moving and removing an object. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -19,16 +19,15 @@ bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material)
     return d;
 }
 
-static bg_status add(bg_scene *scene, const char *where, const bg_object_desc *desc, uint32_t *out_object)
+/* The one check commit runs too (bgi_object_derive), so an added object never blocks a commit. */
+static bg_status add(bg_scene *scene, const char *where, const char *transform_field, const bg_object_desc *desc,
+                     uint32_t *out_object)
 {
-    bg_status st = bgi_validate_object(scene, where, desc, scene->materials.count);
-    if (st == BG_OK)
-        st = bgi_array_reserve(scene, &scene->objects, scene->objects.count + 1, sizeof(bg_object_desc), where);
+    bg_object_data derived;
+    bg_status st = bgi_object_derive(scene, where, transform_field, desc, &derived);
     if (st != BG_OK)
         return st;
-    ((bg_object_desc *)scene->objects.data)[scene->objects.count++] = *desc;
-    *out_object = scene->objects.count;
-    return BG_OK;
+    return bgi_pool_add(scene, &scene->objects, where, desc, out_object);
 }
 
 bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object)
@@ -40,7 +39,7 @@ bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint3
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: desc is NULL", where);
     if (!out_object)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: out_object is NULL", where);
-    return add(scene, where, desc, out_object);
+    return add(scene, where, "transform", desc, out_object);
 }
 
 bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, uint32_t material,
@@ -57,10 +56,16 @@ bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, ui
     if (!isfinite(radius) || radius <= 0.0)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: radius = %g must be finite and > 0",
                              where, radius);
+    /* The radius is the transform's overall scale: name it rather than a transform the caller never saw. */
+    if (radius < BG_AFFINE_MIN_SCALE || radius > BG_AFFINE_MAX_SCALE)
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
+                             "%s: radius = %g is outside " BG_AFFINE_SCALE_RANGE
+                             ", the overall scale an object may have",
+                             where, radius);
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_SPHERE, material);
     d.transform = bg_mat4_mul(bg_mat4_translate(center.x, center.y, center.z),
                               bg_mat4_scale(radius, radius, radius));
-    return add(scene, where, &d, out_object);
+    return add(scene, where, "transform (from center and radius)", &d, out_object);
 }
 
 /* The plane's prototype axes in world space: y becomes the normal n; x (the planar u axis) is
@@ -94,32 +99,46 @@ bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uin
     if (!bgi_vec3_finite(point))
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: point = (%g, %g, %g) is not finite",
                              where, point.x, point.y, point.z);
-    double len = bgi_vec3_length(normal);
-    if (!bgi_vec3_finite(normal) || len == 0.0)
+    if (!bgi_vec3_finite(normal) || bgi_vec3_length(normal) == 0.0)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: normal = (%g, %g, %g) must be finite and non-zero",
                              where, normal.x, normal.y, normal.z);
-    bg_vec3 n = bg_vec3_make(normal.x / len, normal.y / len, normal.z / len);
     bg_object_desc d = bg_object_desc_init(BG_SHAPE_PLANE, material);
-    d.transform = bg_mat4_mul(bg_mat4_translate(point.x, point.y, point.z), plane_frame(n));
-    return add(scene, where, &d, out_object);
+    d.transform = bg_mat4_mul(bg_mat4_translate(point.x, point.y, point.z), plane_frame(bgi_vec3_normalize(normal)));
+    return add(scene, where, "transform (from point and normal)", &d, out_object);
 }
 
 bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4 *transform)
 {
+    static const char call[] = "bg_scene_set_transform";
     if (!scene)
         return BG_ERR_INVALID_ARGUMENT;
-    uint32_t index;
-    bg_status st = bgi_scene_handle(scene, "bg_scene_set_transform", "object", object,
-                                   scene->objects.count, &index);
+    uint32_t slot;
+    bg_status st = bgi_pool_lookup(scene, &scene->objects, call, "object", object, &slot);
     if (st != BG_OK)
         return st;
     if (!transform)
-        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_transform: transform is NULL");
-    char where[64];
-    snprintf(where, sizeof where, "bg_scene_set_transform: object %u", object);
-    st = bgi_validate_transform(scene, where, transform);
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: transform is NULL", call);
+    char where[64], text[BG_HANDLE_TEXT_SIZE];
+    snprintf(where, sizeof where, "%s: object %s", call, bgi_handle_text(object, text));
+    bg_object_desc *desc = bgi_pool_item(&scene->objects, slot);
+    bg_object_desc moved = *desc;
+    moved.transform = *transform;
+    bg_object_data derived;
+    st = bgi_object_derive(scene, where, "transform", &moved, &derived);
     if (st != BG_OK)
         return st;
-    ((bg_object_desc *)scene->objects.data)[index].transform = *transform;
+    desc->transform = *transform;
+    return BG_OK;
+}
+
+bg_status bg_scene_remove_object(bg_scene *scene, uint32_t object)
+{
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    uint32_t slot;
+    bg_status st = bgi_pool_lookup(scene, &scene->objects, "bg_scene_remove_object", "object", object, &slot);
+    if (st != BG_OK)
+        return st;
+    bgi_pool_remove(&scene->objects, slot);
     return BG_OK;
 }

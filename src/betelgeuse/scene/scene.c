@@ -1,4 +1,4 @@
-/* Scene lifetime, the sticky first error, the camera and the ambient light. */
+/* Scene lifetime, the sticky first error, arrays, the camera and the ambient light. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -32,6 +32,10 @@ bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
     memset(s, 0, sizeof *s);
     s->allocator = d.allocator;
     s->logger = d.logger;
+    bgi_pool_init(&s->objects, "object", "an object", sizeof(bg_object_desc));
+    bgi_pool_init(&s->materials, "material", "a material", sizeof(bg_material));
+    bgi_pool_init(&s->lights, "light", "a light", sizeof(bg_light));
+    bgi_pool_init(&s->textures, "texture", "a texture", sizeof(bg_texture_data));
     s->camera = bg_camera_init();
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 1.0;
     *out_scene = s;
@@ -42,11 +46,18 @@ void bg_scene_destroy(bg_scene *scene)
 {
     if (!scene)
         return;
-    bg_texture_data *t = scene->textures.data;
-    for (uint32_t i = 0; i < scene->textures.count; i++)
-        bgi_free(&scene->allocator, t[i].texels);
-    bg_array *arrays[] = {&scene->objects, &scene->materials, &scene->lights, &scene->textures,
-                          &scene->c_objects, &scene->c_materials, &scene->c_lights, &scene->c_textures};
+    for (uint32_t i = 0; i < bgi_pool_slot_count(&scene->textures); i++)
+        if (bgi_pool_live(&scene->textures, i))
+            bgi_free(&scene->allocator, ((bg_texture_data *)bgi_pool_item(&scene->textures, i))->texels);
+    float **retired = scene->retired_texels.data;
+    for (uint32_t i = 0; i < scene->retired_texels.count; i++)
+        bgi_free(&scene->allocator, retired[i]);
+    bg_pool *pools[] = {&scene->objects, &scene->materials, &scene->lights, &scene->textures};
+    for (size_t i = 0; i < sizeof pools / sizeof pools[0]; i++)
+        bgi_pool_release(scene, pools[i]);
+    bg_array *arrays[] = {&scene->retired_texels, &scene->c_objects, &scene->c_materials, &scene->c_lights,
+                          &scene->c_textures, &scene->p_objects, &scene->p_materials, &scene->p_lights,
+                          &scene->p_textures, &scene->material_map, &scene->texture_map};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         bgi_array_release(scene, arrays[i]);
     bgi_scene_tree_release(scene);
@@ -111,16 +122,6 @@ void bgi_array_release(bg_scene *scene, bg_array *array)
     memset(array, 0, sizeof *array);
 }
 
-bg_status bgi_scene_handle(bg_scene *scene, const char *where, const char *kind, uint32_t handle,
-                          uint32_t count, uint32_t *out_index)
-{
-    if (handle == 0 || handle > count)
-        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: %s = %u is not a handle of this scene (%u added)",
-                             where, kind, handle, count);
-    *out_index = handle - 1;
-    return BG_OK;
-}
-
 bg_camera bg_camera_init(void)
 {
     bg_camera c;
@@ -137,7 +138,8 @@ bg_status bg_scene_set_camera(bg_scene *scene, const bg_camera *camera)
         return BG_ERR_INVALID_ARGUMENT;
     if (!camera)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_set_camera: camera is NULL");
-    bg_status st = bgi_validate_camera(scene, "bg_scene_set_camera", camera);
+    bg_camera_data derived;
+    bg_status st = bgi_camera_derive(scene, "bg_scene_set_camera", camera, &derived);
     if (st != BG_OK)
         return st;
     scene->camera = *camera;

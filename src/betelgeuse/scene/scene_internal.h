@@ -1,5 +1,7 @@
 /* The committed scene as both renderers read it. scene.c owns it; renderers never see the
- * pending (uncommitted) state. Everything here is validated and finite. */
+ * pending (uncommitted) state. Everything here is validated and finite. Arrays are dense: the live
+ * items in the order of their slots (scene_private.h), so removed items leave no holes, and every
+ * index below is into these arrays, never an API handle. */
 #ifndef BG_SCENE_INTERNAL_H
 #define BG_SCENE_INTERNAL_H
 
@@ -15,13 +17,13 @@ typedef struct bg_texture_data {
     float *texels; /* width * height * 4 */
 } bg_texture_data;
 
-/* An object with everything derived at commit. Handles are 1-based in the API and 0-based here. */
+/* An object with everything derived at commit (scene/object_data.c). */
 typedef struct bg_object_data {
     bg_shape shape;
     double to_world[4][4];       /* the object's transform */
     double to_object[4][4];      /* its inverse, computed in double */
     double normal_to_world[3][3];/* inverse transpose of the linear part */
-    uint32_t material;           /* index into materials */
+    uint32_t material;           /* index into materials (not the API handle) */
     bg_uv_mapping uv_mapping;    /* resolved: never BG_UV_DEFAULT */
     double uv_scale[2];
     bool casts_shadows;
@@ -36,7 +38,9 @@ typedef struct bg_camera_data {
     double tan_half_fov_y;
 } bg_camera_data;
 
-/* What a commit produces. Lights' directions are normalised; materials keep their public form. */
+/* What a commit produces. Lights' directions are normalised; materials keep their public form
+ * except that each texture field holds a dense 1-based index (textures[t - 1]; 0 none), not the
+ * API handle. */
 typedef struct bg_scene_state {
     bg_camera_data camera;
     double ambient[3];

@@ -6,7 +6,7 @@
 #include "../../macs/first_error.h"
 #include "scene_internal.h"
 
-/* Handles fit comfortably in 32 bits and array sizes in size_t. */
+/* Array sizes fit comfortably in 32 bits and in size_t. */
 #define BG_MAX_ITEMS (1u << 24)
 /* Every message Betelgeuse formats fits the size of the one the scene keeps. */
 #define BG_MESSAGE_SIZE MACS_MESSAGE_SIZE
@@ -17,27 +17,73 @@ typedef struct bg_array {
     uint32_t count, capacity;
 } bg_array;
 
+/* Handles (pool.c), as sokol_gfx's pools make them: an item's id is (slot + 1) | (generation << 24).
+ * A fresh slot has generation 0, so a scene that never removes hands out 1, 2, 3, ...; removal bumps
+ * the slot's generation and frees the slot for reuse, and a slot whose generation would pass 255 is
+ * retired instead (never reused), so an id of a removed item can never name a later one. */
+#define BG_HANDLE_SLOT_BITS 24
+#define BG_HANDLE_SLOT_MASK ((1u << BG_HANDLE_SLOT_BITS) - 1u)
+#define BG_HANDLE_LAST_GENERATION 255u
+/* slot + 1 must fit the slot bits. */
+#define BG_MAX_SLOTS BG_HANDLE_SLOT_MASK
+/* Room for bgi_handle_text's longest output ("0xFFFFFFFF"). */
+#define BG_HANDLE_TEXT_SIZE 16
+
+/* The slot an id names (past every pool for 0, whose slot bits are 0). */
+static inline uint32_t bgi_handle_slot(uint32_t id)
+{
+    return (id & BG_HANDLE_SLOT_MASK) - 1u;
+}
+
+typedef enum { BG_SLOT_FREE = 0, BG_SLOT_LIVE, BG_SLOT_RETIRED } bg_slot_state;
+
+typedef struct bg_slot {
+    uint8_t generation;
+    uint8_t state; /* bg_slot_state */
+} bg_slot;
+
+/* Items of one kind in slots. items and slots have one entry per slot ever used; free_slots can
+ * always hold every slot, so that removal never allocates. */
+typedef struct bg_pool {
+    const char *kind;   /* "object", for messages */
+    const char *a_kind; /* "an object" */
+    size_t elem;        /* bytes per item */
+    bg_array items;
+    bg_array slots;      /* bg_slot */
+    bg_array free_slots; /* uint32_t, reused last-freed first */
+    uint32_t live;       /* slots holding an item */
+} bg_pool;
+
 struct bg_scene {
     bg_allocator allocator;
     bg_logger logger;
     macs_first_error error; /* status is a bg_status */
 
     /* Pending state. Textures are immutable once added, so the committed state shares their
-     * texels; the pending texture array owns them. */
+     * texels; the pending texture pool owns them. A removed texture's texels may still be in the
+     * committed state, so they wait in retired_texels until the next successful commit. */
     bg_camera camera;
     double ambient[3];
-    bg_array objects;   /* bg_object_desc */
-    bg_array materials; /* bg_material */
-    bg_array lights;    /* bg_light */
-    bg_array textures;  /* bg_texture_data */
+    bg_pool objects;   /* bg_object_desc */
+    bg_pool materials; /* bg_material */
+    bg_pool lights;    /* bg_light */
+    bg_pool textures;  /* bg_texture_data */
+    bg_array retired_texels; /* float *, freed at the next successful commit */
 
-    /* Committed state and the storage behind its arrays. */
+    /* Committed state and the storage behind its arrays: dense (live items in slot order), with
+     * objects' materials and materials' textures translated to dense indices. */
     bool committed;
     bg_scene_state state;
     bg_array c_objects;   /* bg_object_data */
     bg_array c_materials; /* bg_material */
     bg_array c_lights;    /* bg_light */
-    bg_array c_textures;  /* bg_texture_data (texels shared with the pending array) */
+    bg_array c_textures;  /* bg_texture_data (texels shared with the pending pool) */
+
+    /* A commit in progress derives everything here first (p_ like the tree's lists), so that a
+     * failure leaves the committed arrays untouched; success copies it over them. The maps take
+     * a material or texture slot to its dense index. */
+    bg_array p_objects, p_materials, p_lights, p_textures;
+    bg_array material_map, texture_map; /* uint32_t per slot */
 
     /* The object tree: the committed one, the lists behind the committed state's tree fields
      * (c_), and the commit in progress's boxes and lists (p_), swapped in when it succeeds. */
@@ -56,29 +102,72 @@ bg_status bgi_array_reserve(bg_scene *scene, bg_array *array, uint32_t need, siz
 /* Frees the storage of an array. */
 void bgi_array_release(bg_scene *scene, bg_array *array);
 
-/* Checks a 1-based handle against a count and returns the 0-based index, or fails naming kind. */
-bg_status bgi_scene_handle(bg_scene *scene, const char *where, const char *kind, uint32_t handle,
-                          uint32_t count, uint32_t *out_index);
+/* ---- pool.c ---- */
 
-/* Field validators used both by the API calls and by commit. where is the message prefix
- * ("bg_scene_add_material" or "bg_scene_commit: material 2"). */
+/* An empty pool of elem-sized items; kind ("object") and a_kind ("an object") name them in messages. */
+void bgi_pool_init(bg_pool *pool, const char *kind, const char *a_kind, size_t elem);
+/* Frees the pool's storage (not what its items point to). */
+void bgi_pool_release(bg_scene *scene, bg_pool *pool);
+/* Makes sure the next bgi_pool_add cannot fail: BG_ERR_LIMIT when every slot a handle can name is
+ * used or retired, BG_ERR_OUT_OF_MEMORY; the pool is unchanged on failure. */
+bg_status bgi_pool_reserve(bg_scene *scene, bg_pool *pool, const char *where);
+/* Copies item into a free slot (the last freed, else a new one) and hands out its id. */
+bg_status bgi_pool_add(bg_scene *scene, bg_pool *pool, const char *where, const void *item, uint32_t *out_id);
+/* The one handle lookup every call taking a handle goes through: the slot of a live id, or
+ * BG_ERR_INVALID_ARGUMENT with "where: field = id is not an object of this scene (n in use)", or
+ * "where: field = id was removed" for the id of a removed item. */
+bg_status bgi_pool_lookup(bg_scene *scene, const bg_pool *pool, const char *where, const char *field, uint32_t id,
+                         uint32_t *out_slot);
+/* Frees a live slot: its generation moves on (or the slot retires), its ids stop working. */
+void bgi_pool_remove(bg_pool *pool, uint32_t slot);
+/* Slots ever used (live, free or retired): the range to walk with bgi_pool_live. */
+uint32_t bgi_pool_slot_count(const bg_pool *pool);
+bool bgi_pool_live(const bg_pool *pool, uint32_t slot);
+/* The item in a slot. */
+void *bgi_pool_item(const bg_pool *pool, uint32_t slot);
+/* The id of a slot's current generation. */
+uint32_t bgi_pool_id(const bg_pool *pool, uint32_t slot);
+/* An id as messages write it: decimal in generation 0 (the ids of a scene that never removed
+ * anything), hexadecimal otherwise, where the generation byte is then readable. */
+const char *bgi_handle_text(uint32_t id, char text[BG_HANDLE_TEXT_SIZE]);
+
+/* ---- validate.c: field validators used both by the API calls and by commit ---- */
+
+/* where is the message prefix ("bg_scene_add_material" or "bg_scene_commit: material 2"). The
+ * camera and light checks are reached through bgi_camera_derive and bgi_light_derive below. */
 bg_status bgi_validate_camera(bg_scene *scene, const char *where, const bg_camera *camera);
+bg_status bgi_validate_light(bg_scene *scene, const char *where, const bg_light *light);
 bg_status bgi_validate_color3(bg_scene *scene, const char *where, const char *field,
                              const double rgb[3]);
-bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_material *m,
-                               uint32_t texture_count);
-bg_status bgi_validate_light(bg_scene *scene, const char *where, const bg_light *light);
-bg_status bgi_validate_object(bg_scene *scene, const char *where, const bg_object_desc *desc,
-                             uint32_t material_count);
-bg_status bgi_validate_transform(bg_scene *scene, const char *where, const bg_mat4 *transform);
+/* Values and texture references (through bgi_pool_lookup). */
+bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_material *m);
+/* Everything but the transform and what is derived from it (object_data.c); writes the material's slot. */
+bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const bg_object_desc *desc,
+                                    uint32_t *out_material_slot);
 
-/* The world box of an object about to be committed; false for an unbounded shape (tree.c reads
- * it through commit.c, which owns the shapes' extents). */
-bool bgi_object_world_box(const bg_object_desc *desc, double lo[3], double hi[3]);
+/* Every texture reference of a material, one row each: X(field) with m->field.texture the handle. */
+#define BG_MATERIAL_TEXTURES(X)                                                                  \
+    X(base.reflectance) X(base.roughness) X(base.isotropy) X(coat.reflectance) X(coat.roughness) \
+    X(coat.isotropy) X(ambient) X(emission) X(transparency)
 
-/* Plans the committed object tree for the pending objects (boxes from bgi_object_world_box): kept
- * when no tree box changed, refitted when only boxes changed, rebuilt aside otherwise. Allocates
- * everything it needs, so a failure leaves the committed state as it was. */
+/* ---- derivation: the one check of each item that both its API calls and commit run ---- */
+
+/* Validates a camera and derives its basis (commit.c). */
+bg_status bgi_camera_derive(bg_scene *scene, const char *where, const bg_camera *camera, bg_camera_data *out);
+/* Validates a light and derives its committed form (normalised direction) (commit.c). */
+bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *light, bg_light *out);
+/* Validates an object and derives everything a commit stores for it (object_data.c): inverse,
+ * normal matrix, resolved UV mapping, world box, each checked finite. out->material is the
+ * material's slot (commit translates it). transform_field names the transform in messages
+ * ("transform", or what a shorthand built it from). */
+bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *transform_field,
+                           const bg_object_desc *desc, bg_object_data *out);
+
+/* ---- tree.c ---- */
+
+/* Plans the committed object tree for the objects the commit in progress derived (p_objects):
+ * kept when no tree box changed, refitted when only boxes changed, rebuilt aside otherwise.
+ * Allocates everything it needs, so a failure leaves the committed state as it was. */
 bg_status bgi_scene_tree_prepare(bg_scene *scene);
 /* Puts the prepared tree into the committed state; cannot fail. */
 void bgi_scene_tree_install(bg_scene *scene);

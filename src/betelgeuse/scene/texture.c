@@ -41,7 +41,7 @@ bg_status bgi_texture_add(bg_scene *scene, const char *where, const bg_image *im
                                          where, i / 4, y, i % 4, (double)row[i]);
         }
     }
-    st = bgi_array_reserve(scene, &scene->textures, scene->textures.count + 1, sizeof(bg_texture_data), where);
+    st = bgi_pool_reserve(scene, &scene->textures, where);
     if (st != BG_OK)
         return st;
     size_t bytes = (size_t)w * (size_t)h * 4 * sizeof(float);
@@ -65,14 +65,8 @@ bg_status bgi_texture_add(bg_scene *scene, const char *where, const bg_image *im
             dst[4 * x + 3] = (float)(src[4 * x + 3] / 255.0);
         }
     }
-    bg_texture_data *t = &((bg_texture_data *)scene->textures.data)[scene->textures.count++];
-    t->width = w;
-    t->height = h;
-    t->wrap = d.wrap;
-    t->filter = d.filter;
-    t->texels = texels;
-    *out_texture = scene->textures.count;
-    return BG_OK;
+    bg_texture_data t = {w, h, d.wrap, d.filter, texels};
+    return bgi_pool_add(scene, &scene->textures, where, &t, out_texture); /* reserved: cannot fail */
 }
 
 bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
@@ -83,4 +77,48 @@ bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_
     if (!out_texture)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "bg_scene_add_texture: out_texture is NULL");
     return bgi_texture_add(scene, "bg_scene_add_texture", image, desc, out_texture);
+}
+
+/* The first field of a live material that references texture, or NULL; *out_material is its id. */
+static const char *first_use(const bg_scene *scene, uint32_t texture, uint32_t *out_material)
+{
+    for (uint32_t k = 0; k < bgi_pool_slot_count(&scene->materials); k++) {
+        if (!bgi_pool_live(&scene->materials, k))
+            continue;
+        const bg_material *m = bgi_pool_item(&scene->materials, k);
+        *out_material = bgi_pool_id(&scene->materials, k);
+#define USES(field)                    \
+    if (m->field.texture == texture) \
+        return #field ".texture";
+        BG_MATERIAL_TEXTURES(USES)
+#undef USES
+    }
+    return NULL;
+}
+
+bg_status bg_scene_remove_texture(bg_scene *scene, uint32_t texture)
+{
+    static const char where[] = "bg_scene_remove_texture";
+    if (!scene)
+        return BG_ERR_INVALID_ARGUMENT;
+    uint32_t slot, material;
+    bg_status st = bgi_pool_lookup(scene, &scene->textures, where, "texture", texture, &slot);
+    if (st != BG_OK)
+        return st;
+    const char *field = first_use(scene, texture, &material);
+    if (field) {
+        char t_text[BG_HANDLE_TEXT_SIZE], m_text[BG_HANDLE_TEXT_SIZE];
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: texture %s is used by material %s (%s)", where,
+                             bgi_handle_text(texture, t_text), bgi_handle_text(material, m_text), field);
+    }
+    /* The committed state may still read the texels: they are freed by the next successful commit. */
+    bg_array *retired = &scene->retired_texels;
+    st = bgi_array_reserve(scene, retired, retired->count + 1, sizeof(float *), where);
+    if (st != BG_OK)
+        return st;
+    bg_texture_data *t = bgi_pool_item(&scene->textures, slot);
+    ((float **)retired->data)[retired->count++] = t->texels;
+    t->texels = NULL;
+    bgi_pool_remove(&scene->textures, slot);
+    return BG_OK;
 }

@@ -1,7 +1,7 @@
 /* The committed object tree. A commit that moves nothing (camera, lights, material values) keeps
  * the tree as it is; one that moves objects refits it, keeping its layout, so a renderer uploads
  * new boxes into the same texels; one that adds objects, or moves one into or out of the float
- * range, rebuilds it. Refits keep the tree exact but may make it slower (overlapping boxes); a
+ * range, or removes one, rebuilds it. Refits keep the tree exact but may make it slower (overlapping boxes); a
  * later structural commit rebuilds it.
  *
  * Everything that can fail (growing the lists, building aside) happens in prepare, before commit
@@ -35,16 +35,19 @@ static bg_status reserve_lists(bg_scene *s, uint32_t n)
     return BG_OK;
 }
 
-/* Sorts the pending objects into the tree's (a box that fits floats) and the always-tested. */
+/* Sorts the objects the commit derived into the tree's (a box that fits floats) and the
+ * always-tested, both by dense index. */
 static void split_objects(bg_scene *s)
 {
-    const bg_object_desc *descs = s->objects.data;
+    const bg_object_data *objects = s->p_objects.data;
     bg_bvh_box *boxes = s->p_boxes.data;
     uint32_t *tree = s->p_tree_objects.data, *always = s->p_always.data;
     uint32_t nt = 0, na = 0;
-    for (uint32_t i = 0; i < s->objects.count; i++) {
+    for (uint32_t i = 0; i < s->p_objects.count; i++) {
         bg_bvh_box b;
-        if (bgi_object_world_box(&descs[i], b.min, b.max) && bgi_bvh_check_boxes(&b, 1, NULL) == BG_OK) {
+        memcpy(b.min, objects[i].bounds_min, sizeof b.min);
+        memcpy(b.max, objects[i].bounds_max, sizeof b.max);
+        if (objects[i].bounded && bgi_bvh_check_boxes(&b, 1, NULL) == BG_OK) {
             boxes[nt] = b;
             tree[nt++] = i;
         } else {
@@ -62,7 +65,7 @@ static bool same_list(const bg_array *a, const bg_array *b, size_t elem)
 
 bg_status bgi_scene_tree_prepare(bg_scene *s)
 {
-    bg_status st = reserve_lists(s, s->objects.count);
+    bg_status st = reserve_lists(s, s->p_objects.count);
     if (st != BG_OK)
         return st;
     split_objects(s);

@@ -34,17 +34,16 @@ bg_status bgi_validate_camera(bg_scene *scene, const char *where, const bg_camer
         return FAIL("%s: fov_y_degrees = %g is outside (0, 180)", where, c->fov_y_degrees);
     bg_vec3 f = bg_vec3_make(c->look_at.x - c->position.x, c->look_at.y - c->position.y,
                              c->look_at.z - c->position.z);
-    double fl = bgi_vec3_length(f);
-    if (fl == 0.0)
+    if (!bgi_vec3_finite(f))
+        return FAIL("%s: look_at - position overflows", where);
+    if (bgi_vec3_length(f) == 0.0)
         return FAIL("%s: look_at equals position (%g, %g, %g)", where, c->position.x,
                     c->position.y, c->position.z);
-    if (!isfinite(fl))
-        return FAIL("%s: look_at - position overflows", where);
-    double ul = bgi_vec3_length(c->up);
-    if (ul == 0.0)
+    if (bgi_vec3_length(c->up) == 0.0)
         return FAIL("%s: up = (0, 0, 0) is zero", where);
-    f.x /= fl; f.y /= fl; f.z /= fl;
-    bg_vec3 u = bg_vec3_make(c->up.x / ul, c->up.y / ul, c->up.z / ul);
+    /* Normalised as commit derives the basis (bgi_camera_derive): lengths that overflow are fine. */
+    f = bgi_vec3_normalize(f);
+    bg_vec3 u = bgi_vec3_normalize(c->up);
     bg_vec3 x = bg_vec3_make(f.y * u.z - f.z * u.y, f.z * u.x - f.x * u.z, f.x * u.y - f.y * u.x);
     if (bgi_vec3_length(x) < BG_UP_PARALLEL_SIN)
         return FAIL("%s: up = (%g, %g, %g) is parallel to the view direction", where, c->up.x,
@@ -61,29 +60,20 @@ bg_status bgi_validate_color3(bg_scene *scene, const char *where, const char *fi
     return BG_OK;
 }
 
-static bg_status texture_ref(bg_scene *scene, const char *where, const char *field,
-                             uint32_t texture, uint32_t texture_count)
-{
-    if (texture != 0 && texture > texture_count)
-        return FAIL("%s: %s.texture = %u is not a texture of this scene (%u added)", where, field,
-                    texture, texture_count);
-    return BG_OK;
-}
-
 static bg_status color_param(bg_scene *scene, const char *where, const char *field,
-                             const bg_color_param *p, uint32_t texture_count)
+                             const bg_color_param *p)
 {
     double rgb[3] = {p->r, p->g, p->b};
     if (!finite3(rgb))
         return FAIL("%s: %s = (%g, %g, %g) is not finite", where, field, p->r, p->g, p->b);
     if (p->r < 0 || p->g < 0 || p->b < 0)
         return FAIL("%s: %s = (%g, %g, %g) has a negative component", where, field, p->r, p->g, p->b);
-    return texture_ref(scene, where, field, p->texture, texture_count);
+    return BG_OK;
 }
 
 /* A scalar parameter in [0, 1] (unit) or just finite and positive (not unit). */
 static bg_status scalar_param(bg_scene *scene, const char *where, const char *field,
-                              const bg_scalar_param *p, uint32_t texture_count)
+                              const bg_scalar_param *p)
 {
     if (!isfinite(p->value))
         return FAIL("%s: %s.value = %g is not finite", where, field, p->value);
@@ -91,37 +81,42 @@ static bg_status scalar_param(bg_scene *scene, const char *where, const char *fi
         return FAIL("%s: %s.value = %g is outside [0, 1]", where, field, p->value);
     if (p->channel < 0 || p->channel > 3)
         return FAIL("%s: %s.channel = %d is outside 0..3", where, field, p->channel);
-    return texture_ref(scene, where, field, p->texture, texture_count);
+    return BG_OK;
 }
 
-static bg_status layer(bg_scene *scene, const char *where, const char *name, const bg_schlick_layer *l,
-                       uint32_t texture_count)
+static bg_status layer(bg_scene *scene, const char *where, const char *name, const bg_schlick_layer *l)
 {
     char field[64];
     bg_status st;
     snprintf(field, sizeof field, "%s.reflectance", name);
-    if ((st = color_param(scene, where, field, &l->reflectance, texture_count)) != BG_OK)
+    if ((st = color_param(scene, where, field, &l->reflectance)) != BG_OK)
         return st;
     snprintf(field, sizeof field, "%s.roughness", name);
-    if ((st = scalar_param(scene, where, field, &l->roughness, texture_count)) != BG_OK)
+    if ((st = scalar_param(scene, where, field, &l->roughness)) != BG_OK)
         return st;
     snprintf(field, sizeof field, "%s.isotropy", name);
-    return scalar_param(scene, where, field, &l->isotropy, texture_count);
+    return scalar_param(scene, where, field, &l->isotropy);
 }
 
-bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_material *m,
-                               uint32_t texture_count)
+bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_material *m)
 {
     bg_status st;
     /* The coat is checked even when unused, so a committed material never holds garbage. */
-    if ((st = layer(scene, where, "base", &m->base, texture_count)) != BG_OK ||
-        (st = layer(scene, where, "coat", &m->coat, texture_count)) != BG_OK ||
-        (st = color_param(scene, where, "ambient", &m->ambient, texture_count)) != BG_OK ||
-        (st = color_param(scene, where, "emission", &m->emission, texture_count)) != BG_OK ||
-        (st = scalar_param(scene, where, "transparency", &m->transparency, texture_count)) != BG_OK)
+    if ((st = layer(scene, where, "base", &m->base)) != BG_OK ||
+        (st = layer(scene, where, "coat", &m->coat)) != BG_OK ||
+        (st = color_param(scene, where, "ambient", &m->ambient)) != BG_OK ||
+        (st = color_param(scene, where, "emission", &m->emission)) != BG_OK ||
+        (st = scalar_param(scene, where, "transparency", &m->transparency)) != BG_OK)
         return st;
     if (!isfinite(m->ior) || m->ior <= 0.0)
         return FAIL("%s: ior = %g must be finite and > 0", where, m->ior);
+    uint32_t slot;
+#define TEXTURE_REF(field)                                                                              \
+    if (m->field.texture != 0 &&                                                                        \
+        (st = bgi_pool_lookup(scene, &scene->textures, where, #field ".texture", m->field.texture, &slot)) != BG_OK) \
+        return st;
+    BG_MATERIAL_TEXTURES(TEXTURE_REF)
+#undef TEXTURE_REF
     return BG_OK;
 }
 
@@ -155,16 +150,8 @@ bg_status bgi_validate_light(bg_scene *scene, const char *where, const bg_light 
     return BG_OK;
 }
 
-bg_status bgi_validate_transform(bg_scene *scene, const char *where, const bg_mat4 *t)
-{
-    bg_affine_check c = bgi_affine_inverse(t, NULL);
-    if (c != BG_AFFINE_OK)
-        return FAIL("%s: transform %s", where, bgi_affine_check_string(c));
-    return BG_OK;
-}
-
-bg_status bgi_validate_object(bg_scene *scene, const char *where, const bg_object_desc *d,
-                             uint32_t material_count)
+bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const bg_object_desc *d,
+                                    uint32_t *out_material_slot)
 {
     if ((int)d->shape < 0 || d->shape >= BG_SHAPE_COUNT_)
         return FAIL("%s: shape = %d is not a bg_shape", where, (int)d->shape);
@@ -173,8 +160,5 @@ bg_status bgi_validate_object(bg_scene *scene, const char *where, const bg_objec
     for (int i = 0; i < 2; i++)
         if (!isfinite(d->uv_scale[i]) || d->uv_scale[i] <= 0.0)
             return FAIL("%s: uv_scale[%d] = %g must be finite and > 0", where, i, d->uv_scale[i]);
-    if (d->material == 0 || d->material > material_count)
-        return FAIL("%s: material = %u is not a material of this scene (%u added)", where,
-                    d->material, material_count);
-    return bgi_validate_transform(scene, where, &d->transform);
+    return bgi_pool_lookup(scene, &scene->materials, where, "material", d->material, out_material_slot);
 }
