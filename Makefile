@@ -170,15 +170,16 @@ TEST_ENV := MESA_GL_VERSION_OVERRIDE=2.1 MESA_GLSL_VERSION_OVERRIDE=110 MESA_SHA
 # Suites that also run on EGL surfaceless and on softpipe (smoke subset).
 SMOKE_TESTS ?= $(filter $(BUILD)/tests/test_smoke%,$(TEST_BIN))
 
-# The self-contained examples (examples/standalone_*.c) built as a user builds them: against a staged
-# `make install` with `pkg-config betelgeuse` only (no -Iinclude, -Isrc or examples/scenes), linked to
-# the staged shared libraries; then every example is run by tests/check_examples.sh (command line,
+# The self-contained examples (examples/standalone_*.c, and bg_texture_view.c, which also includes
+# the system's <GL/gl.h>) built as a user builds them: against a staged `make install` with
+# `pkg-config betelgeuse` only (no -Iinclude, -Isrc or examples/scenes), linked to the staged shared
+# libraries; then every example is run by tests/check_examples.sh (command line,
 # and a PNG from each standalone one). The .pc files record PREFIX without DESTDIR, so
 # PKG_CONFIG_SYSROOT_DIR puts the stage in front of their -I and -L paths. Under SANITIZE the
 # programs also link the LSan hook of examples/scenes, as every other sanitized program does.
 STAGE := $(abspath $(BUILD)/stage)
 STAGE_PKG_CONFIG := PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig PKG_CONFIG_SYSROOT_DIR=$(STAGE) pkg-config
-STANDALONE_SRC := $(sort $(wildcard examples/standalone_*.c))
+STANDALONE_SRC := $(sort $(wildcard examples/standalone_*.c) examples/bg_texture_view.c)
 check-examples: all $(EXAMPLE_BIN)
 	@echo "== examples: standalone ones against a staged install (pkg-config betelgeuse), every one's command line"
 	@rm -rf $(STAGE) $(BUILD)/installed && mkdir -p $(BUILD)/installed

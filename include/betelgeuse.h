@@ -467,6 +467,30 @@ BG_API void bg_renderer_clear_error(bg_renderer *renderer);
 BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
                                bg_image *image);
 
+/* Renders like bg_render_gpu, but into a MACS texture that stays on the GPU, for a caller that draws
+ * the frame (an interactive viewer) rather than reading it: target is a texture of the renderer's
+ * MACS context (macs_texture_create, or a caller's own GL texture through macs_texture_wrap), and its
+ * size is the image's. Its format picks the output as bg_image's does: RGBA8 holds the settings'
+ * encoding (sRGB or linear, the bytes bg_render_gpu's RGBA8 image gets), RGBA32F linear unclamped
+ * radiance (bg_render_gpu's RGBA32F image), RGBA16F the same rounded to half floats by GL (values
+ * above 65504 become infinite); alpha is 1 everywhere.
+ * Orientation: texture row 0 (the bottom row, t = 0, as GL has it) is the image's BOTTOM row: a quad
+ * drawn with texture coordinate (0, 0) at its bottom-left corner shows the image upright, and
+ * macs_texture_read returns the rows bottom first, the reverse of bg_image's top-first rows.
+ * Cost: nothing of the image comes back to the host. The fused and multipass plans write the target
+ * with their last pass. BG_PLAN_FUSED_TREE must still render its pixels whose walks ran out of loop
+ * steps on the CPU (bg_render_stats.fallback_pixels): one more pass packs those marks into one bit
+ * per pixel, ceil(width / 32) x height x 4 bytes are read back (the call waits for the GPU there, as
+ * bg_render_gpu's read-back does), and the CPU reference's pixels go up with one glTexSubImage2D per
+ * run of marked pixels in a row; the frame is then what bg_render_gpu gives. The renderer keeps no
+ * hold on target: destroying it after the call is fine.
+ * Errors: as bg_render_gpu's, with target in the image's place: BG_ERR_INVALID_ARGUMENT when target
+ * is NULL or belongs to another macs_context, or is larger than 16384 per side; BG_ERR_LIMIT beyond
+ * the GL texture size limit; BG_ERR_GL (with MACS's message) when GL cannot render into the target's
+ * format, as some GL cannot into RGBA16F. */
+BG_API bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                                          macs_texture *target);
+
 /* Kinds of GPU pass, counted in bg_render_stats. */
 typedef enum bg_pass_kind {
     BG_PASS_RAYS = 0,   /* camera ray maps */
@@ -488,7 +512,8 @@ typedef enum bg_phase {
     BG_PHASE_SHADOW,
     BG_PHASE_LIGHT,      /* lighting and background */
     BG_PHASE_BOUNCE,     /* spawning and marking secondary ray sets, with their occlusion queries */
-    BG_PHASE_RESOLVE,    /* resolve pass and read-back into the caller's image */
+    BG_PHASE_RESOLVE,    /* resolve pass and read-back into the caller's image (or, into a texture, the resolve
+                            pass and the tree's fallback pixels) */
     BG_PHASE_COUNT_
 } bg_phase;
 

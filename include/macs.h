@@ -287,6 +287,13 @@ MACS_API void macs_texture_destroy(macs_texture *texture);
 /* Replaces the whole contents from caller memory (float for float formats, uint8_t for RGBA8). */
 MACS_API macs_status macs_texture_upload(macs_texture *texture, const void *data, size_t stride);
 
+/* Replaces the width x height texels whose bottom-left texel is (x, y) (texel coordinates, row 0 at
+ * the bottom) from caller memory laid out as for macs_texture_upload: height rows of width texels,
+ * bottom row first, stride 0 = tight rows. A region not inside the texture, or empty, is refused
+ * (MACS_ERR_INVALID_ARGUMENT, naming it and the size). */
+MACS_API macs_status macs_texture_upload_region(macs_texture *texture, int x, int y, int width, int height,
+                                                const void *data, size_t stride);
+
 /* Reads the whole contents back into caller memory; RGBA32F returns exactly the bits written. */
 MACS_API macs_status macs_texture_read(macs_texture *texture, void *data, size_t stride);
 
@@ -298,6 +305,44 @@ MACS_API void macs_texture_size(const macs_texture *texture, int *width, int *he
 
 /* Reports the format of a texture. */
 MACS_API macs_format macs_texture_format(const macs_texture *texture);
+
+/* Returns the GL name (a GLuint) of a texture, for the caller's own GL code: glBindTexture(GL_TEXTURE_2D,
+ * name) to draw it, or to sample it in a shader of the caller's (0 for NULL). Its level-0 image holds
+ * row 0 at the bottom, as every MACS texture and GL do. The name stays MACS's for a texture MACS
+ * created: never delete it or respecify its image (glTexImage2D); changing its filter or wrap
+ * parameters changes how passes sample it. */
+MACS_API unsigned macs_texture_gl_name(const macs_texture *texture);
+
+/* Returns the context a texture belongs to (NULL for NULL). */
+MACS_API macs_context *macs_texture_context(const macs_texture *texture);
+
+/* Defaults: gl_name required; width and height 0 = as GL reports the level-0 image, else they must
+ * equal it; format DEFAULT = as GL reports its internal format, else it must equal it; filter
+ * NEAREST; wrap CLAMP_TO_EDGE.
+ * The texture must be a GL_TEXTURE_2D texture of the GL context current for ctx with a level-0 image
+ * in GL_RGBA8 (or unsized GL_RGBA that GL stores in 8 bits a channel), GL_RGBA32F_ARB or
+ * GL_RGBA16F_ARB, of at most max_texture_size per side. */
+typedef struct macs_texture_wrap_desc {
+    unsigned gl_name; /* a GLuint from the caller's glGenTextures, bound and given an image */
+    int width;
+    int height;
+    macs_format format;
+    macs_filter filter;
+    macs_wrap wrap;
+} macs_texture_wrap_desc;
+
+/* Wraps a caller-owned GL texture as a macs_texture that works wherever one MACS created does (pass
+ * input and output, upload, read, clear), checked against GL first (glIsTexture, glBindTexture,
+ * glGetTexLevelParameteriv). Wrapping sets its minification and magnification filters and its wrap
+ * modes as desc says (a mipmap filter would make passes sample it as incomplete) and changes
+ * nothing else. The texture stays the caller's: macs_texture_destroy, and macs_context_destroy for
+ * every wrapped texture still alive, detach it from MACS's framebuffers and forget it, never
+ * deleting it; until then the caller must not delete it or respecify its image.
+ * Errors: MACS_ERR_INVALID_ARGUMENT naming desc.gl_name when it is 0, names no texture
+ * (glIsTexture false), a texture of another target or one without a level-0 image or of another
+ * internal format, and naming desc.width, desc.height or desc.format when one given differs from
+ * what GL reports; MACS_ERR_LIMIT when the texture is larger than max_texture_size. */
+MACS_API macs_status macs_texture_wrap(macs_context *ctx, const macs_texture_wrap_desc *desc, macs_texture **out);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Depth/stencil buffers                                                                           */

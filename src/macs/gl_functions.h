@@ -38,6 +38,8 @@
     X(void, TexSubImage2D, (GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, \
                             GLsizei height, GLenum format, GLenum type, const void *pixels)) \
     X(void, GetTexImage, (GLenum target, GLint level, GLenum format, GLenum type, void *pixels)) \
+    X(GLboolean, IsTexture, (GLuint texture)) \
+    X(void, GetTexLevelParameteriv, (GLenum target, GLint level, GLenum pname, GLint *params)) \
     X(void, DrawArrays, (GLenum mode, GLint first, GLsizei count)) \
     X(void, GenBuffers, (GLsizei n, GLuint *buffers)) \
     X(void, DeleteBuffers, (GLsizei n, const GLuint *buffers)) \

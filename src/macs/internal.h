@@ -35,6 +35,7 @@ struct macs_texture {
     GLuint id;
     int width, height;
     macs_format format;
+    bool wrapped; /* the caller's GL texture (macs_texture_wrap): forgotten, never deleted */
     struct macs_texture *prev, *next;
 };
 
@@ -171,6 +172,9 @@ void macsi_query_destroy(macs_pass *pass);
 
 /* pass_validate.c: refuses a pass description, naming the bad argument and the rule it breaks. */
 macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc);
+
+/* texture.c: the sampling parameters of the texture bound to GL_TEXTURE_2D (no mipmaps ever). */
+void macsi_texture_apply_sampling(macs_context *ctx, macs_filter filter, macs_wrap wrap);
 
 /* pass.c: detaching destroyed objects from passes */
 void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture);

@@ -239,6 +239,23 @@ macs_status macs_pass_set_uniform(macs_pass *pass, const char *name, const void 
                      name);
 }
 
+/* Takes output i's texture off its chunk's framebuffer. GL detaches a deleted texture from the bound
+ * framebuffer only; elsewhere the attachment keeps the texture's storage alive, and a wrapped texture
+ * is never deleted by MACS at all but must stop being drawn into once forgotten. */
+static void detach_output(macs_pass *p, int i)
+{
+    const macs_gl *gl = &p->ctx->gl;
+    for (int c = 0; c < p->chunk_count; c++) {
+        const macs_chunk *ch = &p->chunks[c];
+        if (!ch->fbo || i < ch->first_output || i >= ch->first_output + ch->output_count)
+            continue;
+        gl->BindFramebuffer(GL_FRAMEBUFFER, ch->fbo);
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)(i - ch->first_output), GL_TEXTURE_2D,
+                                 0, 0);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+}
+
 void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture)
 {
     for (macs_pass *p = ctx->passes; p; p = p->next) {
@@ -249,6 +266,7 @@ void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture)
             if (p->outputs[i] == texture) {
                 p->outputs[i] = NULL;
                 p->attachments_dirty = true;
+                detach_output(p, i);
             }
     }
 }

@@ -1,4 +1,6 @@
-/* RGBA textures: creation, upload and read-back through caller buffers with a row stride, clear. */
+/* RGBA textures: creation, upload (whole or a region) and read-back through caller buffers with a row
+ * stride, clear. Wrapping a caller's GL texture is in texture_wrap.c. */
+#include <stdio.h>
 #include <string.h>
 
 #include "internal.h"
@@ -22,11 +24,12 @@ static GLint internal_format(macs_format f)
     }
 }
 
-/* GL describes row strides in texels, so a stride must be a whole number of texels and hold a row. */
-static macs_status set_row_length(macs_texture *t, GLenum pname, size_t stride, const char *what)
+/* GL describes row strides in texels, so a stride must be a whole number of texels and hold a row
+ * of row_texels. */
+static macs_status set_row_length(macs_texture *t, GLenum pname, int row_texels, size_t stride, const char *what)
 {
     size_t ts = texel_size(t->format);
-    size_t tight = (size_t)t->width * ts;
+    size_t tight = (size_t)row_texels * ts;
     if (stride == 0)
         stride = tight;
     if (stride < tight || stride % ts != 0 || stride / ts > 0x7FFFFFFF)
@@ -84,21 +87,16 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     const macs_gl *gl = &ctx->gl;
     macsi_gl_drain(ctx);
     if (desc->data) {
-        macs_status st = set_row_length(t, GL_UNPACK_ROW_LENGTH, desc->stride, "macs_texture_create");
+        macs_status st = set_row_length(t, GL_UNPACK_ROW_LENGTH, t->width, desc->stride, "macs_texture_create");
         if (st != MACS_OK) {
             macsi_free(&ctx->allocator, t);
             return st;
         }
     }
-    GLint filter = desc->filter == MACS_FILTER_LINEAR ? GL_LINEAR : GL_NEAREST;
-    GLint wrap = desc->wrap == MACS_WRAP_REPEAT ? GL_REPEAT : GL_CLAMP_TO_EDGE;
     gl->GenTextures(1, &t->id);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, t->id);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+    macsi_texture_apply_sampling(ctx, desc->filter, desc->wrap);
     gl->TexImage2D(GL_TEXTURE_2D, 0, internal_format(t->format), t->width, t->height, 0, GL_RGBA,
                    texel_type(t->format), desc->data);
     reset_pixel_store(ctx);
@@ -114,51 +112,91 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     return MACS_OK;
 }
 
+void macsi_texture_apply_sampling(macs_context *ctx, macs_filter filter, macs_wrap wrap)
+{
+    GLint f = filter == MACS_FILTER_LINEAR ? GL_LINEAR : GL_NEAREST;
+    GLint w = wrap == MACS_WRAP_REPEAT ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    ctx->gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, f);
+    ctx->gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, f);
+    ctx->gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, w);
+    ctx->gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, w);
+}
+
 void macs_texture_destroy(macs_texture *t)
 {
     if (!t)
         return;
     macs_context *ctx = t->ctx;
     macsi_pass_forget_texture(ctx, t);
-    ctx->gl.DeleteTextures(1, &t->id);
+    /* A wrapped texture is the caller's: it outlives its macs_texture. */
+    if (!t->wrapped)
+        ctx->gl.DeleteTextures(1, &t->id);
     MACS_LIST_REMOVE(ctx->textures, t);
     macsi_free(&ctx->allocator, t);
 }
 
 /* Upload and read-back differ only in direction: the pixel-store row length, then one GL call.
- * glGetTexImage reads the texture itself: no framebuffer, no read-colour clamping. */
-static macs_status transfer(macs_texture *t, bool upload, void *data, size_t stride)
+ * glGetTexImage reads the texture itself: no framebuffer, no read-colour clamping. A read is always
+ * of the whole texture (GL 2.1 has no region read of a texture); an upload may be of a region. */
+static macs_status transfer(macs_texture *t, bool upload, const int region[4], void *data, size_t stride,
+                            const char *fn)
+{
+    macs_context *ctx = t->ctx;
+    macsi_gl_drain(ctx);
+    macs_status st = set_row_length(t, upload ? GL_UNPACK_ROW_LENGTH : GL_PACK_ROW_LENGTH, region[2], stride, fn);
+    if (st != MACS_OK)
+        return st;
+    ctx->gl.ActiveTexture(GL_TEXTURE0);
+    ctx->gl.BindTexture(GL_TEXTURE_2D, t->id);
+    if (upload)
+        ctx->gl.TexSubImage2D(GL_TEXTURE_2D, 0, region[0], region[1], region[2], region[3], GL_RGBA,
+                              texel_type(t->format), data);
+    else
+        ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, texel_type(t->format), data);
+    ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
+    reset_pixel_store(ctx);
+    char what[64];
+    snprintf(what, sizeof what, "%s: %s", fn, upload ? "glTexSubImage2D" : "glGetTexImage");
+    return macsi_gl_check(ctx, what);
+}
+
+static macs_status transfer_whole(macs_texture *t, bool upload, void *data, size_t stride)
 {
     const char *fn = upload ? "macs_texture_upload" : "macs_texture_read";
     if (!t)
         return MACS_ERR_INVALID_ARGUMENT;
     if (!data)
         return macsi_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "%s: data is NULL", fn);
-    macs_context *ctx = t->ctx;
-    macsi_gl_drain(ctx);
-    macs_status st = set_row_length(t, upload ? GL_UNPACK_ROW_LENGTH : GL_PACK_ROW_LENGTH, stride, fn);
-    if (st != MACS_OK)
-        return st;
-    ctx->gl.ActiveTexture(GL_TEXTURE0);
-    ctx->gl.BindTexture(GL_TEXTURE_2D, t->id);
-    if (upload)
-        ctx->gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->width, t->height, GL_RGBA, texel_type(t->format), data);
-    else
-        ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, texel_type(t->format), data);
-    ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
-    reset_pixel_store(ctx);
-    return macsi_gl_check(ctx, upload ? "macs_texture_upload: glTexSubImage2D" : "macs_texture_read: glGetTexImage");
+    const int whole[4] = {0, 0, t->width, t->height};
+    return transfer(t, upload, whole, data, stride, fn);
 }
 
 macs_status macs_texture_upload(macs_texture *t, const void *data, size_t stride)
 {
     /* transfer() only reads through data when upload is true. */
-    return transfer(t, true, (void *)(uintptr_t)data, stride);
+    return transfer_whole(t, true, (void *)(uintptr_t)data, stride);
+}
+
+macs_status macs_texture_upload_region(macs_texture *t, int x, int y, int width, int height, const void *data,
+                                       size_t stride)
+{
+    if (!t)
+        return MACS_ERR_INVALID_ARGUMENT;
+    if (!data)
+        return macsi_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT, "macs_texture_upload_region: data is NULL");
+    /* Compared as differences, so that no sum can overflow. */
+    if (x < 0 || y < 0 || width <= 0 || height <= 0 || x > t->width - width || y > t->height - height)
+        return macsi_fail(t->ctx, MACS_ERR_INVALID_ARGUMENT,
+                         "macs_texture_upload_region: region %dx%d at (%d, %d) is not a non-empty part of the %dx%d "
+                         "texture",
+                         width, height, x, y, t->width, t->height);
+    const int region[4] = {x, y, width, height};
+    return transfer(t, true, region, (void *)(uintptr_t)data, stride, "macs_texture_upload_region");
 }
 
 macs_status macs_texture_read(macs_texture *t, void *data, size_t stride)
 {
-    return transfer(t, false, data, stride);
+    return transfer_whole(t, false, data, stride);
 }
 
 macs_status macs_texture_clear(macs_texture *t, const float rgba[4])
@@ -200,4 +238,14 @@ void macs_texture_size(const macs_texture *t, int *width, int *height)
 macs_format macs_texture_format(const macs_texture *t)
 {
     return t ? t->format : MACS_FORMAT_DEFAULT;
+}
+
+unsigned macs_texture_gl_name(const macs_texture *t)
+{
+    return t ? (unsigned)t->id : 0u;
+}
+
+macs_context *macs_texture_context(const macs_texture *t)
+{
+    return t ? t->ctx : NULL;
 }

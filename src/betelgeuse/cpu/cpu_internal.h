@@ -184,6 +184,11 @@ void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *se
 void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3]);
 
+/* Renders pixel (x, y) of a width x height image (row 0 at the top) into texel, 4 bytes (RGBA8 in
+ * the settings' encoding) or 4 floats (RGBA32F), alpha 1: what bg_render_cpu writes there. */
+void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
+                         int x, int y, bg_pixel_format format, void *texel);
+
 /* Renders pixel (x, y) of image (rows `stride` bytes apart, row 0 at the top) in its format, alpha 1:
  * what bg_render_cpu writes there. The GPU's tree plan calls it for the pixels it cannot finish. */
 void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,

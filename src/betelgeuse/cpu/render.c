@@ -30,22 +30,29 @@ typedef struct job {
     int next_row;
 } job;
 
-void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
-                         size_t stride, int x, int y)
+void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
+                         int x, int y, bg_pixel_format format, void *texel)
 {
-    unsigned char *row = (unsigned char *)image->pixels + (size_t)y * stride;
     double o[3], d[3], rgb[3];
-    bgi_cpu_primary_ray(&state->camera, image->width, image->height, x, y, o, d);
+    bgi_cpu_primary_ray(&state->camera, width, height, x, y, o, d);
     bgi_cpu_shade_ray(state, settings, o, d, rgb);
-    if (image->format == BG_PIXEL_RGBA32F) {
+    if (format == BG_PIXEL_RGBA32F) {
         float px[4] = {(float)rgb[0], (float)rgb[1], (float)rgb[2], 1.0f};
-        memcpy(row + (size_t)x * sizeof px, px, sizeof px);
+        memcpy(texel, px, sizeof px);
     } else {
-        unsigned char *px = row + (size_t)x * 4;
+        unsigned char *px = texel;
         for (int i = 0; i < 3; i++)
             px[i] = bgi_cpu_encode_channel(rgb[i], settings->encoding);
         px[3] = 255;
     }
+}
+
+void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
+                         size_t stride, int x, int y)
+{
+    unsigned char *row = (unsigned char *)image->pixels + (size_t)y * stride;
+    size_t size = image->format == BG_PIXEL_RGBA32F ? 16 : 4;
+    bgi_cpu_render_texel(state, settings, image->width, image->height, x, y, image->format, row + (size_t)x * size);
 }
 
 static void render_row(const job *jb, int y)

@@ -328,13 +328,30 @@ static bg_status trace(frame *f)
     return BG_OK;
 }
 
-static bg_status read_back(frame *f, bg_image *image, size_t stride)
+/* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the
+ * encoding first. Into a texture: a resolve pass writes it, encoded or (a float target) as it is. */
+static bg_status finish(frame *f, const gpu_frame_out *o)
 {
     bg_renderer *r = f->r;
-    if (image->format == BG_PIXEL_RGBA32F)
-        return bgi_gpu_read_back(r, r->accum, image, stride, true);
-    bg_status st = run(f, r->passes.resolve, BG_PASS_RESOLVE, NULL);
-    return st != BG_OK ? st : bgi_gpu_read_back(r, r->encoded, image, stride, true);
+    if (o->image && o->as_float)
+        return bgi_gpu_read_back(r, r->accum, o->image, o->stride, true);
+    macs_pass *resolve = r->passes.resolve;
+    macs_texture *target = o->texture ? o->texture : r->encoded;
+    bg_status st = BG_OK;
+    if (o->texture && o->as_float) {
+        if (!r->passes.resolve_float)
+            st = bgi_gpu_resolve_float_pass_build(r, target);
+        resolve = r->passes.resolve_float;
+    }
+    if (st != BG_OK)
+        return st;
+    macs_status ms = macs_pass_set_output(resolve, 0, target);
+    if (ms)
+        return bgi_gpu_fail_macs(r, ms, "binding the frame's target");
+    st = run(f, resolve, BG_PASS_RESOLVE, NULL);
+    if (st != BG_OK || o->texture)
+        return st;
+    return bgi_gpu_read_back(r, r->encoded, o->image, o->stride, true);
 }
 
 static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
@@ -395,7 +412,23 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
 }
 
 static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                                  bg_image *image, size_t stride);
+                                  const gpu_frame_out *out);
+
+bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings, const gpu_frame_out *out)
+{
+    const bg_scene_state *state = bgi_scene_committed(scene);
+    if (!state)
+        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
+    memset(&r->stats, 0, sizeof r->stats);
+    uint64_t compiled = macs_context_programs_compiled(r->ctx);
+    /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
+    bool fused = false;
+    bg_status st = bgi_gpu_fused_render(r, state, settings, out, &fused);
+    if (st == BG_OK && !fused)
+        st = render_multipass(r, scene, settings, out);
+    r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
+    return st;
+}
 
 bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image)
 {
@@ -413,24 +446,14 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     if (image->width > max || image->height > max)
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: image size %dx%d exceeds the GL texture size limit %d",
                         image->width, image->height, max);
-    const bg_scene_state *state = bgi_scene_committed(scene);
-    if (!state)
-        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "bg_render_gpu: the scene was never committed");
-
-    memset(&r->stats, 0, sizeof r->stats);
-    uint64_t compiled = macs_context_programs_compiled(r->ctx);
-    /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
-    bool fused = false;
-    st = bgi_gpu_fused_render(r, state, settings, image, stride, &fused);
-    if (st == BG_OK && !fused)
-        st = render_multipass(r, scene, settings, image, stride);
-    r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
-    return st;
+    gpu_frame_out out = {image, stride, NULL, image->width, image->height, image->format == BG_PIXEL_RGBA32F,
+                         "bg_render_gpu"};
+    return bgi_gpu_frame_render(r, scene, settings, &out);
 }
 
 /* The paper's frame: ray maps, G-buffer, one pass per object batch, light group and ray set. */
 static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                                  bg_image *image, size_t stride)
+                                  const gpu_frame_out *out)
 {
     const bg_scene_state *state = bgi_scene_committed(scene);
     bg_status st = BG_OK;
@@ -446,7 +469,7 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
     bgi_gpu_dmax_levels(state, settings, f.dmax);
 
     phase_start(&f);
-    st = prepare(&f, scene, image->width, image->height);
+    st = prepare(&f, scene, out->width, out->height);
     phase_end(&f, BG_PHASE_SETUP);
     if (st == BG_OK) {
         static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -464,7 +487,7 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
         st = trace(&f);
     if (st == BG_OK) {
         phase_start(&f);
-        st = read_back(&f, image, stride);
+        st = finish(&f, out);
         phase_end(&f, BG_PHASE_RESOLVE);
     }
     if (st != BG_OK) {

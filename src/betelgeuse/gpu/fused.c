@@ -188,13 +188,18 @@ static void outputs_release(struct gpu_fused *f)
     f->out_bytes = f->out_float = NULL;
 }
 
-/* The output texture of the image's format at its size (the pass writes either). */
-static bg_status output_for(bg_renderer *r, struct gpu_fused *f, int w, int h, bool as_float, macs_texture **out)
+/* The texture the pass writes: the caller's target, or the renderer's own of the image's format
+ * and size, read back afterwards (the pass writes either format). */
+static bg_status output_for(bg_renderer *r, struct gpu_fused *f, const gpu_frame_out *o, macs_texture **out)
 {
-    macs_texture **slot = as_float ? &f->out_float : &f->out_bytes;
     *out = NULL;
-    bg_status st = bgi_gpu_texture_ensure(r, w, h, as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8, slot,
-                                      "fused plan: output texture");
+    if (o->texture) {
+        *out = o->texture;
+        return BG_OK;
+    }
+    macs_texture **slot = o->as_float ? &f->out_float : &f->out_bytes;
+    bg_status st = bgi_gpu_texture_ensure(r, o->width, o->height, o->as_float ? MACS_FORMAT_RGBA32F : MACS_FORMAT_RGBA8,
+                                      slot, "fused plan: output texture");
     if (st == BG_OK)
         *out = *slot;
     return st;
@@ -291,9 +296,10 @@ static void adopt_layout(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *
  * change alone makes a pass of the same program, which MACS's program cache hands over while the
  * old pass still holds it: nothing is compiled. *declined is set when GL refused the program under
  * BG_PLAN_AUTO (the reason logged). */
-static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *l, program_text *p, int w, int h,
-                              bool as_float, bool forced, bool *declined)
+static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *l, program_text *p,
+                              const gpu_frame_out *o, bool forced, bool *declined)
 {
+    int w = o->width, h = o->height;
     *declined = false;
     bool same = f->pass && f->key && strcmp(f->key, p->key.s) == 0;
     if (same && f->width == w && f->height == h) {
@@ -307,7 +313,7 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
     if (f->width != w || f->height != h)
         outputs_release(f);
     macs_texture *out = NULL;
-    bg_status st = output_for(r, f, w, h, as_float, &out);
+    bg_status st = output_for(r, f, o, &out);
     if (st != BG_OK)
         return st;
     macs_pass *pass = NULL;
@@ -341,17 +347,16 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
 /* Binds the frame's textures and output to the cached pass and sets every uniform; *out gets the
  * output texture. */
 static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
-                            const bg_image *image, macs_texture **out)
+                            const gpu_frame_out *o, macs_texture **out)
 {
     struct gpu_fused *f = r->fused;
     const gpu_fused_layout *l = &f->layout;
-    bool as_float = image->format == BG_PIXEL_RGBA32F;
     bool walks = bgi_gpu_fused_layout_walks(l);
     bg_status st = textures_prepare(r, f, state, l);
     if (st == BG_OK && walks)
         st = bgi_gpu_fused_tree_prepare(r, &f->tree, state);
     if (st == BG_OK)
-        st = output_for(r, f, image->width, image->height, as_float, out);
+        st = output_for(r, f, o, out);
     if (st != BG_OK)
         return st;
     macs_status ms = MACS_OK;
@@ -365,22 +370,38 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "binding the fused pass");
-    gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, image->width, image->height, as_float};
+    gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, o->width, o->height, o->as_float};
     return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
 
 /* One pass did everything; it counts as the intersection pass it starts with. */
-static void frame_stats(bg_renderer *r, const bg_scene_state *state, const bg_image *image)
+static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_frame_out *o)
 {
     r->stats.passes[state->object_count ? BG_PASS_INTERSECT : BG_PASS_BACKGROUND] = 1;
     r->stats.chunks = macs_pass_chunk_count(r->fused->pass);
     r->stats.intersect_objects = (int)state->object_count;
-    r->stats.intersect_pixels = (uint64_t)image->width * (uint64_t)image->height;
+    r->stats.intersect_pixels = (uint64_t)o->width * (uint64_t)o->height;
 }
 
-/* Everything after the choice: the program, the frame's inputs, the pass, the read-back. */
-static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings, bg_image *image,
-                        size_t stride, gpu_fused_layout *l, bool forced, bool *declined)
+/* The frame's end: the image read back, or the texture as the pass left it. Either way the pixels
+ * the tree walks marked are then rendered by the CPU reference (fused_tree.c, fused_tree_target.c). */
+static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+                        const gpu_frame_out *o, macs_texture *out)
+{
+    bool walks = bgi_gpu_fused_layout_walks(&r->fused->layout);
+    if (o->texture)
+        return walks ? bgi_gpu_fused_tree_fallback_texture(r, &r->fused->tree, state, settings, o->texture,
+                                                     &r->stats.fallback_pixels)
+                     : BG_OK;
+    bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
+    if (st == BG_OK && walks)
+        r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(state, settings, o->image, o->stride);
+    return st;
+}
+
+/* Everything after the choice: the program, the frame's inputs, the pass, the frame's end. */
+static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
+                        const gpu_frame_out *o, gpu_fused_layout *l, bool forced, bool *declined)
 {
     bool timing = settings->gpu_timing;
     double clock = 0.0;
@@ -389,13 +410,12 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     program_text p;
     bg_status st = program_text_make(r, l, &p);
     if (st == BG_OK)
-        st = pass_prepare(r, r->fused, l, &p, image->width, image->height, image->format == BG_PIXEL_RGBA32F, forced,
-                          declined);
+        st = pass_prepare(r, r->fused, l, &p, o, forced, declined);
     program_text_free(r, &p);
     if (st != BG_OK || *declined)
         return st;
     macs_texture *out = NULL;
-    st = bind_frame(r, state, settings, image, &out);
+    st = bind_frame(r, state, settings, o, &out);
     bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_SETUP);
     if (st == BG_OK) {
         macs_status ms = macs_pass_run(r->fused->pass, NULL);
@@ -404,13 +424,11 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     }
     bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_INTERSECT);
     if (st == BG_OK)
-        st = bgi_gpu_read_back(r, out, image, stride, !bgi_gpu_fused_layout_walks(&r->fused->layout));
-    if (st == BG_OK && bgi_gpu_fused_layout_walks(&r->fused->layout))
-        r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(state, settings, image, stride);
+        st = finish(r, state, settings, o, out);
     bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_RESOLVE);
     if (st != BG_OK)
         return st;
-    frame_stats(r, state, image);
+    frame_stats(r, state, o);
     if (timing) {
         r->stats.timed = true;
         r->stats.total_ms = bgi_gpu_now_ms() - start;
@@ -419,7 +437,7 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
 }
 
 bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
-                           bg_image *image, size_t stride, bool *done)
+                           const gpu_frame_out *out, bool *done)
 {
     *done = false;
     r->stats.plan = BG_PLAN_MULTIPASS;
@@ -445,11 +463,11 @@ bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, cons
     if (!fits(r, state, &l, forced, why, sizeof why)) {
         bgi_gpu_fused_layout_free(&r->allocator, &l);
         if (forced)
-            return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: %s cannot render this frame: %s", name, why);
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s: %s cannot render this frame: %s", out->fn, name, why);
         return decline(r, why);
     }
     bool declined = false;
-    bg_status st = render(r, state, settings, image, stride, &l, forced, &declined);
+    bg_status st = render(r, state, settings, out, &l, forced, &declined);
     bgi_gpu_fused_layout_free(&r->allocator, &l);
     if (st != BG_OK) {
         /* Start the next render from nothing: a failure may have left any object half made. */

@@ -11,7 +11,8 @@
  *
  * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
  * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
- * rendered here by the CPU reference, pixel by pixel, on the same tree: never cut short silently. */
+ * rendered here by the CPU reference, pixel by pixel, on the same tree: never cut short silently
+ * (fused_tree_target.c does the same for a frame that ends in the caller's texture). */
 #include <stdio.h>
 #include <string.h>
 
@@ -175,6 +176,7 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
 {
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
+    bgi_gpu_fused_tree_marks_release(t);
     memset(&t->dims, 0, sizeof t->dims);
     t->serial = 0;
 }

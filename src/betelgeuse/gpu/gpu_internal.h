@@ -70,6 +70,7 @@ typedef struct gpu_passes {
     macs_pass **light;        /* per light group */
     macs_pass *reflect, *refract;
     macs_pass *resolve;
+    macs_pass *resolve_float; /* accumulation to a float target texture; made at the first such frame */
     int object_count, group_count;
 } gpu_passes;
 
@@ -119,6 +120,17 @@ struct bg_renderer {
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
     struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
 };
+
+/* Where a frame ends: the caller's image, read back with its rows flipped to top-down (image set), or
+ * the caller's texture, written on the GPU with GL's rows, bottom row first (texture set). */
+typedef struct gpu_frame_out {
+    bg_image *image;       /* bg_render_gpu; NULL for a texture */
+    size_t stride;         /* the image's checked row stride */
+    macs_texture *texture; /* bg_render_gpu_to_texture; NULL for an image */
+    int width, height;
+    bool as_float;         /* RGBA32F image, RGBA32F or RGBA16F texture: linear radiance; else RGBA8 */
+    const char *fn;        /* the entry point, for messages */
+} gpu_frame_out;
 
 #if defined(__GNUC__)
 #define GPU_PRINTF_(format_arg, first_arg) __attribute__((__format__(__printf__, format_arg, first_arg)))
@@ -242,6 +254,9 @@ bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *ma
 /* The camera, mark, background, reflection, refraction and resolve passes, as the renderer's key
  * decides them (background_on, bounces), over ray set 0's maps and the renderer's targets. */
 bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings);
+/* The pass that copies the accumulation's linear radiance, alpha 1, into target (RGBA32F or RGBA16F):
+ * the float frame's end in a texture (the RGBA8 one is the resolve pass's). */
+bg_status bgi_gpu_resolve_float_pass_build(bg_renderer *r, macs_texture *target);
 
 /* ---- passes.c: every pass of a frame, in the order the frame needs them ---- */
 /* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
@@ -323,6 +338,9 @@ void bgi_gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phas
  * flipped to top-down; with opaque, alpha 1 for float images (else the texture's, for the caller to
  * read and then set). */
 bg_status bgi_gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque);
+/* The renderer's read-back buffer, grown to at least bytes; NULL (the failure reported) when out of
+ * memory. */
+void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes);
 
 /* ---- rect.c ---- */
 /* Grows a to the smallest rectangle holding a and b ({x, y, width, height}; empty ones add nothing). */
@@ -332,6 +350,9 @@ void bgi_gpu_rect_union(int a[4], const int b[4]);
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
 #define GPU_STENCIL_LIVE 0x1u
 #define GPU_STENCIL_HIT 0x2u
+/* One frame of the committed scene into out (whose arguments the entry point checked): the fused
+ * plan where it runs, else the multipass; fills the renderer's statistics. */
+bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings, const gpu_frame_out *out);
 
 /* ---- fused.c ---- (with fused_layout.c, fused_uniforms.c, fused_source.c) */
 /* The fused plan (BG_PLAN_FUSED): one fragment pass per frame computes the whole image. Its program
@@ -492,9 +513,9 @@ typedef struct gpu_fused_values {
 
 /* Renders the frame with the fused plan when settings (and, for BG_PLAN_AUTO, the scene and the GL
  * limits) choose it: *done true. Otherwise *done is false with BG_OK and the caller runs the
- * multipass (stats.plan says so). stride is the image's checked row stride. */
+ * multipass (stats.plan says so). */
 bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
-                           bg_image *image, size_t stride, bool *done);
+                           const gpu_frame_out *out, bool *done);
 /* Frees the fused plan's program, textures and cache. */
 void bgi_gpu_fused_release(bg_renderer *r);
 
@@ -511,6 +532,8 @@ typedef struct gpu_fused_tree {
     gpu_fused_tree_texture nodes, objects;
     gpu_fused_tree_dims dims; /* of the prepared textures */
     uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
+    macs_texture *marks;      /* fused_tree_target.c: a frame's marked pixels, 32 to an RGBA8 texel */
+    macs_pass *mark_pass;     /* writes marks from a frame of the marks' height */
 } gpu_fused_tree;
 
 /* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
@@ -522,6 +545,15 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
  * returns how many there were. */
 uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
                                  const bg_image *image, size_t stride);
+
+/* ---- fused_tree_target.c ---- */
+/* The same for a frame that ended in the caller's texture: finds the marked pixels from a one-bit-a-
+ * pixel read-back, renders them with the CPU reference and uploads them into target; *count gets
+ * how many there were. */
+bg_status bgi_gpu_fused_tree_fallback_texture(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state,
+                                          const bg_render_settings *settings, macs_texture *target, uint64_t *count);
+/* Frees the marks texture and its pass. */
+void bgi_gpu_fused_tree_marks_release(gpu_fused_tree *t);
 
 /* ---- fused_layout.c ---- */
 /* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),

@@ -235,6 +235,7 @@ static void release(bg_renderer *r, gpu_passes *p)
     macs_pass_destroy(p->reflect);
     macs_pass_destroy(p->refract);
     macs_pass_destroy(p->resolve);
+    macs_pass_destroy(p->resolve_float);
     int groups = p->group_count;
     for (int b = 0; p->hit && b < p->hit_count; b++)
         macs_pass_destroy(p->hit[b].pass);

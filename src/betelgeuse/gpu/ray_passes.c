@@ -216,7 +216,8 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
     return ms ? bgi_gpu_fail_macs(r, ms, "spawn uniforms") : BG_OK;
 }
 
-/* Resolve to the output encoding, into an RGBA8 target read back by frame.c. */
+/* Resolve to the output encoding, into an RGBA8 target read back by frame.c (or, rebound there, the
+ * caller's RGBA8 texture). */
 static bg_status build_resolve_pass(bg_renderer *r)
 {
     macs_input_desc in[1] = {{"bg_accum"}};
@@ -228,6 +229,16 @@ static bg_status build_resolve_pass(bg_renderer *r)
                        r->key.encoding == BG_ENCODING_LINEAR ? "vec4(bg_encode(bg_l, false), 1.0)"
                                                              : "vec4(bg_encode(bg_l, true), 1.0)",
                        outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve);
+}
+
+/* The accumulation as it is, alpha 1 as the image's read-back sets it, into a float target texture. */
+bg_status bgi_gpu_resolve_float_pass_build(bg_renderer *r, macs_texture *target)
+{
+    macs_input_desc in[1] = {{"bg_accum"}};
+    macs_texture *in_tex[1] = {r->accum};
+    macs_texture *outs[1] = {target};
+    return simple_pass(r, "float resolve pass", NULL, "vec3 bg_l = texture2D(bg_accum, macs_uv).rgb;\n", in, 1, in_tex,
+                       NULL, 0, "vec4(bg_l, 1.0)", outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve_float);
 }
 
 bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
