@@ -109,6 +109,41 @@ typedef struct bg_cpu_hit {
 void bgi_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
                            const bg_cpu_candidate *candidate, bg_cpu_hit *hit);
 
+/* ---- triangles (triangle.c) ----------------------------------------------------------------- */
+
+/* A ray prepared once for many triangle tests (Woop, Benthin and Wald 2013, docs/shading.md 2.9): the
+ * dominant axis kz of the direction, kx and ky chosen so that (kx, ky, kz) keeps the handedness that
+ * the shear's sign would flip, and the shear that maps the direction to (0, 0, 1). */
+typedef struct bg_cpu_triangle_ray {
+    double o[3];
+    int kx, ky, kz;
+    double sx, sy, sz;  /* d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz] */
+    bool valid;         /* false for a zero or non-finite direction: every test misses */
+} bg_cpu_triangle_ray;
+
+/* Where a ray meets a triangle. */
+typedef struct bg_cpu_triangle_hit {
+    double t;        /* the parameter of o + t d (d as given, not normalised) */
+    double bary[3];  /* weights of v0, v1, v2 (each in [0, 1], summing to 1 up to rounding) */
+    bool front;      /* the ray meets the side (v1 - v0) x (v2 - v0) points to: d.n < 0 */
+} bg_cpu_triangle_hit;
+
+/* Prepares the ray o + t d for bgi_cpu_triangle_intersect. */
+void bgi_cpu_triangle_ray_init(const double o[3], const double d[3], bg_cpu_triangle_ray *ray);
+
+/* Watertight ray/triangle test with the fill rule of docs/shading.md 2.9: a hit with t in
+ * (t_min, t_max) on either side (no culling). A ray through an edge or vertex shared by consistently
+ * wound triangles hits exactly one of them (unless the surface folds over in the ray's view, as for
+ * a ray along it); a triangle whose edge vectors have a zero cross product (repeated vertices,
+ * collinear) is never hit. hit may be NULL. */
+bool bgi_cpu_triangle_intersect(const bg_cpu_triangle_ray *ray, const double v0[3], const double v1[3],
+                                const double v2[3], double t_min, double t_max, bg_cpu_triangle_hit *hit);
+
+/* a b - c d, rounded once from the exact value when the plain evaluation gives 0 and the factors lie
+ * in [2^-480, 2^495] (or are 0), so that its sign is always the exact one there; the plain value
+ * otherwise (whose sign is exact whenever it is not 0). */
+double bgi_cpu_diff_of_products(double a, double b, double c, double d);
+
 /* ---- UV mappings (uv_map.c) ---------------------------------------------------------------- */
 
 /* The texture coordinates (before uv_scale) and dP/du of an object-space point. */
