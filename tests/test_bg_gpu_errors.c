@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "util_alloc.h"
+
 #include "betelgeuse.h"
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
@@ -354,41 +356,19 @@ static void unlit_scene_matches_cpu(void **state)
 
 /* ---- resources ---- */
 
-typedef struct counter { long allocs, frees; } counter;
-
-static void *count_alloc(size_t size, void *user)
-{
-    ((counter *)user)->allocs++;
-    return malloc(size);
-}
-
-static void *count_realloc(void *p, size_t size, void *user)
-{
-    if (!p)
-        ((counter *)user)->allocs++;
-    return realloc(p, size);
-}
-
-static void count_free(void *p, void *user)
-{
-    if (p)
-        ((counter *)user)->frees++;
-    free(p);
-}
-
 /* Twenty renderers made, used and destroyed on one context: every block of the renderer's
  * allocator comes back, and MACS (whose allocator is counted too) holds no more after the twentieth
  * than after the first (its program cache may keep what the first one compiled). */
 static void renderers_do_not_leak(void **state)
 {
     enum { W = 32, H = 24 };
-    counter mc = {0, 0};
+    util_alloc_counter mc = UTIL_ALLOC_COUNTER;
     macs_context_desc cd = {0};
     cd.get_proc_address = macs_headless_get_proc_address(*state);
     cd.get_proc_address_user = macs_headless_proc_user(*state);
-    cd.allocator.alloc = count_alloc;
-    cd.allocator.realloc = count_realloc;
-    cd.allocator.free = count_free;
+    cd.allocator.alloc = util_counted_alloc;
+    cd.allocator.realloc = util_counted_realloc;
+    cd.allocator.free = util_counted_free;
     cd.allocator.user = &mc;
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
@@ -399,12 +379,12 @@ static void renderers_do_not_leak(void **state)
     int rounds = util_quick() ? 5 : 20;
     long macs_live_after_first = -1;
     for (int i = 0; i < rounds; i++) {
-        counter bc = {0, 0};
+        util_alloc_counter bc = UTIL_ALLOC_COUNTER;
         bg_renderer_desc d = {0};
         d.context = ctx;
-        d.allocator.alloc = count_alloc;
-        d.allocator.realloc = count_realloc;
-        d.allocator.free = count_free;
+        d.allocator.alloc = util_counted_alloc;
+        d.allocator.realloc = util_counted_realloc;
+        d.allocator.free = util_counted_free;
         d.allocator.user = &bc;
         bg_renderer *r = NULL;
         assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_OK);
@@ -438,8 +418,8 @@ static void renderer_allocation_failure(void **state)
     bg_renderer_desc d = {0};
     d.context = ctx;
     d.allocator.alloc = no_alloc;
-    d.allocator.free = count_free;
-    counter c = {0, 0};
+    d.allocator.free = util_counted_free;
+    util_alloc_counter c = UTIL_ALLOC_COUNTER;
     d.allocator.user = &c;
     bg_renderer *r = (bg_renderer *)ctx;
     assert_int_equal(bg_renderer_create(&d, &r, NULL, 0), BG_ERR_OUT_OF_MEMORY);
@@ -505,11 +485,11 @@ static void creation_failures_say_why(void **state)
     assert_create_fails(&d, true, BG_ERR_INVALID_ARGUMENT, "desc->context");
     d.context = ctx;
     assert_create_fails(&d, false, BG_ERR_INVALID_ARGUMENT, "out_renderer");
-    counter c = {0, 0};
+    util_alloc_counter c = UTIL_ALLOC_COUNTER;
     d.allocator.alloc = no_alloc;
     d.allocator.user = &c;
     assert_create_fails(&d, true, BG_ERR_INVALID_ARGUMENT, "desc->allocator"); /* alloc without free */
-    d.allocator.free = count_free;
+    d.allocator.free = util_counted_free;
     assert_create_fails(&d, true, BG_ERR_OUT_OF_MEMORY, "desc->allocator");
     /* success leaves an empty message */
     memset(&d.allocator, 0, sizeof d.allocator);

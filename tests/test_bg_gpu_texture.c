@@ -214,29 +214,6 @@ static void tree_plan(void **state)
     bg_scene_destroy(s);
 }
 
-/* test_bg_gpu_tree's tube: 40000 overlapping sphere boxes around the view axis, the spheres beside
- * it, so that rays down the axis run out of walk steps and go to the CPU reference. */
-static bg_scene *tube_scene(void)
-{
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    uint32_t mat = 0, id = 0;
-    bg_material m = bg_material_init();
-    assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
-    for (int k = 0; k < 40000; k++)
-        assert_int_equal(bg_scene_add_sphere(s, (bg_vec3){0.4, 0.4, -5.0 - 1e-4 * k}, 0.5, mat, &id), BG_OK);
-    bg_light l = bg_light_init();
-    l.position = (bg_vec3){2.0, 3.0, 2.0};
-    assert_int_equal(bg_scene_add_light(s, &l, &id), BG_OK);
-    bg_camera cam = bg_camera_init();
-    cam.position = (bg_vec3){0.0, 0.0, 0.0};
-    cam.look_at = (bg_vec3){0.0, 0.0, -1.0};
-    cam.fov_y_degrees = 8.0;
-    assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
-    assert_int_equal(bg_scene_commit(s), BG_OK);
-    return s;
-}
-
 /* The pixels the shader gave up on are in the texture as the CPU reference renders them (the
  * comparison with bg_render_gpu, which renders them the same way, is exact), none left black
  * with the shader's alpha-0 mark. */
@@ -244,7 +221,7 @@ static void tree_fallback_pixels(void **state)
 {
     (void)state;
     enum { TW = 48, TH = 36 };
-    bg_scene *s = tube_scene();
+    bg_scene *s = util_tube_scene();
     static const macs_format formats[] = {MACS_FORMAT_RGBA8, MACS_FORMAT_RGBA32F, MACS_FORMAT_RGBA16F};
     for (int i = 0; i < 3; i++) {
         bg_render_settings set = bg_render_settings_init();

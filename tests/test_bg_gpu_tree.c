@@ -140,40 +140,15 @@ static void recommits_keep_the_program(void **state)
     free(px);
 }
 
-/* A tube of 40000 overlapping sphere boxes around the view axis, the spheres all beside it: a ray
- * down the axis enters every box and hits nothing, 80000 steps, more than llvmpipe's loop limit
- * leaves a pixel. Those pixels must come from the CPU reference, the rest from the GPU, the whole
- * within the many_spheres thresholds, in either output format. */
-static bg_scene *tube_scene(void)
-{
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    uint32_t mat = 0;
-    bg_material m = bg_material_init();
-    assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
-    /* Centre (0.4, 0.4) is 0.566 from the axis, beyond the radius 0.5; the box [-0.1, 0.9]^2 holds it. */
-    uint32_t id = 0;
-    for (int k = 0; k < 40000; k++)
-        assert_int_equal(bg_scene_add_sphere(s, (bg_vec3){0.4, 0.4, -5.0 - 1e-4 * k}, 0.5, mat, &id), BG_OK);
-    bg_light l = bg_light_init();
-    l.position = (bg_vec3){2.0, 3.0, 2.0};
-    assert_int_equal(bg_scene_add_light(s, &l, &id), BG_OK);
-    bg_camera cam = bg_camera_init();
-    cam.position = (bg_vec3){0.0, 0.0, 0.0};
-    cam.look_at = (bg_vec3){0.0, 0.0, -1.0};
-    cam.up = (bg_vec3){0.0, 1.0, 0.0};
-    cam.fov_y_degrees = 8.0;
-    assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
-    assert_int_equal(bg_scene_commit(s), BG_OK);
-    return s;
-}
-
+/* On util_tube_scene, the pixels down the axis run out of walk steps: those pixels must come from
+ * the CPU reference, the rest from the GPU, the whole within the many_spheres thresholds, in either
+ * output format. */
 static void walks_that_run_out_go_to_the_cpu(void **state)
 {
     (void)state;
     enum { TW = 48, TH = 36 };
     bg_renderer *r = util_renderer(util_fx.ctx);
-    bg_scene *s = tube_scene();
+    bg_scene *s = util_tube_scene();
     unsigned char px[TW * TH * 4];
     float fpx[TW * TH * 4];
     bg_image img = {TW, TH, BG_PIXEL_RGBA8, 0, px}, fimg = {TW, TH, BG_PIXEL_RGBA32F, 0, fpx};

@@ -11,6 +11,8 @@
 
 #include <cmocka.h>
 
+#include "util_alloc.h"
+
 #include "betelgeuse.h"
 #include "betelgeuse/scene/scene_internal.h"
 
@@ -141,42 +143,13 @@ static void test_pending_changes_invisible_until_commit(void **state)
 
 /* ---- allocator and logger ---- */
 
-typedef struct alloc_stats { int allocs, frees, fail_after; } alloc_stats;
-
-static void *t_alloc(size_t size, void *user)
-{
-    alloc_stats *a = user;
-    if (a->fail_after >= 0 && a->allocs >= a->fail_after)
-        return NULL;
-    a->allocs++;
-    return malloc(size);
-}
-
-static void *t_realloc(void *p, size_t size, void *user)
-{
-    alloc_stats *a = user;
-    if (a->fail_after >= 0 && a->allocs >= a->fail_after)
-        return NULL;
-    if (!p)
-        a->allocs++;
-    return realloc(p, size);
-}
-
-static void t_free(void *p, void *user)
-{
-    alloc_stats *a = user;
-    if (p)
-        a->frees++;
-    free(p);
-}
-
 /* A scene whose every allocation goes through the counting hooks above. */
-static bg_scene *counted_scene(alloc_stats *a)
+static bg_scene *counted_scene(util_alloc_counter *a)
 {
     bg_scene_desc d = {0};
-    d.allocator.alloc = t_alloc;
-    d.allocator.realloc = t_realloc;
-    d.allocator.free = t_free;
+    d.allocator.alloc = util_counted_alloc;
+    d.allocator.realloc = util_counted_realloc;
+    d.allocator.free = util_counted_free;
     d.allocator.user = a;
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(&d, &s), BG_OK);
@@ -186,10 +159,10 @@ static bg_scene *counted_scene(alloc_stats *a)
 static void test_allocator_hooks(void **state)
 {
     (void)state;
-    alloc_stats a = {0, 0, -1};
+    util_alloc_counter a = UTIL_ALLOC_COUNTER;
     bg_scene_desc d = {0};
-    d.allocator.alloc = t_alloc;
-    d.allocator.free = t_free; /* no realloc: the library moves blocks itself */
+    d.allocator.alloc = util_counted_alloc;
+    d.allocator.free = util_counted_free; /* no realloc: the library moves blocks itself */
     d.allocator.user = &a;
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(&d, &s), BG_OK);
@@ -207,13 +180,13 @@ static void test_allocator_hooks(void **state)
 
     /* Half a set of hooks is a caller mistake. */
     bg_scene_desc bad = {0};
-    bad.allocator.alloc = t_alloc;
+    bad.allocator.alloc = util_counted_alloc;
     s = (bg_scene *)&bad;
     assert_int_equal(bg_scene_create(&bad, &s), BG_ERR_INVALID_ARGUMENT);
     assert_null(s);
 
     /* Out of memory at create. */
-    alloc_stats none = {0, 0, 0};
+    util_alloc_counter none = {0, 0, 0};
     d.allocator.user = &none;
     assert_int_equal(bg_scene_create(&d, &s), BG_ERR_OUT_OF_MEMORY);
     assert_null(s);
@@ -222,7 +195,7 @@ static void test_allocator_hooks(void **state)
 static void test_out_of_memory_leaves_scene_intact(void **state)
 {
     (void)state;
-    alloc_stats a = {0, 0, -1};
+    util_alloc_counter a = UTIL_ALLOC_COUNTER;
     bg_scene *s = counted_scene(&a);
     bg_material m = bg_material_init();
     uint32_t id;
@@ -834,7 +807,7 @@ static void test_commit_camera_and_lights(void **state)
 static void test_cheap_recommit(void **state)
 {
     (void)state;
-    alloc_stats a = {0, 0, -1};
+    util_alloc_counter a = UTIL_ALLOC_COUNTER;
     bg_scene *s = counted_scene(&a);
     bg_material m = bg_material_init();
     uint32_t mat, obj, light;
@@ -847,7 +820,7 @@ static void test_cheap_recommit(void **state)
     const bg_object_data *objects = st->objects;
     const bg_material *materials = st->materials;
     const bg_light *lights = st->lights;
-    int allocs = a.allocs, frees = a.frees;
+    long allocs = a.allocs, frees = a.frees;
 
     m.base.reflectance.r = 0.25;
     assert_int_equal(bg_scene_set_material(s, mat, &m), BG_OK);

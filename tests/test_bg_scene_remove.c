@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "util_alloc.h"
+
 #include "betelgeuse.h"
 #include "betelgeuse/scene/scene_internal.h"
 #include "scenes/scenes.h"
@@ -371,35 +373,6 @@ static void referenced_materials_and_textures_refused(void **state)
 
 /* ---- a failing commit after removals ---- */
 
-typedef struct alloc_stats { int allocs, frees, fail_after; } alloc_stats;
-
-static void *t_alloc(size_t size, void *user)
-{
-    alloc_stats *a = user;
-    if (a->fail_after >= 0 && a->allocs >= a->fail_after)
-        return NULL;
-    a->allocs++;
-    return malloc(size);
-}
-
-static void *t_realloc(void *p, size_t size, void *user)
-{
-    alloc_stats *a = user;
-    if (a->fail_after >= 0 && a->allocs >= a->fail_after)
-        return NULL;
-    if (!p)
-        a->allocs++;
-    return realloc(p, size);
-}
-
-static void t_free(void *p, void *user)
-{
-    alloc_stats *a = user;
-    if (p)
-        a->frees++;
-    free(p);
-}
-
 /* Removals, then a commit that runs out of memory: the previous commit still renders, the removed
  * texture's texels included (they are freed only by a commit that drops them); the next commit
  * applies everything. */
@@ -407,11 +380,11 @@ static void failed_commit_keeps_the_previous_one(void **state)
 {
     (void)state;
     static const unsigned char c0[3] = {200, 30, 30}, c1[3] = {30, 30, 200};
-    alloc_stats a = {0, 0, -1};
+    util_alloc_counter a = UTIL_ALLOC_COUNTER;
     bg_scene_desc desc = {0};
-    desc.allocator.alloc = t_alloc;
-    desc.allocator.realloc = t_realloc;
-    desc.allocator.free = t_free;
+    desc.allocator.alloc = util_counted_alloc;
+    desc.allocator.realloc = util_counted_realloc;
+    desc.allocator.free = util_counted_free;
     desc.allocator.user = &a;
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(&desc, &s), BG_OK);

@@ -9,52 +9,18 @@
 
 #include <cmocka.h>
 
+#include "util_alloc.h"
 #include "util_gl.h"
 
-typedef struct counting {
-    long live;
-    long total;
-} counting;
-
-static void *count_alloc(size_t size, void *user)
-{
-    counting *c = user;
-    void *p = malloc(size);
-    if (p) {
-        c->live++;
-        c->total++;
-    }
-    return p;
-}
-
-static void *count_realloc(void *ptr, size_t size, void *user)
-{
-    counting *c = user;
-    void *p = realloc(ptr, size);
-    if (p && !ptr) {
-        c->live++;
-        c->total++;
-    }
-    return p;
-}
-
-static void count_free(void *ptr, void *user)
-{
-    counting *c = user;
-    if (ptr)
-        c->live--;
-    free(ptr);
-}
-
 /* One cycle: context, textures, depth/stencil, a split pass with an input, a run, destroy. */
-static void cycle(void **state, counting *c, int i)
+static void cycle(void **state, util_alloc_counter *c, int i)
 {
     macs_context_desc d = {0};
     d.get_proc_address = macs_headless_get_proc_address(*state);
     d.get_proc_address_user = macs_headless_proc_user(*state);
-    d.allocator.alloc = count_alloc;
-    d.allocator.realloc = count_realloc;
-    d.allocator.free = count_free;
+    d.allocator.alloc = util_counted_alloc;
+    d.allocator.realloc = util_counted_realloc;
+    d.allocator.free = util_counted_free;
     d.allocator.user = c;
     d.caps.max_draw_buffers = 1;
     macs_context *ctx = NULL;
@@ -111,14 +77,14 @@ static void cycle(void **state, counting *c, int i)
 
 static void thousand_cycles_balance_allocations(void **state)
 {
-    counting c = {0, 0};
+    util_alloc_counter c = UTIL_ALLOC_COUNTER;
     int n = util_quick() ? 6 : 1000;
     for (int i = 0; i < n; i++) {
         cycle(state, &c, i);
-        if (c.live != 0)
-            fail_msg("cycle %d left %ld allocations", i, c.live);
+        if (c.allocs != c.frees)
+            fail_msg("cycle %d left %ld allocations", i, c.allocs - c.frees);
     }
-    assert_true(c.total > n * 10); /* the hooks really were used */
+    assert_true(c.allocs > n * 10); /* the hooks really were used */
 }
 
 static void several_contexts_coexist(void **state)

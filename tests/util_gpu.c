@@ -118,3 +118,27 @@ bg_render_settings util_multipass_settings(void)
     s.gpu_plan = BG_PLAN_MULTIPASS;
     return s;
 }
+
+bg_scene *util_tube_scene(void)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    uint32_t mat = 0;
+    bg_material m = bg_material_init();
+    assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
+    /* Centre (0.4, 0.4) is 0.566 from the axis, beyond the radius 0.5; the box [-0.1, 0.9]^2 holds it. */
+    uint32_t id = 0;
+    for (int k = 0; k < 40000; k++)
+        assert_int_equal(bg_scene_add_sphere(s, (bg_vec3){0.4, 0.4, -5.0 - 1e-4 * k}, 0.5, mat, &id), BG_OK);
+    bg_light l = bg_light_init();
+    l.position = (bg_vec3){2.0, 3.0, 2.0};
+    assert_int_equal(bg_scene_add_light(s, &l, &id), BG_OK);
+    bg_camera cam = bg_camera_init();
+    cam.position = (bg_vec3){0.0, 0.0, 0.0};
+    cam.look_at = (bg_vec3){0.0, 0.0, -1.0};
+    cam.up = (bg_vec3){0.0, 1.0, 0.0};
+    cam.fov_y_degrees = 8.0;
+    assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    return s;
+}

@@ -23,6 +23,11 @@ void util_gpu_close(util_gpu *g);
 /* A new scene built as the shared scene id and committed; fails the test on error. */
 bg_scene *util_scene(scene_id id);
 
+/* A committed tube of 40000 overlapping sphere boxes around the view axis, the spheres all beside
+ * it: a ray down the axis enters every box and hits nothing, 80000 steps, more than llvmpipe's loop
+ * limit leaves a pixel, so the tree plan hands those pixels to the CPU reference. */
+bg_scene *util_tube_scene(void);
+
 /* The default settings with the paper's multipass plan forced: for the suites that check that
  * plan's passes, G-buffer, splits and skips (BG_PLAN_AUTO picks the fused plan where it can). */
 bg_render_settings util_multipass_settings(void);
