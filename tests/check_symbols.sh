@@ -19,13 +19,17 @@ check() {
 		failed=1
 		return
 	fi
-	nm -D --defined-only "$build/lib$lib.so" | awk 'NF == 3 {print $3}' | sort -u >"$work/exported"
+	# AddressSanitizer adds an ODR indicator beside every global (__odr_asan.<name>, or __asan_*):
+	# the compiler's names, not the library's, so they are left out.
+	nm -D --defined-only "$build/lib$lib.so" | awk 'NF == 3 {print $3}' | grep -v '^__odr_asan\.\|^__asan_' |
+		sort -u >"$work/exported"
 	if ! diff "$work/public" "$work/exported" >"$work/diff"; then
 		echo "FAIL lib$lib.so exports other than $header marks ('>' exported but not public, '<' public but not exported):"
 		grep '^[<>]' "$work/diff" | sed 's/^/    /'
 		failed=1
 	fi
-	nm -g --defined-only "$build/lib$lib.a" | awk 'NF == 3 {print $3}' | sort -u >"$work/archive"
+	nm -g --defined-only "$build/lib$lib.a" | awk 'NF == 3 {print $3}' | grep -v '^__odr_asan\.\|^__asan_' |
+		sort -u >"$work/archive"
 	grep -v "^$pub" "$work/archive" | grep -v "^$internal" >"$work/unprefixed"
 	if [ -s "$work/unprefixed" ]; then
 		echo "FAIL lib$lib.a holds symbols outside $pub and $internal:"
