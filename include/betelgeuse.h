@@ -300,7 +300,8 @@ typedef struct bg_object_desc {
 
 /* The default object of a shape, described above. */
 BG_API bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material);
-/* Adds an object; transforms outside the rules above, unknown shapes or materials are rejected. */
+/* Adds an object; transforms outside the rules above, unknown shapes or materials are rejected
+ * (meshes are added by bg_scene_add_mesh below, never through bg_object_desc). */
 BG_API bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object);
 /* Shorthand: a sphere of the given centre and radius, in [1e-100, 1e100] (the scale rule above). */
 BG_API bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double radius, uint32_t material,
@@ -309,6 +310,54 @@ BG_API bg_status bg_scene_add_sphere(bg_scene *scene, bg_vec3 center, double rad
  * chosen from the normal as docs/shading.md says. */
 BG_API bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 normal, uint32_t material,
                                     uint32_t *out_object);
+/* A triangle mesh (docs/shading.md 2.10). The scene copies every array at add; the caller may free
+ * them after the call. The mesh is a closed solid: counter-clockwise seen from outside is the front,
+ * and a ray that meets a back face is inside (refraction enters at front faces, leaves at back ones;
+ * direct light reaches front faces only, as it reaches closed shapes only from outside), so an open
+ * mesh such as a terrain is lit from its front side. Degenerate triangles (repeated or collinear
+ * vertices) are kept and never hit.
+ * Defaults (bg_mesh_desc_init): no arrays (they must be set), identity transform, casts shadows.
+ * Rules, each refused by bg_scene_add_mesh with BG_ERR_INVALID_ARGUMENT naming the field:
+ * - positions and indices non-NULL, triangle_count > 0, every index < vertex_count (the message
+ *   names the triangle and the index), every position, normal and uv finite (naming the vertex);
+ * - normals and uvs may be NULL: face normals, and no texture coordinates (uv (0, 0) everywhere,
+ *   and tangents from the shapes' fallback rule, docs/shading.md 3);
+ * - transform and material follow bg_object_desc's rules;
+ * - counts whose byte sizes overflow size_t, more than 2^23 triangles (the mesh tree's limit) or
+ *   more than 2^32 - 1 vertices are BG_ERR_LIMIT.
+ * Meshes are rendered only by bg_render_cpu so far: the GPU renderer refuses a committed scene that
+ * holds one with BG_ERR_LIMIT. */
+typedef struct bg_mesh_desc {
+    const float *positions;    /* 3 per vertex */
+    size_t vertex_count;
+    const uint32_t *indices;   /* 3 per triangle, counter-clockwise = front */
+    size_t triangle_count;
+    const float *normals;      /* optional, 3 per vertex: smooth shading; NULL = face normals */
+    const float *uvs;          /* optional, 2 per vertex; NULL = no texture coordinates */
+    bg_mat4 transform;
+    uint32_t material;
+    bool casts_shadows;
+} bg_mesh_desc;
+
+/* The default mesh description of a material, described above. */
+BG_API bg_mesh_desc bg_mesh_desc_init(uint32_t material);
+/* Adds a mesh object: copies the arrays and builds the mesh's own tree over its triangles (at add,
+ * so that commit never fails on it and its cost stays out of commits). */
+BG_API bg_status bg_scene_add_mesh(bg_scene *scene, const bg_mesh_desc *desc, uint32_t *out_object);
+/* Adds another object showing the triangles of mesh_object (an object added by bg_scene_add_mesh
+ * or by this call) with its own transform (bg_object_desc's rules), material and shadow flag. The
+ * triangles and their tree are shared, not copied, and live while any object uses them: removing
+ * the original keeps its instances working. A thousand copies of a model cost one mesh plus a
+ * thousand small objects:
+ *     uint32_t ids[1000];
+ *     bg_scene_add_mesh(scene, &desc, &ids[0]);
+ *     for (int i = 1; i < 1000; i++) {
+ *         bg_mat4 m = bg_mat4_translate(i % 10, i / 100, (i / 10) % 10);
+ *         bg_scene_add_mesh_instance(scene, ids[0], &m, desc.material, true, &ids[i]);
+ *     }
+ * mesh_object not a mesh object (an analytic shape) is BG_ERR_INVALID_ARGUMENT. */
+BG_API bg_status bg_scene_add_mesh_instance(bg_scene *scene, uint32_t mesh_object, const bg_mat4 *transform,
+                                            uint32_t material, bool casts_shadows, uint32_t *out_object);
 /* Moves an object (cheap re-commit); the transform is checked as bg_object_desc says. */
 BG_API bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4 *transform);
 /* Removes an object. Like every pending change it takes effect at the next commit: until then

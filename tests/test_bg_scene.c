@@ -186,7 +186,7 @@ static void test_allocator_hooks(void **state)
     assert_null(s);
 
     /* Out of memory at create. */
-    util_alloc_counter none = {0, 0, 0};
+    util_alloc_counter none = {0, 0, 0, 0, 0}; /* the very first allocation fails */
     d.allocator.user = &none;
     assert_int_equal(bg_scene_create(&d, &s), BG_ERR_OUT_OF_MEMORY);
     assert_null(s);

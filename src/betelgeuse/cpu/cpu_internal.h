@@ -62,9 +62,11 @@ void bgi_cpu_intersect_prototype(bg_shape shape, const double o[3], const double
 /* A candidate hit on one object, before its attributes are computed. */
 typedef struct bg_cpu_candidate {
     double t;       /* world ray parameter (the same in object space) */
-    int root;       /* 0 the entry (or the only) root, 1 the exit root */
+    int root;       /* 0 the entry (or the only) root, 1 the exit root; meshes: 0 front, 1 back */
     double p[3];    /* object-space point */
     double n[3];    /* object-space outward normal (unnormalised) */
+    uint32_t triangle; /* meshes: the triangle hit (BG_CPU_NONE for the analytic shapes) */
+    double bary[3];    /* meshes: the weights of its vertices */
 } bg_cpu_candidate;
 
 /* Transforms a world ray into the object's space (direction not normalised). */
@@ -75,6 +77,10 @@ void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const d
  * exit root of a closed shape (a refracted ray travelling inside it). */
 bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
                              double t_max, bg_cpu_candidate *candidate);
+/* The same, skipping triangle skip_triangle of a mesh object (BG_CPU_NONE: none; ignored by the
+ * analytic shapes): the rule that lets a ray leave a mesh triangle (docs/shading.md 2.10). */
+bool bgi_cpu_intersect_object_except(const bg_object_data *object, const double o[3], const double d[3],
+                                    bool far_root, uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate);
 
 /* A shadow segment is open at its light end by this share of its length: a root at
  * t >= t_max (1 - BG_SHADOW_END_REL) does not block (docs/shading.md 2.8). A light lying exactly on
@@ -93,6 +99,9 @@ bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], c
 
 /* True when the segment o + t l, t in (0, t_max (1 - BG_SHADOW_END_REL)), meets the object (shadow test). */
 bool bgi_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max);
+/* The same, skipping triangle skip_triangle of a mesh object (BG_CPU_NONE: none). */
+bool bgi_cpu_segment_blocked_except(const bg_object_data *object, const double o[3], const double l[3],
+                                   uint32_t skip_triangle, double t_max);
 
 /* A finished hit with everything shading needs. */
 typedef struct bg_cpu_hit {
@@ -102,8 +111,16 @@ typedef struct bg_cpu_hit {
     double normal[3];     /* world, unit, facing the ray */
     double tangent[3];    /* world, unit, perpendicular to normal (dP/du orthogonalised) */
     double uv[2];         /* after uv_scale */
-    bool entering;        /* closed: the ray arrives from outside; thin: it arrives on the +y side */
+    bool entering;        /* closed: the ray arrives from outside; thin: it arrives on the +y side;
+                             meshes: it meets a front face */
+    uint32_t triangle;    /* meshes: the triangle hit; BG_CPU_NONE for the analytic shapes */
+    double geometric_normal[3]; /* meshes: world, unit, on the side the ray arrives from */
+    double offset;        /* meshes: how far a ray leaving the hit starts off the surface (2.10) */
 } bg_cpu_hit;
+
+/* t0 made a unit tangent: orthogonalised against the unit normal n, or the fallback axis rule of
+ * docs/shading.md 3 when t0 vanishes or lies along n. */
+void bgi_cpu_finish_tangent(const double t0[3], const double n[3], double t[3]);
 
 /* Fills the hit's attributes from a candidate on object (index) for the world ray o + t d. */
 void bgi_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
@@ -143,6 +160,22 @@ bool bgi_cpu_triangle_intersect(const bg_cpu_triangle_ray *ray, const double v0[
  * in [2^-480, 2^495] (or are 0), so that its sign is always the exact one there; the plain value
  * otherwise (whose sign is exact whenever it is not 0). */
 double bgi_cpu_diff_of_products(double a, double b, double c, double d);
+
+/* ---- meshes (mesh_hit.c, docs/shading.md 2.10) ----------------------------------------------- */
+
+/* The nearest triangle of a mesh object met by the object-space ray oo + t od with t in
+ * (0, t_max], skipping skip_triangle; of equal t the lower triangle index wins. */
+bool bgi_cpu_mesh_nearest(const bg_object_data *object, const double oo[3], const double od[3],
+                         uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate);
+/* Whether some triangle but skip_triangle meets the object-space segment with t in (0, t_limit). */
+bool bgi_cpu_mesh_blocked(const bg_object_data *object, const double oo[3], const double od[3],
+                         uint32_t skip_triangle, double t_limit);
+/* bgi_cpu_hit_attributes for a mesh object. */
+void bgi_cpu_mesh_attributes(const bg_object_data *object, uint32_t index, const double d[3],
+                            const bg_cpu_candidate *candidate, bg_cpu_hit *hit);
+/* Where a ray leaving hit in direction dir starts: the hit position for the analytic shapes; for a
+ * mesh, the position moved by hit->offset along the geometric normal to the side dir goes. */
+void bgi_cpu_leave_origin(const bg_cpu_hit *hit, const double dir[3], double origin[3]);
 
 /* ---- UV mappings (uv_map.c) ---------------------------------------------------------------- */
 
@@ -199,6 +232,10 @@ double bgi_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t);
  * inside (either may be BG_CPU_NONE); false on a miss. */
 bool bgi_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
                         uint32_t inside, bg_cpu_hit *hit);
+/* The same where skip is a mesh object and only its triangle skip_triangle is skipped (BG_CPU_NONE:
+ * the whole object skip, as above). */
+bool bgi_cpu_nearest_hit_except(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
+                               uint32_t skip_triangle, uint32_t inside, bg_cpu_hit *hit);
 
 /* The radiance arriving at p from a light (0 outside a spot cone), its unit direction l and the
  * shadow segment's length; false when the light cannot contribute (docs/shading.md 7). */
@@ -206,10 +243,11 @@ bool bgi_cpu_light_arrival(const bg_light *light, const double p[3], double l[3]
 /* Whether a secondary ray of path weight w is followed: some channel positive and >= min_weight. */
 bool bgi_cpu_worth_following(const double w[3], double min_weight);
 
-/* Adds weight x the radiance along a ray at bounce level `level` into out. */
+/* Adds weight x the radiance along a ray at bounce level `level` into out; skip, skip_triangle and
+ * inside as bgi_cpu_nearest_hit_except takes them. */
 void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
-                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,
-                  double out[3]);
+                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t skip_triangle,
+                  uint32_t inside, double out[3]);
 
 /* The linear radiance of one primary ray (o, unit d). */
 void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],

@@ -197,9 +197,18 @@ void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const d
 bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
                              double t_max, bg_cpu_candidate *candidate)
 {
+    return bgi_cpu_intersect_object_except(object, o, d, far_root, BG_CPU_NONE, t_max, candidate);
+}
+
+bool bgi_cpu_intersect_object_except(const bg_object_data *object, const double o[3], const double d[3],
+                                    bool far_root, uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate)
+{
     double oo[3], od[3];
     bg_cpu_span span;
     bgi_cpu_object_ray(object, o, d, oo, od);
+    /* A mesh has no far root: the side of the triangle says inside or outside. */
+    if (object->mesh)
+        return bgi_cpu_mesh_nearest(object, oo, od, skip_triangle, t_max, candidate);
     bgi_cpu_intersect_prototype(object->shape, oo, od, &span);
     if (span.count == 0)
         return false;
@@ -216,6 +225,7 @@ bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], c
         return false;
     candidate->t = span.t[root];
     candidate->root = root;
+    candidate->triangle = BG_CPU_NONE;
     for (int i = 0; i < 3; i++) {
         candidate->p[i] = oo[i] + candidate->t * od[i];
         candidate->n[i] = span.normal[root][i];
@@ -225,9 +235,17 @@ bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], c
 
 bool bgi_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max)
 {
+    return bgi_cpu_segment_blocked_except(object, o, l, BG_CPU_NONE, t_max);
+}
+
+bool bgi_cpu_segment_blocked_except(const bg_object_data *object, const double o[3], const double l[3],
+                                   uint32_t skip_triangle, double t_max)
+{
     double oo[3], od[3];
     bg_cpu_span span;
     bgi_cpu_object_ray(object, o, l, oo, od);
+    if (object->mesh)
+        return bgi_cpu_mesh_blocked(object, oo, od, skip_triangle, t_max * (1.0 - BG_SHADOW_END_REL));
     bgi_cpu_intersect_prototype(object->shape, oo, od, &span);
     if (span.count == 0)
         return false;
@@ -252,10 +270,27 @@ static void fallback_tangent(const double n[3], double t[3])
     bg_v3_normalize(t);
 }
 
+void bgi_cpu_finish_tangent(const double t0[3], const double n[3], double t[3])
+{
+    double len0 = sqrt(bg_v3_dot(t0, t0));
+    double k = bg_v3_dot(t0, n);
+    for (int i = 0; i < 3; i++)
+        t[i] = t0[i] - k * n[i];
+    /* Degenerate when dP/du vanishes (poles) or lies along the normal. */
+    if (!(len0 > 0.0) || !(sqrt(bg_v3_dot(t, t)) > len0 * 1e-9) || !bg_v3_normalize(t))
+        fallback_tangent(n, t);
+}
+
 void bgi_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const double o[3], const double d[3],
                            const bg_cpu_candidate *candidate, bg_cpu_hit *hit)
 {
+    if (object->mesh) {
+        bgi_cpu_mesh_attributes(object, index, d, candidate, hit);
+        return;
+    }
     hit->object = index;
+    hit->triangle = BG_CPU_NONE;
+    hit->offset = 0.0;
     hit->t = candidate->t;
     for (int i = 0; i < 3; i++)
         hit->position[i] = o[i] + candidate->t * d[i];
@@ -285,12 +320,6 @@ void bgi_cpu_hit_attributes(const bg_object_data *object, uint32_t index, const 
     double t[3];
     for (int i = 0; i < 3; i++)
         t[i] = m[i][0] * dpdu[0] + m[i][1] * dpdu[1] + m[i][2] * dpdu[2];
-    double len0 = sqrt(bg_v3_dot(t, t));
-    double k = bg_v3_dot(t, hit->normal);
-    for (int i = 0; i < 3; i++)
-        t[i] -= k * hit->normal[i];
-    /* Degenerate when dP/du vanishes (poles) or lies along the normal. */
-    if (!(len0 > 0.0) || !(sqrt(bg_v3_dot(t, t)) > len0 * 1e-9) || !bg_v3_normalize(t))
-        fallback_tangent(hit->normal, t);
-    memcpy(hit->tangent, t, sizeof t);
+    bgi_cpu_finish_tangent(t, hit->normal, hit->tangent);
+    memcpy(hit->geometric_normal, hit->normal, sizeof hit->normal);
 }

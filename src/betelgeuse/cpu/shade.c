@@ -13,7 +13,7 @@
 typedef struct nearest_search {
     const bg_scene_state *state;
     const double *o, *d;
-    uint32_t skip, inside;
+    uint32_t skip, skip_triangle, inside;
     bg_cpu_candidate best;
     uint32_t best_index;
 } nearest_search;
@@ -21,7 +21,11 @@ typedef struct nearest_search {
 static void offer(nearest_search *n, uint32_t j, double t_max)
 {
     bg_cpu_candidate c;
-    if (j == n->skip || !bgi_cpu_intersect_object(&n->state->objects[j], n->o, n->d, j == n->inside, t_max, &c))
+    /* A ray leaving a mesh triangle skips that triangle only: a mesh is not convex. */
+    bool skip_all = j == n->skip && n->skip_triangle == BG_CPU_NONE;
+    uint32_t skip_triangle = j == n->skip ? n->skip_triangle : BG_CPU_NONE;
+    if (skip_all || !bgi_cpu_intersect_object_except(&n->state->objects[j], n->o, n->d, j == n->inside, skip_triangle,
+                                                     t_max, &c))
         return;
     if (n->best_index == BG_CPU_NONE || c.t < n->best.t || (c.t == n->best.t && j < n->best_index)) {
         n->best = c;
@@ -60,7 +64,14 @@ static void walk_tree(const bg_scene_state *state, const double o[3], const doub
 bool bgi_cpu_nearest_hit(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
                         uint32_t inside, bg_cpu_hit *hit)
 {
-    nearest_search n = {state, o, d, skip, inside, {0.0, 0, {0, 0, 0}, {0, 0, 0}}, BG_CPU_NONE};
+    return bgi_cpu_nearest_hit_except(state, o, d, skip, BG_CPU_NONE, inside, hit);
+}
+
+bool bgi_cpu_nearest_hit_except(const bg_scene_state *state, const double o[3], const double d[3], uint32_t skip,
+                               uint32_t skip_triangle, uint32_t inside, bg_cpu_hit *hit)
+{
+    nearest_search n = {state, o, d, skip, skip_triangle, inside,
+                        {0.0, 0, {0, 0, 0}, {0, 0, 0}, BG_CPU_NONE, {0, 0, 0}}, BG_CPU_NONE};
     for (uint32_t k = 0; k < state->always_count; k++)
         offer(&n, state->always_objects[k], n.best_index == BG_CPU_NONE ? DBL_MAX : n.best.t);
     walk_tree(state, o, d, n.best_index == BG_CPU_NONE ? DBL_MAX : n.best.t, offer_tree_leaf, &n);
@@ -75,14 +86,18 @@ typedef struct shadow_search {
     const bg_scene_state *state;
     const double *p, *l;
     double t_max;
-    uint32_t self;
+    uint32_t self, self_triangle;
     bool blocked;
 } shadow_search;
 
+/* An analytic shape never shadows its own lit side; a mesh may shadow itself, except by the
+ * triangle the segment starts on. */
 static bool blocks(const shadow_search *s, uint32_t j)
 {
     const bg_object_data *obj = &s->state->objects[j];
-    return j != s->self && obj->casts_shadows && bgi_cpu_segment_blocked(obj, s->p, s->l, s->t_max);
+    if (!obj->casts_shadows || (j == s->self && s->self_triangle == BG_CPU_NONE))
+        return false;
+    return bgi_cpu_segment_blocked_except(obj, s->p, s->l, j == s->self ? s->self_triangle : BG_CPU_NONE, s->t_max);
 }
 
 static bool test_tree_blocker(void *user, uint32_t prim, double *t_max)
@@ -93,9 +108,10 @@ static bool test_tree_blocker(void *user, uint32_t prim, double *t_max)
     return !s->blocked;
 }
 
-static bool shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self)
+static bool shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self,
+                     uint32_t self_triangle)
 {
-    shadow_search s = {state, p, l, t_max, self, false};
+    shadow_search s = {state, p, l, t_max, self, self_triangle, false};
     for (uint32_t k = 0; k < state->always_count; k++)
         if (blocks(&s, state->always_objects[k]))
             return true;
@@ -146,11 +162,11 @@ bool bgi_cpu_worth_following(const double w[3], double min_weight)
 }
 
 void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
-                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t inside,
-                  double out[3])
+                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t skip_triangle,
+                  uint32_t inside, double out[3])
 {
     bg_cpu_hit hit;
-    if (!bgi_cpu_nearest_hit(state, o, d, skip, inside, &hit)) {
+    if (!bgi_cpu_nearest_hit_except(state, o, d, skip, skip_triangle, inside, &hit)) {
         for (int i = 0; i < 3; i++)
             out[i] += weight[i] * settings->background[i];
         return;
@@ -178,7 +194,9 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
             double vl = bg_v3_dot(n, l);
             if (!(vl > 0.0))
                 continue; /* facing away from the light: none of it */
-            if (shadowed(state, hit.position, l, t_max, hit.object))
+            double from[3];
+            bgi_cpu_leave_origin(&hit, l, from);
+            if (shadowed(state, from, l, t_max, hit.object, hit.triangle))
                 continue;
             double f[3];
             bgi_cpu_brdf(&surface, n, hit.tangent, view, l, f);
@@ -208,12 +226,18 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
 
     /* A ray leaving a closed object's inside stays inside after reflection (far root); any other
      * secondary ray leaves the object it starts on and skips it. */
-    bool stays_inside = !thin && !hit.entering;
+    bool stays_inside = !thin && !hit.entering && !object->mesh;
+    /* A ray leaving a mesh skips the triangle it starts on and nothing else, from a point just off
+     * the surface on its own side (docs/shading.md 2.10); it may meet the same mesh again. */
+    uint32_t leave_skip = object->mesh ? hit.object : BG_CPU_NONE, leave_triangle = hit.triangle;
     if (bgi_cpu_worth_following(w_refl, settings->min_weight)) {
         double dn = bg_v3_dot(d, n);
         double r[3] = {d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]};
+        double from[3];
+        bgi_cpu_leave_origin(&hit, r, from);
         if (bg_v3_normalize(r))
-            bgi_cpu_trace(state, settings, hit.position, r, level + 1, w_refl, stays_inside ? BG_CPU_NONE : hit.object,
+            bgi_cpu_trace(state, settings, from, r, level + 1, w_refl,
+                         object->mesh ? leave_skip : stays_inside ? BG_CPU_NONE : hit.object, leave_triangle,
                          stays_inside ? hit.object : BG_CPU_NONE, out);
     }
     if (bgi_cpu_worth_following(w_refr, settings->min_weight)) {
@@ -224,8 +248,11 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
                 t[i] = eta * d[i] + k * n[i];
         }
         if (bg_v3_normalize(t)) {
-            bool enters = !thin && hit.entering;
-            bgi_cpu_trace(state, settings, hit.position, t, level + 1, w_refr, enters ? BG_CPU_NONE : hit.object,
+            bool enters = !thin && hit.entering && !object->mesh;
+            double from[3];
+            bgi_cpu_leave_origin(&hit, t, from);
+            bgi_cpu_trace(state, settings, from, t, level + 1, w_refr,
+                         object->mesh ? leave_skip : enters ? BG_CPU_NONE : hit.object, leave_triangle,
                          enters ? hit.object : BG_CPU_NONE, out);
         }
     }
@@ -236,7 +263,7 @@ void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *se
 {
     const double one[3] = {1.0, 1.0, 1.0};
     bg_v3_set(rgb, 0.0, 0.0, 0.0);
-    bgi_cpu_trace(state, settings, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, rgb);
+    bgi_cpu_trace(state, settings, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, BG_CPU_NONE, rgb);
 }
 
 void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],

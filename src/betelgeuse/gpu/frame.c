@@ -419,6 +419,12 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
     const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
         return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
+    /* The one check for both entry points: no GPU plan intersects triangles yet. */
+    if (state->mesh_object_count > 0)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT,
+                            "%s: the committed scene holds %u mesh objects; meshes are rendered only by the CPU "
+                            "reference (bg_render_cpu) so far",
+                            out->fn, (unsigned)state->mesh_object_count);
     memset(&r->stats, 0, sizeof r->stats);
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */

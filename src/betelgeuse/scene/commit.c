@@ -167,7 +167,7 @@ static bg_status derive_objects(bg_scene *s)
 {
     bg_object_data *out = s->p_objects.data;
     const uint32_t *material_map = s->material_map.data;
-    uint32_t k = 0;
+    uint32_t k = 0, meshes = 0;
     for (uint32_t slot = 0; slot < bgi_pool_slot_count(&s->objects); slot++) {
         if (!bgi_pool_live(&s->objects, slot))
             continue;
@@ -177,9 +177,11 @@ static bg_status derive_objects(bg_scene *s)
         if (st != BG_OK)
             return st;
         out[k].material = material_map[out[k].material];
+        meshes += out[k].mesh != NULL;
         k++;
     }
     s->p_objects.count = k;
+    s->p_mesh_objects = meshes;
     return BG_OK;
 }
 
@@ -258,6 +260,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->lights = scene->c_lights.data;
     state->textures = scene->c_textures.data;
     install_bounds(state);
+    state->mesh_object_count = scene->p_mesh_objects;
     state->camera = camera;
     memcpy(state->ambient, scene->ambient, sizeof state->ambient);
     bgi_scene_tree_install(scene);
@@ -269,6 +272,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     for (uint32_t i = 0; i < scene->retired_texels.count; i++)
         bgi_free(&scene->allocator, retired[i]);
     scene->retired_texels.count = 0;
+    bgi_mesh_free_retired(scene);
     return BG_OK;
 }
 

@@ -81,7 +81,7 @@ bg_status bg_scene_remove_material(bg_scene *scene, uint32_t material)
         return st;
     /* An object keeps its material's id, so the material must outlive every object using it. */
     for (uint32_t o = 0; o < bgi_pool_slot_count(&scene->objects); o++) {
-        const bg_object_desc *d = bgi_pool_item(&scene->objects, o);
+        const bg_object_desc *d = &((const bg_object_item *)bgi_pool_item(&scene->objects, o))->desc;
         if (!bgi_pool_live(&scene->objects, o) || d->material != material)
             continue;
         char m_text[BG_HANDLE_TEXT_SIZE], o_text[BG_HANDLE_TEXT_SIZE];

@@ -23,11 +23,12 @@ bg_object_desc bg_object_desc_init(bg_shape shape, uint32_t material)
 static bg_status add(bg_scene *scene, const char *where, const char *transform_field, const bg_object_desc *desc,
                      uint32_t *out_object)
 {
+    bg_object_item item = {*desc, NULL};
     bg_object_data derived;
-    bg_status st = bgi_object_derive(scene, where, transform_field, desc, &derived);
+    bg_status st = bgi_object_derive(scene, where, transform_field, &item, &derived);
     if (st != BG_OK)
         return st;
-    return bgi_pool_add(scene, &scene->objects, where, desc, out_object);
+    return bgi_pool_add(scene, &scene->objects, where, &item, out_object);
 }
 
 bg_status bg_scene_add_object(bg_scene *scene, const bg_object_desc *desc, uint32_t *out_object)
@@ -120,14 +121,14 @@ bg_status bg_scene_set_transform(bg_scene *scene, uint32_t object, const bg_mat4
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: transform is NULL", call);
     char where[64], text[BG_HANDLE_TEXT_SIZE];
     snprintf(where, sizeof where, "%s: object %s", call, bgi_handle_text(object, text));
-    bg_object_desc *desc = bgi_pool_item(&scene->objects, slot);
-    bg_object_desc moved = *desc;
-    moved.transform = *transform;
+    bg_object_item *item = bgi_pool_item(&scene->objects, slot);
+    bg_object_item moved = *item;
+    moved.desc.transform = *transform;
     bg_object_data derived;
     st = bgi_object_derive(scene, where, "transform", &moved, &derived);
     if (st != BG_OK)
         return st;
-    desc->transform = *transform;
+    item->desc.transform = *transform;
     return BG_OK;
 }
 
@@ -139,6 +140,8 @@ bg_status bg_scene_remove_object(bg_scene *scene, uint32_t object)
     bg_status st = bgi_pool_lookup(scene, &scene->objects, "bg_scene_remove_object", "object", object, &slot);
     if (st != BG_OK)
         return st;
+    /* The committed state may still show the mesh: unref retires it until the next commit. */
+    bgi_mesh_unref(scene, ((bg_object_item *)bgi_pool_item(&scene->objects, slot))->mesh);
     bgi_pool_remove(&scene->objects, slot);
     return BG_OK;
 }

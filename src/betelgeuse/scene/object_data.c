@@ -49,6 +49,32 @@ typedef double (*half_extent_fn)(double a, double b, double c);
 static const half_extent_fn shape_half_extent[BG_SHAPE_COUNT_] = {BG_SHAPES(HALF_EXTENT_OF)};
 #undef HALF_EXTENT_OF
 
+/* World box of a mesh object: its object-space box's 8 corners transformed in double, each
+ * coordinate padded outward as world_box pads (by a few ulps of the terms it is summed from), so
+ * that rounding never cuts a triangle. */
+static void mesh_world_box(const bg_mesh_data *mesh, const bg_mat4 *transform, double lo[3], double hi[3])
+{
+    const double (*m)[4] = transform->m;
+    for (int i = 0; i < 3; i++) {
+        lo[i] = DBL_MAX;
+        hi[i] = -DBL_MAX;
+    }
+    for (int c = 0; c < 8; c++) {
+        const double p[3] = {(c & 1) ? mesh->box_max[0] : mesh->box_min[0],
+                             (c & 2) ? mesh->box_max[1] : mesh->box_min[1],
+                             (c & 4) ? mesh->box_max[2] : mesh->box_min[2]};
+        for (int i = 0; i < 3; i++) {
+            double v = m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2] + m[i][3];
+            double mag = fabs(m[i][0] * p[0]) + fabs(m[i][1] * p[1]) + fabs(m[i][2] * p[2]) + fabs(m[i][3]);
+            double pad = 8.0 * DBL_EPSILON * mag;
+            if (v - pad < lo[i])
+                lo[i] = v - pad;
+            if (v + pad > hi[i])
+                hi[i] = v + pad;
+        }
+    }
+}
+
 /* World box of the object: for a bounded prototype, centre the translation and half extent per
  * axis from the shape, padded by a few ulps so rounding never cuts the object; unbounded shapes
  * get the whole double range. Returns whether the shape is bounded. */
@@ -72,10 +98,11 @@ static bool world_box(const bg_object_desc *desc, double lo[3], double hi[3])
 }
 
 bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *transform_field,
-                           const bg_object_desc *d, bg_object_data *o)
+                           const bg_object_item *item, bg_object_data *o)
 {
+    const bg_object_desc *d = &item->desc;
     uint32_t material;
-    bg_status st = bgi_validate_object_fields(scene, where, d, &material);
+    bg_status st = bgi_validate_object_fields(scene, where, d, item->mesh != NULL, &material);
     if (st != BG_OK)
         return st;
     double scale;
@@ -86,13 +113,19 @@ bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *tran
     if (c != BG_AFFINE_OK)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: %s %s", where, transform_field,
                              bgi_affine_check_string(c));
-    o->bounded = world_box(d, o->bounds_min, o->bounds_max);
+    if (item->mesh) {
+        mesh_world_box(item->mesh, &d->transform, o->bounds_min, o->bounds_max);
+        o->bounded = true;
+    } else {
+        o->bounded = world_box(d, o->bounds_min, o->bounds_max);
+    }
     for (int i = 0; i < 3; i++)
         if (!isfinite(o->bounds_min[i]) || !isfinite(o->bounds_max[i]))
             return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT,
                                  "%s: %s puts the world box beyond the double range (axis %d: translation %g)",
                                  where, transform_field, i, d->transform.m[i][3]);
     o->shape = d->shape;
+    o->mesh = item->mesh;
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++)
             o->to_world[i][j] = d->transform.m[i][j];
@@ -100,7 +133,8 @@ bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *tran
         for (int j = 0; j < 3; j++)
             o->normal_to_world[i][j] = o->to_object[j][i];
     o->material = material;
-    o->uv_mapping = d->uv_mapping == BG_UV_DEFAULT ? default_uv(d->shape) : d->uv_mapping;
+    /* A mesh has its own texture coordinates; its mapping is never read. */
+    o->uv_mapping = item->mesh ? BG_UV_PLANAR : d->uv_mapping == BG_UV_DEFAULT ? default_uv(d->shape) : d->uv_mapping;
     o->uv_scale[0] = d->uv_scale[0];
     o->uv_scale[1] = d->uv_scale[1];
     o->casts_shadows = d->casts_shadows;

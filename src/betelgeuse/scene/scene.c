@@ -32,7 +32,7 @@ bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
     memset(s, 0, sizeof *s);
     s->allocator = d.allocator;
     s->logger = d.logger;
-    bgi_pool_init(&s->objects, "object", "an object", sizeof(bg_object_desc));
+    bgi_pool_init(&s->objects, "object", "an object", sizeof(bg_object_item));
     bgi_pool_init(&s->materials, "material", "a material", sizeof(bg_material));
     bgi_pool_init(&s->lights, "light", "a light", sizeof(bg_light));
     bgi_pool_init(&s->textures, "texture", "a texture", sizeof(bg_texture_data));
@@ -52,6 +52,10 @@ void bg_scene_destroy(bg_scene *scene)
     float **retired = scene->retired_texels.data;
     for (uint32_t i = 0; i < scene->retired_texels.count; i++)
         bgi_free(&scene->allocator, retired[i]);
+    for (uint32_t i = 0; i < bgi_pool_slot_count(&scene->objects); i++)
+        if (bgi_pool_live(&scene->objects, i))
+            bgi_mesh_unref(scene, ((bg_object_item *)bgi_pool_item(&scene->objects, i))->mesh);
+    bgi_mesh_free_retired(scene);
     bg_pool *pools[] = {&scene->objects, &scene->materials, &scene->lights, &scene->textures};
     for (size_t i = 0; i < sizeof pools / sizeof pools[0]; i++)
         bgi_pool_release(scene, pools[i]);

@@ -17,9 +17,30 @@ typedef struct bg_texture_data {
     float *texels; /* width * height * 4 */
 } bg_texture_data;
 
+/* The shape value of a mesh object in bg_object_data (never a bg_shape of the API): past every
+ * table indexed by bg_shape, so that no shape table can take a mesh for an analytic shape; such
+ * tables guard their index (bg_shape_thin gives false, the CPU's prototype intersector a miss). */
+#define BGI_SHAPE_MESH ((bg_shape)BG_SHAPE_COUNT_)
+
+/* A mesh's geometry (scene/mesh.c): immutable once added, shared by every object that shows it
+ * (bg_scene_add_mesh_instance), freed when the last pending object using it is removed and no
+ * committed state can still read it (the next successful commit, or the scene's destruction). */
+typedef struct bg_mesh_data {
+    uint32_t vertex_count, triangle_count;
+    float *positions;   /* 3 per vertex, as given */
+    uint32_t *indices;  /* 3 per triangle, each < vertex_count */
+    float *normals;     /* 3 per vertex or NULL */
+    float *uvs;         /* 2 per vertex or NULL */
+    double box_min[3], box_max[3]; /* object-space box of the vertices the triangles use */
+    bg_bvh tree;        /* over the triangles' object-space boxes: primitive i is triangle i */
+    uint32_t refs;      /* live pending objects that show it */
+    struct bg_mesh_data *next_retired; /* on the scene's retired list once refs is 0 */
+} bg_mesh_data;
+
 /* An object with everything derived at commit (scene/object_data.c). */
 typedef struct bg_object_data {
-    bg_shape shape;
+    bg_shape shape;              /* BGI_SHAPE_MESH for a mesh object */
+    const bg_mesh_data *mesh;    /* the mesh of a mesh object, NULL for the analytic shapes */
     double to_world[4][4];       /* the object's transform */
     double to_object[4][4];      /* its inverse, computed in double */
     double normal_to_world[3][3];/* inverse transpose of the linear part */
@@ -49,6 +70,7 @@ typedef struct bg_scene_state {
     const bg_material *materials;
     const bg_texture_data *textures;
     const bg_light *lights;
+    uint32_t mesh_object_count;  /* objects whose mesh is not NULL */
     bool has_bounded_objects;
     double bounds_min[3], bounds_max[3]; /* union of the bounded objects' boxes */
     /* The object tree (common/bvh.h) over every object whose world box fits the float range: the

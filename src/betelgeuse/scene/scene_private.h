@@ -17,6 +17,13 @@ typedef struct bg_array {
     uint32_t count, capacity;
 } bg_array;
 
+/* What the object pool holds: the description, and for a mesh object (desc.shape BGI_SHAPE_MESH)
+ * the mesh it shows, one of mesh's refs. */
+typedef struct bg_object_item {
+    bg_object_desc desc;
+    bg_mesh_data *mesh;
+} bg_object_item;
+
 /* Handles (pool.c), as sokol_gfx's pools make them: an item's id is (slot + 1) | (generation << 24).
  * A fresh slot has generation 0, so a scene that never removes hands out 1, 2, 3, ...; removal bumps
  * the slot's generation and frees the slot for reuse, and a slot whose generation would pass 255 is
@@ -64,11 +71,12 @@ struct bg_scene {
      * committed state, so they wait in retired_texels until the next successful commit. */
     bg_camera camera;
     double ambient[3];
-    bg_pool objects;   /* bg_object_desc */
+    bg_pool objects;   /* bg_object_item */
     bg_pool materials; /* bg_material */
     bg_pool lights;    /* bg_light */
     bg_pool textures;  /* bg_texture_data */
     bg_array retired_texels; /* float *, freed at the next successful commit */
+    bg_mesh_data *retired_meshes; /* meshes no pending object shows, freed like retired_texels */
 
     /* Committed state and the storage behind its arrays: dense (live items in slot order), with
      * objects' materials and materials' textures translated to dense indices. */
@@ -84,6 +92,7 @@ struct bg_scene {
      * a material or texture slot to its dense index. */
     bg_array p_objects, p_materials, p_lights, p_textures;
     bg_array material_map, texture_map; /* uint32_t per slot */
+    uint32_t p_mesh_objects;            /* mesh objects among p_objects */
 
     /* The object tree: the committed one, the lists behind the committed state's tree fields
      * (c_), and the commit in progress's boxes and lists (p_), swapped in when it succeeds. */
@@ -141,8 +150,9 @@ bg_status bgi_validate_color3(bg_scene *scene, const char *where, const char *fi
                              const double rgb[3]);
 /* Values and texture references (through bgi_pool_lookup). */
 bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_material *m);
-/* Everything but the transform and what is derived from it (object_data.c); writes the material's slot. */
-bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const bg_object_desc *desc,
+/* Everything but the transform and what is derived from it (object_data.c); writes the material's
+ * slot. mesh: the object is a mesh object (shape BGI_SHAPE_MESH, which is refused otherwise). */
+bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const bg_object_desc *desc, bool mesh,
                                     uint32_t *out_material_slot);
 
 /* Every texture reference of a material, one row each: X(field) with m->field.texture the handle. */
@@ -161,7 +171,15 @@ bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *l
  * material's slot (commit translates it). transform_field names the transform in messages
  * ("transform", or what a shorthand built it from). */
 bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *transform_field,
-                           const bg_object_desc *desc, bg_object_data *out);
+                           const bg_object_item *item, bg_object_data *out);
+
+/* ---- mesh.c ---- */
+
+/* Drops one object's reference to its mesh (NULL ignored); the last one moves the mesh to the
+ * retired list, which never allocates, so removal cannot fail. */
+void bgi_mesh_unref(bg_scene *scene, bg_mesh_data *mesh);
+/* Frees the retired meshes (after a successful commit: no committed state shows them any more). */
+void bgi_mesh_free_retired(bg_scene *scene);
 
 /* ---- tree.c ---- */
 

@@ -150,10 +150,10 @@ bg_status bgi_validate_light(bg_scene *scene, const char *where, const bg_light 
     return BG_OK;
 }
 
-bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const bg_object_desc *d,
+bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const bg_object_desc *d, bool mesh,
                                     uint32_t *out_material_slot)
 {
-    if ((int)d->shape < 0 || d->shape >= BG_SHAPE_COUNT_)
+    if (mesh ? d->shape != BGI_SHAPE_MESH : (int)d->shape < 0 || d->shape >= BG_SHAPE_COUNT_)
         return FAIL("%s: shape = %d is not a bg_shape", where, (int)d->shape);
     if ((int)d->uv_mapping < 0 || d->uv_mapping >= BG_UV_COUNT_)
         return FAIL("%s: uv_mapping = %d is not a bg_uv_mapping", where, (int)d->uv_mapping);
