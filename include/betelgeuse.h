@@ -438,18 +438,23 @@ enum {
  * model within the same accuracy against the CPU reference, but not bit for bit alike. */
 typedef enum bg_gpu_plan {
     BG_PLAN_AUTO = 0,  /* fused where the scene and the GL limits allow it (BG_PLAN_FUSED up to 7
-                          bounded objects, BG_PLAN_FUSED_TREE from 8), else multipass (the reason
-                          is logged at BG_LOG_INFO); multipass whenever an option only it has is
-                          asked for: gpu_disable_skips, dmax, half_gbuffer or float_depth */
+                          bounded objects, BG_PLAN_FUSED_TREE from 8 or whenever the scene holds a
+                          mesh), else multipass (the reason is logged at BG_LOG_INFO); multipass
+                          whenever an option only it has is asked for: gpu_disable_skips, dmax,
+                          half_gbuffer or float_depth. A mesh scene the tree plan cannot render
+                          (a limit, or one of those options) fails with BG_ERR_LIMIT */
     BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image,
                           every object's test written into the shader; bg_render_gpu fails
                           (BG_ERR_LIMIT, or BG_ERR_GL when GL refuses the program) where it cannot
-                          run */
-    BG_PLAN_MULTIPASS, /* ray maps, G-buffer, shadow, light and spawn passes level by level */
+                          run, and for every scene with a mesh (BG_ERR_LIMIT: meshes need
+                          BG_PLAN_FUSED_TREE) */
+    BG_PLAN_MULTIPASS, /* ray maps, G-buffer, shadow, light and spawn passes level by level; refuses
+                          scenes with a mesh as BG_PLAN_FUSED does */
     BG_PLAN_FUSED_TREE /* the fused pass with the bounded objects in a tree walked from textures, so
-                          its program and its cost grow with the shapes and log(objects); a pixel
-                          whose walks would outrun the shader's loop limit is rendered by the CPU
-                          reference (bg_render_stats.fallback_pixels) */
+                          its program and its cost grow with the shapes and log(objects); the one
+                          GPU plan for triangle meshes (each mesh's own tree walked from a third
+                          texture); a pixel whose walks would outrun the shader's loop limit is
+                          rendered by the CPU reference (bg_render_stats.fallback_pixels) */
 } bg_gpu_plan;
 
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,

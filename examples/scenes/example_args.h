@@ -1,5 +1,5 @@
 /* The command line of the examples built on the shared scenes (bg_earth, bg_earth_shadow, bg_glass,
- * bg_cpu_earth, bg_cpu_bunny): "<name> [out.png [size]]", with -h / --help. One parser, so that
+ * bg_bunny, bg_cpu_earth, bg_cpu_bunny): "<name> [out.png [size]]", with -h / --help. One parser, so that
  * every such example answers the same way; the self-contained examples (standalone_*.c, macs_hello.c) carry their own
  * few lines instead, to need nothing the install does not ship. */
 #ifndef EXAMPLE_ARGS_H

@@ -39,7 +39,7 @@ static void report_bg(const example *e, const char *what, bg_status st)
 }
 
 /* Creates everything and renders into e->pixels; false after printing why it failed. */
-static bool example_render(example *e, scene_id id, int size)
+static bool example_render(example *e, gpu_example_build_fn build, void *user, int size)
 {
     char message[1024];
     macs_status ms = macs_headless_create(NULL, &e->headless, message, sizeof message);
@@ -64,7 +64,7 @@ static bool example_render(example *e, scene_id id, int size)
     }
     st = bg_scene_create(NULL, &e->scene);
     if (st == BG_OK)
-        st = scenes_build(id, e->scene);
+        st = build(e->scene, user);
     if (st != BG_OK) {
         report_bg(e, "building the scene", st);
         return false;
@@ -84,7 +84,8 @@ static bool example_render(example *e, scene_id id, int size)
     return true;
 }
 
-int gpu_example_main(int argc, char **argv, const char *name, const char *what, scene_id id)
+int gpu_example_run(int argc, char **argv, const char *name, const char *what, gpu_example_build_fn build,
+                    void *user)
 {
     example_args args;
     int exit_now = example_args_parse(argc, argv, name, what, &args);
@@ -94,7 +95,7 @@ int gpu_example_main(int argc, char **argv, const char *name, const char *what, 
     int size = args.size;
 
     example e = {name, NULL, NULL, NULL, NULL, NULL};
-    bool ok = example_render(&e, id, size);
+    bool ok = example_render(&e, build, user, size);
     if (ok) {
         char message[512];
         bg_image image = {size, size, BG_PIXEL_RGBA8, 0, e.pixels};
@@ -109,4 +110,14 @@ int gpu_example_main(int argc, char **argv, const char *name, const char *what, 
         return 1;
     printf("wrote %s (%dx%d)\n", path, size, size);
     return 0;
+}
+
+static bg_status build_shared(bg_scene *scene, void *user)
+{
+    return scenes_build(*(const scene_id *)user, scene);
+}
+
+int gpu_example_main(int argc, char **argv, const char *name, const char *what, scene_id id)
+{
+    return gpu_example_run(argc, argv, name, what, build_shared, &id);
 }

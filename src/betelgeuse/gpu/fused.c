@@ -82,9 +82,15 @@ static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fu
                  size_t size)
 {
     int comps = bgi_gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
-    int units = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0);
+    int units = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->kinds.mesh ? 1 : 0);
     if (l->tree && !bgi_gpu_fused_tree_fits(r, state, why, size))
         return false;
+    for (uint32_t k = 0; k < l->unrolled_count; k++)
+        if (l->objects[l->unrolled[k]].shape == BGI_SHAPE_MESH) {
+            snprintf(why, size, "mesh object %u is outside the object tree (its box is beyond the float range), and "
+                     "only the tree's walk meets triangles", (unsigned)l->unrolled[k]);
+            return false;
+        }
     if (bgi_gpu_fused_layout_walks(l) && l->walk_budget < MIN_WALK_BUDGET)
         snprintf(why, size, "%.0f rays per pixel with %u lights leave the tree walks %d loop steps, fewer than %d",
                  (double)l->loop_rays, l->light_count, l->walk_budget, MIN_WALK_BUDGET);
@@ -253,7 +259,7 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
                              macs_pass **pass, char *refused, size_t refused_size)
 {
     enum { NAME = 24 }; /* "bg_tex" and any int */
-    int n = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0);
+    int n = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->kinds.mesh ? 1 : 0);
     macs_input_desc *inputs = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
     if (!inputs)
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
@@ -267,6 +273,8 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
         inputs[l->sampler_count].name = "bg_nodes";
         inputs[l->sampler_count + 1].name = "bg_objects";
     }
+    if (l->kinds.mesh)
+        inputs[l->sampler_count + 2].name = "bg_meshes";
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
@@ -366,6 +374,8 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, l->sampler_count, f->tree.nodes.texture);
     if (!ms && walks)
         ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
+    if (!ms && walks && l->kinds.mesh)
+        ms = macs_pass_set_input(f->pass, l->sampler_count + 2, f->tree.meshes.texture);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
@@ -445,7 +455,7 @@ bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, cons
         return BG_OK;
     bool forced = settings->gpu_plan == BG_PLAN_FUSED || settings->gpu_plan == BG_PLAN_FUSED_TREE;
     bool tree = settings->gpu_plan == BG_PLAN_FUSED_TREE ||
-                (settings->gpu_plan == BG_PLAN_AUTO && state->tree_count >= AUTO_TREE_FROM);
+                (settings->gpu_plan == BG_PLAN_AUTO && (state->tree_count >= AUTO_TREE_FROM || state->mesh_object_count > 0));
     const char *name = tree ? "BG_PLAN_FUSED_TREE" : "BG_PLAN_FUSED";
     const char *option = multipass_option(r, settings);
     if (!forced && option)

@@ -111,20 +111,28 @@ static void describe_tree(gpu_fused_layout *l)
         if (!o->in_tree)
             continue;
         l->tree_count++;
-        k->shape[o->shape] = true;
-        k->caster[o->shape] |= o->casts_shadows;
         k->all_cast &= o->casts_shadows;
         bool uv = bgi_gpu_fused_object_uv(l, j), tangent = bgi_gpu_fused_object_tangent(l, j);
         k->uv |= uv;
         k->tangent |= tangent;
+        if (o->shape == BGI_SHAPE_MESH) { /* past the shape tables: its UVs are the mesh's own */
+            k->mesh = true;
+            k->mesh_casts |= o->casts_shadows;
+            continue;
+        }
+        k->shape[o->shape] = true;
+        k->caster[o->shape] |= o->casts_shadows;
         k->mapping[o->uv_mapping] |= uv || tangent;
     }
 }
 
-/* Whether some caster can shadow another object: a lone object only ever meets its own surface,
- * which is never tested (docs/shading.md 2.8). */
+/* Whether some caster can shadow another object: a lone analytic object only ever meets its own
+ * surface, which is never tested (docs/shading.md 2.8); a mesh shadows itself (2.10). */
 static bool any_shadow(const gpu_fused_layout *l)
 {
+    for (uint32_t j = 0; j < l->object_count; j++)
+        if (l->objects[j].shape == BGI_SHAPE_MESH && l->objects[j].casts_shadows)
+            return true;
     if (l->object_count < 2)
         return false;
     for (uint32_t j = 0; j < l->object_count; j++)

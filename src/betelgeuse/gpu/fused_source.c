@@ -72,6 +72,8 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     bool uv_done[BG_UV_COUNT_] = {false};
     for (uint32_t j = 0; j < l->object_count && ok; j++) {
         const gpu_fused_object *o = &l->objects[j];
+        if (o->shape == BGI_SHAPE_MESH)
+            continue; /* walked from the mesh texture, with bg_triangle.glsl and bg_mesh.glsl */
         if (!shape_done[o->shape]) {
             shape_done[o->shape] = true;
             ok = bgi_gpu_text_snippet_renamed(t, shape_file[o->shape], span, bgi_gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP) &&
@@ -92,6 +94,9 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         ok = bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
     if (ok && l->tree)
         ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->tree && l->kinds.mesh)
+        ok = bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, &n, SEEN_CAP) &&
+             bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)
@@ -109,17 +114,26 @@ static bool tree_casts(const gpu_fused_layout *l)
     for (int s = 0; s < BG_SHAPE_COUNT_; s++)
         if (l->kinds.caster[s])
             return true;
-    return false;
+    return l->kinds.mesh_casts;
 }
 
 /* `before` + shape suffix + `after` for the tree object in `meta` (its texel 3: shape first), an
- * if-chain over the shapes in `present` with the last one as the plain else. */
+ * if-chain over the shapes in `present` with the last one as the plain else; `mesh` (or NULL: the
+ * tree holds no mesh of interest) is the statement for a mesh object, tested first. */
 static void emit_shape_dispatch(gpu_text *t, const bool present[BG_SHAPE_COUNT_], const char *indent,
-                                const char *before, const char *after)
+                                const char *before, const char *after, const char *mesh)
 {
     int count = 0, position = 0;
     for (int s = 0; s < BG_SHAPE_COUNT_; s++)
         count += present[s] ? 1 : 0;
+    /* A mesh object first: meta.x is BGI_SHAPE_MESH, past every shape. */
+    if (mesh && count == 0) {
+        bgi_gpu_text_printf(t, "%s%s\n", indent, mesh);
+        return;
+    }
+    if (mesh)
+        bgi_gpu_text_printf(t, "%sif (meta.x == %d.0)\n%s    %s\n%selse {\n", indent, (int)BGI_SHAPE_MESH, indent, mesh,
+                            indent);
     for (int s = 0; s < BG_SHAPE_COUNT_; s++) {
         if (!present[s])
             continue;
@@ -133,6 +147,8 @@ static void emit_shape_dispatch(gpu_text *t, const bool present[BG_SHAPE_COUNT_]
                             before, suffix, after);
         position++;
     }
+    if (mesh)
+        bgi_gpu_text_printf(t, "%s}\n", indent);
 }
 
 static int shape_count(const bool present[BG_SHAPE_COUNT_])
@@ -190,14 +206,23 @@ static void emit_tree_nearest(const gpu_fused_layout *l, gpu_text *t)
     gpu_text leaf;
     bgi_gpu_text_init(&leaf, t->allocator);
     bgi_gpu_text_append(&leaf, "                float tj;\n                vec3 pj, nj;\n                bool fj, h;\n");
-    if (shape_count(l->kinds.shape) > 1)
+    bool mesh = l->kinds.mesh;
+    if (shape_count(l->kinds.shape) + (mesh ? 1 : 0) > 1)
         bgi_gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
                                "lo.w, 3.0);\n");
+    if (mesh)
+        bgi_gpu_text_append(&leaf, "                bg_mesh_tri_j = -1.0;\n");
     emit_shape_dispatch(&leaf, l->kinds.shape, "                ", "h = bg_hit_root_",
-                        "(ro, rd, lo.w, m, tj, pj, nj, fj);");
+                        "(ro, rd, lo.w, m, tj, pj, nj, fj);",
+                        mesh ? "{ h = bg_mesh_nearest(ro, rd, lo.w, m, win >= 0.0 ? t : 1e38, tj, fj); pj = vec3(0.0); "
+                               "nj = vec3(0.0, 1.0, 0.0); }" : NULL);
     bgi_gpu_text_append(&leaf, "                if (h && (win < 0.0 || tj < t || (tj == t && lo.w < win))) {\n"
                            "                    t = tj;\n                    win = lo.w;\n                    p_obj = pj;\n"
-                           "                    n_obj = nj;\n                    first_root = fj;\n                }\n");
+                           "                    n_obj = nj;\n                    first_root = fj;\n");
+    if (mesh)
+        bgi_gpu_text_append(&leaf, "                    bg_win_tri = bg_mesh_tri_j;\n"
+                               "                    bg_win_bary = bg_mesh_bary_j;\n");
+    bgi_gpu_text_append(&leaf, "                }\n");
     emit_walk(l, t, "ro.xyz", "rd.xyz", "win >= 0.0 ? t : 1e38", NULL, "", &leaf);
     bgi_gpu_text_append(t, "}\n");
 }
@@ -209,16 +234,20 @@ static void emit_tree_blocked(const gpu_fused_layout *l, gpu_text *t)
     gpu_text leaf;
     bgi_gpu_text_init(&leaf, t->allocator);
     bool ask = !l->kinds.all_cast;
-    if (ask || shape_count(l->kinds.caster) > 1)
+    bool mesh = l->kinds.mesh_casts;
+    if (ask || shape_count(l->kinds.caster) + (mesh ? 1 : 0) > 1)
         bgi_gpu_text_append(&leaf, "                vec4 meta = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, "
                                "lo.w, 3.0);\n");
     if (ask)
         bgi_gpu_text_append(&leaf, "                if (meta.w > 0.5) {\n");
     emit_shape_dispatch(&leaf, l->kinds.caster, ask ? "                    " : "                ",
-                        "blocked = bg_segment_blocked_", "(p, l, dist, m);");
+                        "blocked = bg_segment_blocked_", "(p, l, dist, m);",
+                        mesh ? "blocked = bg_mesh_blocked(p, l, dist, lo.w, m, lo.w == self ? bg_win_tri : -1.0);" : NULL);
     if (ask)
         bgi_gpu_text_append(&leaf, "                }\n");
-    emit_walk(l, t, "p", "l", "dist < 0.0 ? 1e38 : dist", "blocked", " && lo.w != self", &leaf);
+    /* A mesh shadows itself: only the triangle the point lies on is skipped (docs/shading.md 2.10). */
+    emit_walk(l, t, "p", "l", "dist < 0.0 ? 1e38 : dist", "blocked",
+              mesh ? " && (lo.w != self || bg_win_tri >= 0.0)" : " && lo.w != self", &leaf);
     bgi_gpu_text_append(t, "    return blocked;\n}\n");
 }
 
@@ -230,6 +259,8 @@ static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
     bgi_gpu_text_append(t, "// ---- generated: walks of the object tree\n"
                        "float bg_tree_left;  // steps the pixel's walks may still take\n"
                        "float bg_tree_short; // 1.0 once a walk ran out of them\n");
+    if (l->kinds.mesh)
+        bgi_gpu_mesh_walks(l, t);
     emit_tree_nearest(l, t);
     if (tree_casts(l))
         emit_tree_blocked(l, t);
@@ -243,6 +274,8 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
                        "out vec3 n_obj, out bool first_root)\n{\n"
                        "    t = 0.0;\n    win = -1.0;\n    p_obj = vec3(0.0);\n    n_obj = vec3(0.0, 1.0, 0.0);\n"
                        "    first_root = true;\n");
+    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+        bgi_gpu_text_append(t, "    bg_win_tri = -1.0;\n");
     if (l->unrolled_count > 0)
         bgi_gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
     int emitted = 0;
@@ -259,6 +292,8 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
     }
     if (bgi_gpu_fused_layout_walks(l))
         bgi_gpu_text_append(t, "    bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
+    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+        bgi_gpu_text_append(t, "    bg_hit_p = ro.xyz + t * rd.xyz;\n");
     bgi_gpu_text_append(t, "    return win >= 0.0;\n}\n");
 }
 
@@ -269,6 +304,9 @@ static void emit_blocked(const gpu_fused_layout *l, gpu_text *t)
         return;
     bgi_gpu_text_append(t, "// ---- generated: shadow casters\n"
                        "bool bg_fused_blocked(vec3 p, vec3 l, float dist, float self)\n{\n");
+    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+        bgi_gpu_text_append(t, "    if (bg_win_tri >= 0.0)\n"
+                               "        p += (dot(l, bg_hit_ng) >= 0.0 ? bg_hit_off : -bg_hit_off) * bg_hit_ng;\n");
     for (uint32_t j = 0; j < l->object_count && l->shadows; j++) {
         if (!l->objects[j].casts_shadows || l->objects[j].in_tree)
             continue;
@@ -353,6 +391,25 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
         size_t used = strlen(test);
         snprintf(test + used, sizeof test - used, "%smeta.x == %d.0", thin++ ? " || " : "", s);
     }
+    if (k->mesh) {
+        /* A mesh's hit (docs/shading.md 2.10): closed, entering on the front side; its UVs are the
+         * mesh's own, scaled, and its tangent follows their u direction. */
+        bgi_gpu_text_printf(t, "        if (bg_win_tri >= 0.0) {\n"
+                           "            vec4 bases = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0);\n"
+                           "            bg_mesh_attributes(bg_meshes, bg_mesh_dims, bases.w + 6.0 * bg_win_tri, bg_win_bary, "
+                           "first_root, bg_tree_normal_matrix(m), bg_tree_to_world3(bg_objects, bg_object_dims, win), "
+                           "bg_hit_p, d, %.1f, bg_hit_ng, n, uv, dpdu, bg_hit_off);\n"
+                           "            entering = first_root;\n            code = bg_hit_code(win, false, entering);\n"
+                           "            mat = meta.y;\n",
+                           GPU_MESH_OFFSET_ULPS);
+        if (k->uv)
+            bgi_gpu_text_append(t, "            uv *= bases.xy;\n");
+        if (k->tangent)
+            bgi_gpu_text_append(t, "            tg = bg_tangent(bg_tree_to_world3(bg_objects, bg_object_dims, win) * dpdu, n);\n");
+        else
+            bgi_gpu_text_append(t, "            tg = n;\n");
+        bgi_gpu_text_append(t, "        } else {\n");
+    }
     bgi_gpu_text_printf(t, "        bool thin = %s;\n", thin == 0 ? "false" : thin == shapes ? "true" : test);
     bgi_gpu_text_append(t, "        n = bg_hit_normal(bg_tree_normal_matrix(m), n_obj, d, thin, first_root, entering);\n"
                        "        code = bg_hit_code(win, thin, entering);\n        mat = meta.y;\n");
@@ -379,6 +436,8 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
         bgi_gpu_text_append(t, "        tg = bg_tangent(bg_tree_to_world3(bg_objects, bg_object_dims, win) * dpdu, n);\n");
     else
         bgi_gpu_text_append(t, "        tg = n;\n");
+    if (k->mesh)
+        bgi_gpu_text_append(t, "        }\n");
 }
 
 /* The winner's attributes by object, then its material by material: objects of one material share
@@ -460,12 +519,14 @@ static const char *const trace_call =
     "bg_fused_ray(bg_ro, bg_rd, bg_cw.rgb, bg_background, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp)";
 
 /* The children of the hit just traced (docs/shading.md 9), by the multipass spawn function. */
-static void emit_spawn(gpu_text *t, bool transmitted, int child)
+static void emit_spawn(const gpu_fused_layout *l, gpu_text *t, bool transmitted, int child)
 {
     bgi_gpu_text_printf(t,
                     "        bg_spawn(%s, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp.x, bg_xp.y, bg_rd, vec4(bg_cw.rgb, 1.0), "
                     "bg_min_weight, bg_o%d, bg_d%d, bg_w%d);\n",
                     transmitted ? "true" : "false", child, child, child);
+    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+        bgi_gpu_text_printf(t, "        bg_mesh_leave(bg_hit, bg_o%d, bg_d%d);\n", child, child);
 }
 
 /* Makes child `c` the next ray (its level is the current one plus 1). */
@@ -481,7 +542,7 @@ static void emit_chain(const gpu_fused_layout *l, gpu_text *t)
     bgi_gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n", l->loop_rays);
     bgi_gpu_text_printf(t, "    if (!%s || bg_cw.a >= %d.0)\n        break;\n", trace_call, l->max_depth);
     bgi_gpu_text_append(t, "    vec4 bg_o1, bg_d1, bg_w1;\n    {\n");
-    emit_spawn(t, false, 1);
+    emit_spawn(l, t, false, 1);
     bgi_gpu_text_append(t, "    }\n    if (bg_w1.a <= 0.0)\n        break;\n");
     emit_follow(t, 1, "    ");
     bgi_gpu_text_append(t, "}\n");
@@ -502,8 +563,8 @@ static void emit_tree(const gpu_fused_layout *l, gpu_text *t)
     bgi_gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n    bool bg_next = false;\n", l->loop_rays);
     bgi_gpu_text_printf(t, "    if (%s && bg_cw.a < %d.0) {\n", trace_call, l->max_depth);
     bgi_gpu_text_append(t, "        vec4 bg_o1, bg_d1, bg_w1, bg_o2, bg_d2, bg_w2;\n");
-    emit_spawn(t, false, 1);
-    emit_spawn(t, true, 2);
+    emit_spawn(l, t, false, 1);
+    emit_spawn(l, t, true, 2);
     bgi_gpu_text_append(t, "        if (bg_w1.a > 0.0 && bg_w2.a > 0.0) {\n");
     for (int k = n - 1; k > 0; k--)
         bgi_gpu_text_printf(t, "            bg_s%d_o = bg_s%d_o;\n            bg_s%d_d = bg_s%d_d;\n"

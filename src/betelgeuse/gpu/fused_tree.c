@@ -9,6 +9,10 @@
  * on the host and uploaded only where they differ from what the textures hold, so a commit that
  * changes nothing the tree holds (a material value, a light) uploads nothing but uniforms.
  *
+ * A scene with meshes has a third texture on the same rule: every distinct mesh's own tree and
+ * triangles, addressed by texel index (bg_mesh.glsl gives the layout), which each mesh object's
+ * texel 4 points into; mesh_source.c walks it.
+ *
  * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
  * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
  * rendered here by the CPU reference, pixel by pixel, on the same tree: never cut short silently
@@ -21,7 +25,9 @@
 #include "../cpu/cpu_internal.h"
 #include "gpu_internal.h"
 
-enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096 };
+enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096, MESH_TRIANGLE_TEXELS = 6 };
+/* Texel indices of the mesh texture travel as floats: every one must be a whole float. */
+#define MESH_MAX_TEXELS (1ull << 24)
 
 /* Items per row (a power of two), width and height of a texture of `items` items of `per` texels
  * within max_size; false when even the widest rows need more than max_size of them. */
@@ -52,20 +58,21 @@ bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, 
                  r->limits.max_texture_size, w);
         return false;
     }
-    return true;
+    return bgi_gpu_fused_tree_meshes_fit(r, state, why, size);
 }
 
 /* ---- the host copies ---- */
 
-static bg_status fill_nodes(const bg_scene_state *state, float *out)
+static bg_status fill_nodes(const bg_scene_state *state, const gpu_fused_tree *t, float *out)
 {
+    (void)t;
     const bg_vec3 *eye = &state->camera.camera.position;
     double origin[3] = {eye->x, eye->y, eye->z};
     return state->tree ? bgi_bvh_view_nodes(state->tree, origin, state->tree_objects, out) : BG_OK;
 }
 
 /* Object i's texels, as bg_fused_tree.glsl reads them. */
-static void fill_object(const bg_scene_state *state, uint32_t i, float *o)
+static void fill_object(const bg_scene_state *state, const gpu_fused_tree *t, uint32_t i, float *o)
 {
     const bg_object_data *obj = &state->objects[i];
     float m16[16];
@@ -79,6 +86,10 @@ static void fill_object(const bg_scene_state *state, uint32_t i, float *o)
     o[15] = obj->casts_shadows ? 1.0f : 0.0f;
     o[16] = (float)obj->uv_scale[0];
     o[17] = (float)obj->uv_scale[1];
+    if (obj->mesh) {
+        o[18] = t->mesh_base[2 * (size_t)i];
+        o[19] = t->mesh_base[2 * (size_t)i + 1];
+    }
     for (int r = 0; r < 3; r++) {
         for (int c = 0; c < 3; c++)
             o[20 + 4 * r + c] = (float)obj->to_world[r][c];
@@ -86,18 +97,20 @@ static void fill_object(const bg_scene_state *state, uint32_t i, float *o)
     }
 }
 
-static bg_status fill_objects(const bg_scene_state *state, float *out)
+static bg_status fill_objects(const bg_scene_state *state, const gpu_fused_tree *t, float *out)
 {
     for (uint32_t i = 0; i < state->object_count; i++)
-        fill_object(state, i, out + (size_t)i * OBJECT_TEXELS * 4);
+        fill_object(state, t, i, out + (size_t)i * OBJECT_TEXELS * 4);
     return BG_OK;
 }
 
 /* ---- one texture ---- */
 
 /* Makes *texture hold what fill writes for a width x height texture, uploading only a change. */
-static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, const bg_scene_state *state, int width,
-                                 int height, bg_status (*fill)(const bg_scene_state *, float *), const char *what)
+static bg_status texture_prepare(bg_renderer *r, const gpu_fused_tree *tree, gpu_fused_tree_texture *t,
+                                 const bg_scene_state *state, int width, int height,
+                                 bg_status (*fill)(const bg_scene_state *, const gpu_fused_tree *, float *),
+                                 const char *what)
 {
     size_t floats = (size_t)width * (size_t)height * 4;
     if (t->floats != floats || !t->held || !t->scratch) {
@@ -113,7 +126,7 @@ static bg_status texture_prepare(bg_renderer *r, gpu_fused_tree_texture *t, cons
         t->floats = floats;
     }
     memset(t->scratch, 0, floats * sizeof(float));
-    if (fill(state, t->scratch) != BG_OK)
+    if (fill(state, tree, t->scratch) != BG_OK)
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the %s", what);
     if (t->texture && memcmp(t->scratch, t->held, floats * sizeof(float)) == 0)
         return BG_OK;
@@ -148,6 +161,138 @@ static void set_dims(float dims[4], int per_row, int width, int height)
     dims[3] = 1.0f / (float)height;
 }
 
+/* ---- the meshes' texture ---- */
+
+/* Texels a mesh takes: two per node of its tree, then MESH_TRIANGLE_TEXELS per triangle. */
+static uint64_t mesh_texels(const bg_mesh_data *m)
+{
+    return (uint64_t)NODE_TEXELS * m->tree.node_count + (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
+}
+
+/* Whether object i is the first to show its mesh (the texture holds each mesh once, in the order
+ * of the objects that first show them). */
+static bool first_of_mesh(const bg_scene_state *state, uint32_t i)
+{
+    for (uint32_t j = 0; j < i; j++)
+        if (state->objects[j].mesh == state->objects[i].mesh)
+            return false;
+    return true;
+}
+
+/* The texels every distinct mesh takes; also the texel bases of each mesh object into t->mesh_base
+ * when it is not NULL (its mesh's root node, its first triangle). */
+static uint64_t mesh_layout(const bg_scene_state *state, float *base)
+{
+    uint64_t at = 0;
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_mesh_data *m = state->objects[i].mesh;
+        if (!m)
+            continue;
+        uint64_t here = at;
+        if (first_of_mesh(state, i))
+            at += mesh_texels(m);
+        else
+            for (uint32_t j = 0; j < i; j++)
+                if (state->objects[j].mesh == m) {
+                    if (base) {
+                        base[2 * (size_t)i] = base[2 * (size_t)j];
+                        base[2 * (size_t)i + 1] = base[2 * (size_t)j + 1];
+                    }
+                    here = UINT64_MAX;
+                    break;
+                }
+        if (base && here != UINT64_MAX) {
+            base[2 * (size_t)i] = (float)here;
+            base[2 * (size_t)i + 1] = (float)(here + (uint64_t)NODE_TEXELS * m->tree.node_count);
+        }
+    }
+    return at;
+}
+
+/* The texture's width: the widest power of two rows may have. */
+static int mesh_width(int max_size)
+{
+    int cap = max_size < WIDEST_ROW ? max_size : WIDEST_ROW, w = 1;
+    while (2 * w <= cap)
+        w *= 2;
+    return w;
+}
+
+bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
+{
+    if (state->mesh_object_count == 0)
+        return true;
+    uint64_t texels = mesh_layout(state, NULL);
+    int w = mesh_width(r->limits.max_texture_size);
+    uint64_t rows = (texels + (uint64_t)w - 1) / (uint64_t)w;
+    if (texels > MESH_MAX_TEXELS || rows > (uint64_t)r->limits.max_texture_size) {
+        snprintf(why, size, "the meshes' nodes and triangles need %llu texels, more than the %llu a float index or "
+                 "%d rows of a %d-texel texture hold", (unsigned long long)texels,
+                 (unsigned long long)MESH_MAX_TEXELS, r->limits.max_texture_size, w);
+        return false;
+    }
+    return true;
+}
+
+/* Every distinct mesh once: its nodes as common/bvh.h lays them out, the miss links turned into
+ * texel indices of the whole texture, then its triangles (docs/gpu_pipeline.md, "Meshes"). */
+static bg_status fill_meshes(const bg_scene_state *state, const gpu_fused_tree *t, float *out)
+{
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_mesh_data *m = state->objects[i].mesh;
+        if (!m || !first_of_mesh(state, i))
+            continue;
+        float root = t->mesh_base[2 * (size_t)i];
+        float *o = out + (size_t)root * 4;
+        for (uint32_t k = 0; k < m->tree.node_count; k++) {
+            const float *node = m->tree.nodes + (size_t)k * BG_BVH_NODE_FLOATS;
+            memcpy(o, node, BG_BVH_NODE_FLOATS * sizeof *o);
+            o[BG_BVH_NODE_MISS] = root + (float)NODE_TEXELS * node[BG_BVH_NODE_MISS];
+            o += BG_BVH_NODE_FLOATS;
+        }
+        for (uint32_t k = 0; k < m->triangle_count; k++) {
+            for (int c = 0; c < 3; c++) {
+                uint32_t v = m->indices[3 * (size_t)k + (size_t)c];
+                float *p = o + 4 * c, *n = o + 12 + 4 * c;
+                memcpy(p, &m->positions[3 * (size_t)v], 3 * sizeof *p);
+                if (m->normals)
+                    memcpy(n, &m->normals[3 * (size_t)v], 3 * sizeof *n);
+                if (m->uvs) {
+                    p[3] = m->uvs[2 * (size_t)v];
+                    n[3] = m->uvs[2 * (size_t)v + 1];
+                }
+            }
+            o += MESH_TRIANGLE_TEXELS * 4;
+        }
+    }
+    return BG_OK;
+}
+
+static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
+{
+    memset(t->dims.meshes, 0, sizeof t->dims.meshes);
+    if (state->mesh_object_count == 0) {
+        texture_release(&r->allocator, &t->meshes);
+        return BG_OK;
+    }
+    if (t->mesh_base_count < state->object_count) {
+        bgi_free(&r->allocator, t->mesh_base);
+        t->mesh_base_count = 0;
+        t->mesh_base = bgi_alloc(&r->allocator, 2 * (size_t)state->object_count * sizeof *t->mesh_base);
+        if (!t->mesh_base)
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's bases");
+        t->mesh_base_count = state->object_count;
+    }
+    uint64_t texels = mesh_layout(state, t->mesh_base);
+    int w = mesh_width(r->limits.max_texture_size);
+    int h = (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
+    t->dims.meshes[0] = (float)w;
+    t->dims.meshes[1] = 1.0f / (float)w;
+    t->dims.meshes[2] = 1.0f / (float)w;
+    t->dims.meshes[3] = 1.0f / (float)h;
+    return texture_prepare(r, t, &t->meshes, state, w, h, fill_meshes, "mesh texture");
+}
+
 bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
 {
     if (t->serial != 0 && t->serial == state->serial)
@@ -161,12 +306,14 @@ bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg
     geometry(r->limits.max_texture_size, nodes, NODE_TEXELS, &k, &w, &h);
     set_dims(t->dims.nodes, k, w, h);
     t->dims.node_count = (float)nodes;
-    bg_status st = texture_prepare(r, &t->nodes, state, w, h, fill_nodes, "object tree texture");
+    bg_status st = texture_prepare(r, t, &t->nodes, state, w, h, fill_nodes, "object tree texture");
+    if (st == BG_OK)
+        st = meshes_prepare(r, t, state);
     if (st != BG_OK)
         return st;
     geometry(r->limits.max_texture_size, state->object_count, OBJECT_TEXELS, &k, &w, &h);
     set_dims(t->dims.objects, k, w, h);
-    st = texture_prepare(r, &t->objects, state, w, h, fill_objects, "tree objects texture");
+    st = texture_prepare(r, t, &t->objects, state, w, h, fill_objects, "tree objects texture");
     if (st == BG_OK)
         t->serial = state->serial;
     return st;
@@ -176,6 +323,10 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
 {
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
+    texture_release(a, &t->meshes);
+    bgi_free(a, t->mesh_base);
+    t->mesh_base = NULL;
+    t->mesh_base_count = 0;
     bgi_gpu_fused_tree_marks_release(t);
     memset(&t->dims, 0, sizeof t->dims);
     t->serial = 0;

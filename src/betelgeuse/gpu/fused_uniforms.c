@@ -101,6 +101,12 @@ static void tree_object_dims(const gpu_fused_values *v, uint32_t i, float *out)
     memcpy(out, v->tree->objects, sizeof v->tree->objects);
 }
 
+static void tree_mesh_dims(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    memcpy(out, v->tree->meshes, sizeof v->tree->meshes);
+}
+
 static void tree_node_count(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
@@ -289,6 +295,8 @@ bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
     const row *w = &rows[r];
     switch (w->scope) {
     case GPU_FUSED_FRAME:
+        if (w->need == GPU_FUSED_NEED_MESH)
+            return l->tree && l->kinds.mesh;
         return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;
     case GPU_FUSED_LIGHTS:
         return l->light_count > 0;

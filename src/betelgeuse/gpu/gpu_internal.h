@@ -384,7 +384,8 @@ typedef enum gpu_fused_param {
  * tree; per object unrolled (outside the tree)
  * always, with a tangent, with UVs; per material used, anisotropic, transparent, coated, both. */
 typedef enum gpu_fused_need {
-    GPU_FUSED_NEED_ALWAYS = 0, GPU_FUSED_NEED_BOUNCE, GPU_FUSED_NEED_LIGHTS, GPU_FUSED_NEED_TREE, GPU_FUSED_NEED_TANGENT,
+    GPU_FUSED_NEED_ALWAYS = 0, GPU_FUSED_NEED_BOUNCE, GPU_FUSED_NEED_LIGHTS, GPU_FUSED_NEED_TREE, GPU_FUSED_NEED_MESH,
+    GPU_FUSED_NEED_TANGENT,
     GPU_FUSED_NEED_UV, GPU_FUSED_NEED_USED, GPU_FUSED_NEED_ANISO, GPU_FUSED_NEED_TRANSPARENT,
     GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO
 } gpu_fused_need;
@@ -409,6 +410,7 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(TREE_DIMS, FRAME, "bg_tree_dims", VEC4, TREE, tree_node_dims)             \
     X(OBJECT_DIMS, FRAME, "bg_object_dims", VEC4, TREE, tree_object_dims)       \
     X(TREE_NODES, FRAME, "bg_tree_count", FLOAT, TREE, tree_node_count)         \
+    X(MESH_DIMS, FRAME, "bg_mesh_dims", VEC4, MESH, tree_mesh_dims)             \
     X(LIGHT_POS, LIGHTS, "bg_lpos", VEC4, LIGHTS, light_position)               \
     X(LIGHT_RAD, LIGHTS, "bg_lrad", VEC3, LIGHTS, light_radiance)               \
     X(LIGHT_ATT, LIGHTS, "bg_latt", VEC3, LIGHTS, light_attenuation)            \
@@ -461,6 +463,7 @@ typedef struct gpu_fused_tree_kinds {
     bool mapping[BG_UV_COUNT_];     /* UV mappings some tree object needs (for UVs or a tangent) */
     bool uv, tangent;               /* some tree object needs UVs / a tangent */
     bool all_cast;                  /* every tree object casts shadows: the walk need not ask */
+    bool mesh, mesh_casts;          /* some tree object is a mesh / a mesh that casts shadows */
 } gpu_fused_tree_kinds;
 
 /* Everything the fused program depends on: the scene's structure and the bounce depth. Values
@@ -500,6 +503,7 @@ typedef struct gpu_fused_layout {
 typedef struct gpu_fused_tree_dims {
     float nodes[4], objects[4];
     float node_count;
+    float meshes[4]; /* the mesh texture's (texels per row, its inverse, 1 / width, 1 / height) */
 } gpu_fused_tree_dims;
 
 /* The values of one render, for the uniforms. */
@@ -530,6 +534,9 @@ typedef struct gpu_fused_tree_texture {
 
 typedef struct gpu_fused_tree {
     gpu_fused_tree_texture nodes, objects;
+    gpu_fused_tree_texture meshes; /* every mesh's nodes and triangles (fused_tree.c); none without meshes */
+    float *mesh_base;              /* per object: 2 floats, its mesh's root node and first triangle texel */
+    uint32_t mesh_base_count;      /* objects mesh_base has room for */
     gpu_fused_tree_dims dims; /* of the prepared textures */
     uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
     macs_texture *marks;      /* fused_tree_target.c: a frame's marked pixels, 32 to an RGBA8 texel */
@@ -538,7 +545,10 @@ typedef struct gpu_fused_tree {
 
 /* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
 bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
-/* Makes the two textures hold the committed scene's tree and objects, as seen from its camera. */
+/* False, with the reason, when the scene's meshes do not fit the mesh texture (part of _fits). */
+bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
+/* Makes the textures hold the committed scene's tree and objects, as seen from its camera, and
+ * the meshes' nodes and triangles where it has meshes. */
 bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state);
 void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
@@ -554,6 +564,15 @@ bg_status bgi_gpu_fused_tree_fallback_texture(bg_renderer *r, gpu_fused_tree *t,
                                           const bg_render_settings *settings, macs_texture *target, uint64_t *count);
 /* Frees the marks texture and its pass. */
 void bgi_gpu_fused_tree_marks_release(gpu_fused_tree *t);
+
+/* ---- mesh_source.c ---- */
+/* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10). */
+#define GPU_MESH_OFFSET_ULPS 256.0
+/* The tree variant's mesh code for layouts whose tree holds meshes: the globals a mesh hit leaves
+ * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
+ * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
+ * which turns a spawned ray into one leaving the triangle. */
+void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t);
 
 /* ---- fused_layout.c ---- */
 /* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),
