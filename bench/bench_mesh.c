@@ -166,8 +166,9 @@ int main(int argc, char **argv)
     bench_gpu gpu;
     bool have_gpu = bench_gpu_open(&gpu);
     bench_print_setup(stdout, have_gpu ? &gpu : NULL, runs);
-    printf("\nTerrain meshes, %dx%d, 2 point lights with shadows, no bounces (CPU reference)\n", side, side);
-    printf("%10s %12s %10s %16s %s\n", "triangles", "build ms", "scene MB", "CPU ms", "GPU");
+    printf("\nTerrain meshes, %dx%d, 2 point lights with shadows, no bounces: the CPU reference and the GPU "
+           "renderer (BG_PLAN_AUTO), medians [min-max]\n", side, side);
+    printf("%10s %12s %10s %20s %s\n", "triangles", "build ms", "scene MB", "CPU ms", "GPU");
 
     char path[1024];
     snprintf(path, sizeof path, "%s/mesh_scaling.csv", out_dir);
@@ -188,19 +189,25 @@ int main(int argc, char **argv)
         point *p = &pts[i];
         char gpu_text[200];
         if (p->gpu_ran)
-            snprintf(gpu_text, sizeof gpu_text, "%.1f ms", p->gpu.median);
+            snprintf(gpu_text, sizeof gpu_text, "%.1f [%.0f-%.0f] ms, %.2fx the CPU's", p->gpu.median, p->gpu.min,
+                     p->gpu.max, p->gpu.median / p->cpu.median);
         else
             snprintf(gpu_text, sizeof gpu_text, "not run: %s", p->gpu_note[0] ? p->gpu_note : "no GPU context");
-        printf("%10u %12.1f %10.1f %9.1f [%.0f-%.0f] %s\n", p->triangles, p->build_ms, p->scene_bytes / 1048576.0,
+        printf("%10u %12.1f %10.1f %9.1f [%.0f-%.0f]   %s\n", p->triangles, p->build_ms, p->scene_bytes / 1048576.0,
                p->cpu.median, p->cpu.min, p->cpu.max, gpu_text);
         fprintf(csv, "%u,%.3f,%zu,%.3f,%.3f,%.3f,%.3f\n", p->triangles, p->build_ms, p->scene_bytes,
                 p->cpu.median, p->cpu.min, p->cpu.max, p->gpu_ran ? p->gpu.median : -1.0);
         done++;
     }
     fclose(csv);
-    if (done >= 2)
-        printf("\nCPU time(%u triangles) / time(%u triangles): %.2f\n", pts[done - 1].triangles, pts[1].triangles,
-               pts[done - 1].cpu.median / pts[1].cpu.median);
+    if (done >= 2) {
+        const point *last = &pts[done - 1], *second = &pts[1];
+        printf("\ntime(%u triangles) / time(%u triangles): CPU %.2f", last->triangles, second->triangles,
+               last->cpu.median / second->cpu.median);
+        if (last->gpu_ran && second->gpu_ran)
+            printf(", GPU %.2f", last->gpu.median / second->gpu.median);
+        printf("\n");
+    }
     if (have_gpu)
         bench_gpu_close(&gpu);
     return done == count ? 0 : 1;
