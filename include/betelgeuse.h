@@ -325,8 +325,8 @@ BG_API bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 norm
  * - transform and material follow bg_object_desc's rules;
  * - counts whose byte sizes overflow size_t, more than 2^23 triangles (the mesh tree's limit) or
  *   more than 2^32 - 1 vertices are BG_ERR_LIMIT.
- * Meshes are rendered only by bg_render_cpu so far: the GPU renderer refuses a committed scene that
- * holds one with BG_ERR_LIMIT. */
+ * Both renderers draw meshes; on the GPU the fused plans do (bg_gpu_plan), the multipass refuses
+ * a scene with a mesh with BG_ERR_LIMIT. */
 typedef struct bg_mesh_desc {
     const float *positions;    /* 3 per vertex */
     size_t vertex_count;
@@ -441,19 +441,18 @@ typedef enum bg_gpu_plan {
                           bounded objects, BG_PLAN_FUSED_TREE from 8 or whenever the scene holds a
                           mesh), else multipass (the reason is logged at BG_LOG_INFO); multipass
                           whenever an option only it has is asked for: gpu_disable_skips, dmax,
-                          half_gbuffer or float_depth. A mesh scene the tree plan cannot render
+                          half_gbuffer or float_depth. A mesh scene the fused plan cannot render
                           (a limit, or one of those options) fails with BG_ERR_LIMIT */
     BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image,
-                          every object's test written into the shader; bg_render_gpu fails
-                          (BG_ERR_LIMIT, or BG_ERR_GL when GL refuses the program) where it cannot
-                          run, and for every scene with a mesh (BG_ERR_LIMIT: meshes need
-                          BG_PLAN_FUSED_TREE) */
+                          every object's test written into the shader (a mesh's test walks its own
+                          tree, as in BG_PLAN_FUSED_TREE); bg_render_gpu fails (BG_ERR_LIMIT, or
+                          BG_ERR_GL when GL refuses the program) where it cannot run */
     BG_PLAN_MULTIPASS, /* ray maps, G-buffer, shadow, light and spawn passes level by level; refuses
-                          scenes with a mesh as BG_PLAN_FUSED does */
+                          scenes with a mesh (BG_ERR_LIMIT) */
     BG_PLAN_FUSED_TREE /* the fused pass with the bounded objects in a tree walked from textures, so
-                          its program and its cost grow with the shapes and log(objects); the one
-                          GPU plan for triangle meshes (each mesh's own tree walked from a third
-                          texture); a pixel whose walks would outrun the shader's loop limit is
+                          its program and its cost grow with the shapes and log(objects); meshes'
+                          own trees and triangles are walked from a third texture; in both fused
+                          plans a pixel whose walks would outrun the shader's loop limit is
                           rendered by the CPU reference (bg_render_stats.fallback_pixels) */
 } bg_gpu_plan;
 

@@ -419,13 +419,12 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
     const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
         return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
-    /* Only the tree plan's walk meets triangles (fused_source.c, docs/gpu_pipeline.md "Meshes"). */
-    if (state->mesh_object_count > 0 && (settings->gpu_plan == BG_PLAN_FUSED || settings->gpu_plan == BG_PLAN_MULTIPASS))
+    /* Only the fused plans' walks meet triangles (fused_source.c, docs/gpu_pipeline.md "Meshes"). */
+    if (state->mesh_object_count > 0 && settings->gpu_plan == BG_PLAN_MULTIPASS)
         return bgi_gpu_fail(r, BG_ERR_LIMIT,
                             "%s: settings.gpu_plan: the committed scene holds %u mesh objects; meshes need "
-                            "BG_PLAN_FUSED_TREE (or BG_PLAN_AUTO, which takes it), %s does not intersect triangles",
-                            out->fn, (unsigned)state->mesh_object_count,
-                            settings->gpu_plan == BG_PLAN_FUSED ? "BG_PLAN_FUSED" : "BG_PLAN_MULTIPASS");
+                            "a fused plan (BG_PLAN_AUTO takes one), BG_PLAN_MULTIPASS does not intersect triangles",
+                            out->fn, (unsigned)state->mesh_object_count);
     memset(&r->stats, 0, sizeof r->stats);
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
@@ -433,7 +432,7 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
     bg_status st = bgi_gpu_fused_render(r, state, settings, out, &fused);
     if (st == BG_OK && !fused && state->mesh_object_count > 0)
         st = bgi_gpu_fail(r, BG_ERR_LIMIT,
-                          "%s: the committed scene holds %u mesh objects; meshes need BG_PLAN_FUSED_TREE, which "
+                          "%s: the committed scene holds %u mesh objects; meshes need a fused plan, which "
                           "cannot render this frame (the renderer's log says why), and the multipass does not "
                           "intersect triangles", out->fn, (unsigned)state->mesh_object_count);
     else if (st == BG_OK && !fused)

@@ -76,22 +76,30 @@ static const char *multipass_option(const bg_renderer *r, const bg_render_settin
     return NULL;
 }
 
+/* The program's textures: the scene's, then the object tree's two where it walks one, then the
+ * meshes' (bind_frame sets them in this order). */
+static int input_count(const gpu_fused_layout *l)
+{
+    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 1 : 0);
+}
+
+static int mesh_input(const gpu_fused_layout *l)
+{
+    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0);
+}
+
 /* False with the reason when the layout is beyond the GL limits or, for BG_PLAN_AUTO, beyond the
  * bounds the fused plan was measured within. */
 static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fused_layout *l, bool forced, char *why,
                  size_t size)
 {
     int comps = bgi_gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
-    int units = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->kinds.mesh ? 1 : 0);
+    int units = input_count(l);
     if (l->tree && !bgi_gpu_fused_tree_fits(r, state, why, size))
         return false;
-    for (uint32_t k = 0; k < l->unrolled_count; k++)
-        if (l->objects[l->unrolled[k]].shape == BGI_SHAPE_MESH) {
-            snprintf(why, size, "mesh object %u is outside the object tree (its box is beyond the float range), and "
-                     "only the tree's walk meets triangles", (unsigned)l->unrolled[k]);
-            return false;
-        }
-    if (bgi_gpu_fused_layout_walks(l) && l->walk_budget < MIN_WALK_BUDGET)
+    if (!l->tree && !bgi_gpu_fused_tree_meshes_fit(r, state, why, size))
+        return false;
+    if (bgi_gpu_fused_layout_budgeted(l) && l->walk_budget < MIN_WALK_BUDGET)
         snprintf(why, size, "%.0f rays per pixel with %u lights leave the tree walks %d loop steps, fewer than %d",
                  (double)l->loop_rays, l->light_count, l->walk_budget, MIN_WALK_BUDGET);
     else if (l->rays_needed > l->loop_rays)
@@ -259,7 +267,7 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
                              macs_pass **pass, char *refused, size_t refused_size)
 {
     enum { NAME = 24 }; /* "bg_tex" and any int */
-    int n = l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->kinds.mesh ? 1 : 0);
+    int n = input_count(l);
     macs_input_desc *inputs = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
     if (!inputs)
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
@@ -268,13 +276,12 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
         snprintf(names + k * NAME, NAME, "bg_tex%d", k);
         inputs[k].name = names + k * NAME;
     }
-    /* The tree's textures follow the scene's (bind_frame sets them in this order). */
     if (bgi_gpu_fused_layout_walks(l)) {
         inputs[l->sampler_count].name = "bg_nodes";
         inputs[l->sampler_count + 1].name = "bg_objects";
     }
-    if (l->kinds.mesh)
-        inputs[l->sampler_count + 2].name = "bg_meshes";
+    if (l->mesh)
+        inputs[mesh_input(l)].name = "bg_meshes";
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
@@ -361,8 +368,8 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     const gpu_fused_layout *l = &f->layout;
     bool walks = bgi_gpu_fused_layout_walks(l);
     bg_status st = textures_prepare(r, f, state, l);
-    if (st == BG_OK && walks)
-        st = bgi_gpu_fused_tree_prepare(r, &f->tree, state);
+    if (st == BG_OK && (walks || l->mesh))
+        st = bgi_gpu_fused_tree_prepare(r, &f->tree, state, walks);
     if (st == BG_OK)
         st = output_for(r, f, o, out);
     if (st != BG_OK)
@@ -374,13 +381,14 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, l->sampler_count, f->tree.nodes.texture);
     if (!ms && walks)
         ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
-    if (!ms && walks && l->kinds.mesh)
-        ms = macs_pass_set_input(f->pass, l->sampler_count + 2, f->tree.meshes.texture);
+    if (!ms && l->mesh)
+        ms = macs_pass_set_input(f->pass, mesh_input(l), f->tree.meshes.texture);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "binding the fused pass");
-    gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, o->width, o->height, o->as_float};
+    gpu_fused_values v = {state, settings, l->tree || l->mesh ? &f->tree.dims : NULL, f->tree.mesh_base, o->width,
+                          o->height, o->as_float};
     return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
 
@@ -398,7 +406,7 @@ static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_f
 static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                         const gpu_frame_out *o, macs_texture *out)
 {
-    bool walks = bgi_gpu_fused_layout_walks(&r->fused->layout);
+    bool walks = bgi_gpu_fused_layout_budgeted(&r->fused->layout);
     if (o->texture)
         return walks ? bgi_gpu_fused_tree_fallback_texture(r, &r->fused->tree, state, settings, o->texture,
                                                      &r->stats.fallback_pixels)

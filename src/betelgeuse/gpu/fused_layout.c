@@ -161,7 +161,8 @@ static uint32_t casters(const gpu_fused_layout *l)
 static int walk_budget(const gpu_fused_layout *l)
 {
     int loops = l->loop_rays * (1 + (l->light_loop ? (int)l->light_count : 0));
-    long walks = (long)l->loop_rays * (1 + (long)l->light_count);
+    /* Per ray and light: the tree's walk and one per unrolled mesh. */
+    long walks = (long)l->loop_rays * (1 + (long)l->light_count) * (1 + (long)l->unrolled_meshes);
     long left = GPU_FUSED_MAX_LOOP - loops - 3 * walks - 64;
     return left > 0 ? (int)left : 0;
 }
@@ -205,6 +206,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         const bg_object_data *o = &state->objects[j];
         l.objects[j] = (gpu_fused_object){o->shape, o->material, o->uv_mapping, o->casts_shadows, false, 0};
         l.materials[o->material].used = true;
+        l.mesh |= o->shape == BGI_SHAPE_MESH;
     }
     l.tree = tree;
     for (uint32_t i = 0; i < state->tree_count && tree; i++)
@@ -213,6 +215,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         if (!l.objects[j].in_tree) {
             l.objects[j].slot = l.unrolled_count;
             l.unrolled[l.unrolled_count++] = j;
+            l.unrolled_meshes += l.objects[j].shape == BGI_SHAPE_MESH ? 1 : 0;
         }
     bool bounce = false;
     for (uint32_t k = 0; k < l.material_count; k++) {
@@ -239,7 +242,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
     int most = GPU_FUSED_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
     l.loop_rays = full < most ? (int)full : most;
     l.rays_needed = rays_bound(l.max_depth, l.transparent, settings->min_weight);
-    l.walk_budget = tree ? walk_budget(&l) : 0;
+    l.walk_budget = tree || l.mesh ? walk_budget(&l) : 0;
     *out = l;
     return true;
 }
@@ -266,4 +269,9 @@ bool bgi_gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
 bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l)
 {
     return l->tree && l->tree_count > 0;
+}
+
+bool bgi_gpu_fused_layout_budgeted(const gpu_fused_layout *l)
+{
+    return bgi_gpu_fused_layout_walks(l) || l->unrolled_meshes > 0;
 }

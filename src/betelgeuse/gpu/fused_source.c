@@ -92,9 +92,9 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     }
     if (ok && l->aniso)
         ok = bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
-    if (ok && l->tree)
+    if (ok && (l->tree || l->mesh))
         ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
-    if (ok && l->tree && l->kinds.mesh)
+    if (ok && l->mesh)
         ok = bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, &n, SEEN_CAP) &&
              bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
@@ -214,7 +214,8 @@ static void emit_tree_nearest(const gpu_fused_layout *l, gpu_text *t)
         bgi_gpu_text_append(&leaf, "                bg_mesh_tri_j = -1.0;\n");
     emit_shape_dispatch(&leaf, l->kinds.shape, "                ", "h = bg_hit_root_",
                         "(ro, rd, lo.w, m, tj, pj, nj, fj);",
-                        mesh ? "{ h = bg_mesh_nearest(ro, rd, lo.w, m, win >= 0.0 ? t : 1e38, tj, fj); pj = vec3(0.0); "
+                        mesh ? "{ h = bg_mesh_nearest(ro, rd, lo.w, m, bg_tree_fetch(bg_objects, bg_object_dims, "
+                               "BG_OBJECT_TEXELS, lo.w, 4.0).zw, win >= 0.0 ? t : 1e38, tj, fj); pj = vec3(0.0); "
                                "nj = vec3(0.0, 1.0, 0.0); }" : NULL);
     bgi_gpu_text_append(&leaf, "                if (h && (win < 0.0 || tj < t || (tj == t && lo.w < win))) {\n"
                            "                    t = tj;\n                    win = lo.w;\n                    p_obj = pj;\n"
@@ -242,7 +243,8 @@ static void emit_tree_blocked(const gpu_fused_layout *l, gpu_text *t)
         bgi_gpu_text_append(&leaf, "                if (meta.w > 0.5) {\n");
     emit_shape_dispatch(&leaf, l->kinds.caster, ask ? "                    " : "                ",
                         "blocked = bg_segment_blocked_", "(p, l, dist, m);",
-                        mesh ? "blocked = bg_mesh_blocked(p, l, dist, lo.w, m, lo.w == self ? bg_win_tri : -1.0);" : NULL);
+                        mesh ? "blocked = bg_mesh_blocked(p, l, dist, m, bg_tree_fetch(bg_objects, bg_object_dims, "
+                               "BG_OBJECT_TEXELS, lo.w, 4.0).zw, lo.w == self ? bg_win_tri : -1.0);" : NULL);
     if (ask)
         bgi_gpu_text_append(&leaf, "                }\n");
     /* A mesh shadows itself: only the triangle the point lies on is skipped (docs/shading.md 2.10). */
@@ -254,13 +256,15 @@ static void emit_tree_blocked(const gpu_fused_layout *l, gpu_text *t)
 /* The walks and the per-pixel step count they share. */
 static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
 {
-    if (!bgi_gpu_fused_layout_walks(l))
+    if (!bgi_gpu_fused_layout_budgeted(l) && !l->mesh)
         return;
-    bgi_gpu_text_append(t, "// ---- generated: walks of the object tree\n"
+    bgi_gpu_text_append(t, "// ---- generated: walks of the object tree and the meshes\n"
                        "float bg_tree_left;  // steps the pixel's walks may still take\n"
                        "float bg_tree_short; // 1.0 once a walk ran out of them\n");
-    if (l->kinds.mesh)
+    if (l->mesh)
         bgi_gpu_mesh_walks(l, t);
+    if (!bgi_gpu_fused_layout_walks(l))
+        return;
     emit_tree_nearest(l, t);
     if (tree_casts(l))
         emit_tree_blocked(l, t);
@@ -274,7 +278,7 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
                        "out vec3 n_obj, out bool first_root)\n{\n"
                        "    t = 0.0;\n    win = -1.0;\n    p_obj = vec3(0.0);\n    n_obj = vec3(0.0, 1.0, 0.0);\n"
                        "    first_root = true;\n");
-    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+    if (l->mesh)
         bgi_gpu_text_append(t, "    bg_win_tri = -1.0;\n");
     if (l->unrolled_count > 0)
         bgi_gpu_text_append(t, "    float tj;\n    vec3 pj, nj;\n    bool fj;\n");
@@ -282,17 +286,28 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
     for (uint32_t j = 0; j < l->object_count; j++) {
         if (l->objects[j].in_tree)
             continue;
-        name id = uniform(l, GPU_FUSED_U_ID, j);
-        bgi_gpu_text_printf(t,
-                        "    if (bg_hit_root_%s(ro, rd, %s, %s, tj, pj, nj, fj)%s) {\n"
-                        "        t = tj;\n        win = %s;\n        p_obj = pj;\n        n_obj = nj;\n"
-                        "        first_root = fj;\n    }\n",
-                        bgi_gpu_shape_suffix(l->objects[j].shape), id.s, uniform(l, GPU_FUSED_U_TO_OBJECT, j).s,
-                        emitted++ ? " && (win < 0.0 || tj < t)" : "", id.s);
+        name id = uniform(l, GPU_FUSED_U_ID, j), to_object = uniform(l, GPU_FUSED_U_TO_OBJECT, j);
+        const char *nearer = emitted++ ? " && (win < 0.0 || tj < t)" : "";
+        /* An unrolled mesh walks its own tree with its uniforms; its search stops at the best
+         * distance so far (docs/shading.md 2.10). */
+        if (l->objects[j].shape == BGI_SHAPE_MESH)
+            bgi_gpu_text_printf(t,
+                            "    if (bg_mesh_nearest(ro, rd, %s, %s, %s, win >= 0.0 ? t : 1e38, tj, fj)%s) {\n"
+                            "        t = tj;\n        win = %s;\n        p_obj = vec3(0.0);\n"
+                            "        n_obj = vec3(0.0, 1.0, 0.0);\n        first_root = fj;\n"
+                            "        bg_win_tri = bg_mesh_tri_j;\n        bg_win_bary = bg_mesh_bary_j;\n    }\n",
+                            id.s, to_object.s, uniform(l, GPU_FUSED_U_MESH_BASE, j).s, nearer, id.s);
+        else
+            bgi_gpu_text_printf(t,
+                            "    if (bg_hit_root_%s(ro, rd, %s, %s, tj, pj, nj, fj)%s) {\n"
+                            "        t = tj;\n        win = %s;\n        p_obj = pj;\n        n_obj = nj;\n"
+                            "        first_root = fj;\n%s    }\n",
+                            bgi_gpu_shape_suffix(l->objects[j].shape), id.s, to_object.s, nearer, id.s,
+                            l->mesh ? "        bg_win_tri = -1.0;\n" : "");
     }
     if (bgi_gpu_fused_layout_walks(l))
         bgi_gpu_text_append(t, "    bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
-    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+    if (l->mesh)
         bgi_gpu_text_append(t, "    bg_hit_p = ro.xyz + t * rd.xyz;\n");
     bgi_gpu_text_append(t, "    return win >= 0.0;\n}\n");
 }
@@ -304,15 +319,21 @@ static void emit_blocked(const gpu_fused_layout *l, gpu_text *t)
         return;
     bgi_gpu_text_append(t, "// ---- generated: shadow casters\n"
                        "bool bg_fused_blocked(vec3 p, vec3 l, float dist, float self)\n{\n");
-    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+    if (l->mesh)
         bgi_gpu_text_append(t, "    if (bg_win_tri >= 0.0)\n"
                                "        p += (dot(l, bg_hit_ng) >= 0.0 ? bg_hit_off : -bg_hit_off) * bg_hit_ng;\n");
     for (uint32_t j = 0; j < l->object_count && l->shadows; j++) {
         if (!l->objects[j].casts_shadows || l->objects[j].in_tree)
             continue;
-        bgi_gpu_text_printf(t, "    if (self != %s && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
-                        uniform(l, GPU_FUSED_U_ID, j).s, bgi_gpu_shape_suffix(l->objects[j].shape),
-                        uniform(l, GPU_FUSED_U_TO_OBJECT, j).s);
+        name id = uniform(l, GPU_FUSED_U_ID, j), to_object = uniform(l, GPU_FUSED_U_TO_OBJECT, j);
+        /* A mesh shadows itself: only the triangle the point lies on is skipped (docs/shading.md 2.10). */
+        if (l->objects[j].shape == BGI_SHAPE_MESH)
+            bgi_gpu_text_printf(t, "    if (bg_mesh_blocked(p, l, dist, %s, %s, self == %s ? bg_win_tri : -1.0))\n"
+                                   "        return true;\n",
+                                to_object.s, uniform(l, GPU_FUSED_U_MESH_BASE, j).s, id.s);
+        else
+            bgi_gpu_text_printf(t, "    if (self != %s && bg_segment_blocked_%s(p, l, dist, %s))\n        return true;\n",
+                                id.s, bgi_gpu_shape_suffix(l->objects[j].shape), to_object.s);
     }
     if (tree_casts(l))
         bgi_gpu_text_append(t, "    if (bg_tree_blocked(p, l, dist, self))\n        return true;\n");
@@ -330,10 +351,45 @@ static void branch(gpu_text *t, const char *var, const char *value, int position
         bgi_gpu_text_printf(t, "    %sif (%s == %s) {\n", position ? "else " : "", var, value);
 }
 
+/* A mesh hit's attributes (docs/shading.md 2.10): closed, entering on the front side; its UVs are
+ * the mesh's own, scaled, and its tangent follows their u direction. The expressions name where
+ * the object's values are: its first triangle texel, normal matrix, linear part, UV scale (NULL:
+ * no UVs wanted), index and material. */
+typedef struct mesh_values {
+    const char *tris, *normal, *to_world3, *uv_scale, *id, *mat;
+    bool tangent;
+} mesh_values;
+
+static void emit_mesh_attributes(gpu_text *t, const mesh_values *v)
+{
+    bgi_gpu_text_printf(t, "        bg_mesh_attributes(bg_meshes, bg_mesh_dims, %s + 6.0 * bg_win_tri, bg_win_bary, first_root, "
+                           "%s, %s, bg_hit_p, d, %.1f, bg_hit_ng, n, uv, dpdu, bg_hit_off);\n"
+                           "        entering = first_root;\n        code = bg_hit_code(%s, false, entering);\n"
+                           "        mat = %s;\n",
+                        v->tris, v->normal, v->to_world3, GPU_MESH_OFFSET_ULPS, v->id, v->mat);
+    if (v->uv_scale)
+        bgi_gpu_text_printf(t, "        uv *= %s;\n", v->uv_scale);
+    if (v->tangent)
+        bgi_gpu_text_printf(t, "        tg = bg_tangent(%s * dpdu, n);\n", v->to_world3);
+    else
+        bgi_gpu_text_append(t, "        tg = n;\n");
+}
+
 /* The hit attributes of object j (docs/shading.md 3): normal facing the ray, hit code, UV, tangent. */
 static void emit_object_attributes(const gpu_fused_layout *l, gpu_text *t, uint32_t j)
 {
     const gpu_fused_object *o = &l->objects[j];
+    if (o->shape == BGI_SHAPE_MESH) {
+        char tris[64], mat[16];
+        name normal = uniform(l, GPU_FUSED_U_NORMAL, j), to_world3 = uniform(l, GPU_FUSED_U_TO_WORLD3, j);
+        name uv_scale = uniform(l, GPU_FUSED_U_UV_SCALE, j), id = uniform(l, GPU_FUSED_U_ID, j);
+        snprintf(tris, sizeof tris, "%s.y", uniform(l, GPU_FUSED_U_MESH_BASE, j).s);
+        snprintf(mat, sizeof mat, "%u.0", (unsigned)o->material);
+        mesh_values v = {tris, normal.s, to_world3.s, bgi_gpu_fused_object_uv(l, j) ? uv_scale.s : NULL, id.s, mat,
+                         bgi_gpu_fused_object_tangent(l, j)};
+        emit_mesh_attributes(t, &v);
+        return;
+    }
     const char *thin = bg_shape_thin(o->shape) ? "true" : "false";
     bgi_gpu_text_printf(t, "        n = bg_hit_normal(%s, n_obj, d, %s, first_root, entering);\n",
                     uniform(l, GPU_FUSED_U_NORMAL, j).s, thin);
@@ -392,22 +448,11 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
         snprintf(test + used, sizeof test - used, "%smeta.x == %d.0", thin++ ? " || " : "", s);
     }
     if (k->mesh) {
-        /* A mesh's hit (docs/shading.md 2.10): closed, entering on the front side; its UVs are the
-         * mesh's own, scaled, and its tangent follows their u direction. */
-        bgi_gpu_text_printf(t, "        if (bg_win_tri >= 0.0) {\n"
-                           "            vec4 bases = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0);\n"
-                           "            bg_mesh_attributes(bg_meshes, bg_mesh_dims, bases.w + 6.0 * bg_win_tri, bg_win_bary, "
-                           "first_root, bg_tree_normal_matrix(m), bg_tree_to_world3(bg_objects, bg_object_dims, win), "
-                           "bg_hit_p, d, %.1f, bg_hit_ng, n, uv, dpdu, bg_hit_off);\n"
-                           "            entering = first_root;\n            code = bg_hit_code(win, false, entering);\n"
-                           "            mat = meta.y;\n",
-                           GPU_MESH_OFFSET_ULPS);
-        if (k->uv)
-            bgi_gpu_text_append(t, "            uv *= bases.xy;\n");
-        if (k->tangent)
-            bgi_gpu_text_append(t, "            tg = bg_tangent(bg_tree_to_world3(bg_objects, bg_object_dims, win) * dpdu, n);\n");
-        else
-            bgi_gpu_text_append(t, "            tg = n;\n");
+        bgi_gpu_text_append(t, "        if (bg_win_tri >= 0.0) {\n"
+                               "        vec4 bases = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0);\n");
+        mesh_values v = {"bases.w", "bg_tree_normal_matrix(m)", "bg_tree_to_world3(bg_objects, bg_object_dims, win)",
+                         k->uv ? "bases.xy" : NULL, "win", "meta.y", k->tangent};
+        emit_mesh_attributes(t, &v);
         bgi_gpu_text_append(t, "        } else {\n");
     }
     bgi_gpu_text_printf(t, "        bool thin = %s;\n", thin == 0 ? "false" : thin == shapes ? "true" : test);
@@ -525,7 +570,7 @@ static void emit_spawn(const gpu_fused_layout *l, gpu_text *t, bool transmitted,
                     "        bg_spawn(%s, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp.x, bg_xp.y, bg_rd, vec4(bg_cw.rgb, 1.0), "
                     "bg_min_weight, bg_o%d, bg_d%d, bg_w%d);\n",
                     transmitted ? "true" : "false", child, child, child);
-    if (bgi_gpu_fused_layout_walks(l) && l->kinds.mesh)
+    if (l->mesh)
         bgi_gpu_text_printf(t, "        bg_mesh_leave(bg_hit, bg_o%d, bg_d%d);\n", child, child);
 }
 
@@ -594,7 +639,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
                        "bg_ro, bg_rd, bg_w0);\n"
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
-    if (bgi_gpu_fused_layout_walks(l))
+    if (bgi_gpu_fused_layout_budgeted(l))
         bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
     if (l->max_depth == 0)
         bgi_gpu_text_printf(t, "%s;\n", trace_call);
@@ -607,7 +652,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
     /* Alpha 0 marks a pixel whose tree walks ran out of steps (fused_tree.c renders it again). */
     bgi_gpu_text_printf(t, "float bg_alpha = %s;\nvec4 bg_out = vec4(bg_radiance, bg_alpha);\n"
                        "if (bg_output.x > 0.5)\n    bg_out = vec4(bg_encode(bg_radiance, bg_output.y > 0.5), bg_alpha);\n",
-                    bgi_gpu_fused_layout_walks(l) ? "1.0 - bg_tree_short" : "1.0");
+                    bgi_gpu_fused_layout_budgeted(l) ? "1.0 - bg_tree_short" : "1.0");
 }
 
 bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output)

@@ -293,12 +293,22 @@ static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scen
     return texture_prepare(r, t, &t->meshes, state, w, h, fill_meshes, "mesh texture");
 }
 
-bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
+bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, bool walks)
 {
-    if (t->serial != 0 && t->serial == state->serial)
+    if (t->serial != 0 && t->serial == state->serial && t->walks == walks)
         return BG_OK; /* the same commit: the textures hold it, nothing to build or compare */
     t->serial = 0;
     char why[160];
+    if (!walks) {
+        if (!bgi_gpu_fused_tree_meshes_fit(r, state, why, sizeof why))
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED: %s", why);
+        bg_status st = meshes_prepare(r, t, state);
+        if (st == BG_OK) {
+            t->serial = state->serial;
+            t->walks = false;
+        }
+        return st;
+    }
     if (!bgi_gpu_fused_tree_fits(r, state, why, sizeof why))
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
@@ -314,8 +324,10 @@ bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg
     geometry(r->limits.max_texture_size, state->object_count, OBJECT_TEXELS, &k, &w, &h);
     set_dims(t->dims.objects, k, w, h);
     st = texture_prepare(r, t, &t->objects, state, w, h, fill_objects, "tree objects texture");
-    if (st == BG_OK)
+    if (st == BG_OK) {
         t->serial = state->serial;
+        t->walks = true;
+    }
     return st;
 }
 

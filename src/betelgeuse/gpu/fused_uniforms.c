@@ -222,6 +222,12 @@ static void object_uv_scale(const gpu_fused_values *v, uint32_t i, float *out)
     out[1] = (float)v->state->objects[i].uv_scale[1];
 }
 
+static void object_mesh_base(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    out[0] = v->mesh_base[2 * (size_t)i];
+    out[1] = v->mesh_base[2 * (size_t)i + 1];
+}
+
 static void material_ior(const gpu_fused_values *v, uint32_t i, float *out)
 {
     out[0] = (float)v->state->materials[i].ior;
@@ -296,13 +302,16 @@ bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
     switch (w->scope) {
     case GPU_FUSED_FRAME:
         if (w->need == GPU_FUSED_NEED_MESH)
-            return l->tree && l->kinds.mesh;
+            return l->mesh;
         return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;
     case GPU_FUSED_LIGHTS:
         return l->light_count > 0;
     case GPU_FUSED_OBJECT:
         if (l->objects[i].in_tree)
             return false;
+        /* A mesh's hit needs its linear part for the offset of the rays that leave it. */
+        if (l->objects[i].shape == BGI_SHAPE_MESH && (w->need == GPU_FUSED_NEED_MESH || w->need == GPU_FUSED_NEED_TANGENT))
+            return true;
         return w->need == GPU_FUSED_NEED_ALWAYS || (w->need == GPU_FUSED_NEED_TANGENT && bgi_gpu_fused_object_tangent(l, i)) ||
                (w->need == GPU_FUSED_NEED_UV && bgi_gpu_fused_object_uv(l, i));
     case GPU_FUSED_MATERIAL:

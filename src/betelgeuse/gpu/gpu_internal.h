@@ -421,6 +421,7 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(NORMAL, OBJECT, "bg_o%u_normal", MAT3, ALWAYS, object_normal)             \
     X(TO_WORLD3, OBJECT, "bg_o%u_to_world3", MAT3, TANGENT, object_to_world3)   \
     X(UV_SCALE, OBJECT, "bg_o%u_uv_scale", VEC2, UV, object_uv_scale)           \
+    X(MESH_BASE, OBJECT, "bg_o%u_mesh", VEC2, MESH, object_mesh_base)           \
     X(IOR, MATERIAL, "bg_m%u_ior", FLOAT, TRANSPARENT, material_ior)
 
 typedef enum gpu_fused_uniform {
@@ -486,6 +487,8 @@ typedef struct gpu_fused_layout {
     uint32_t unrolled_count;
     uint32_t tree_count; /* objects in the tree (not part of the program) */
     gpu_fused_tree_kinds kinds;
+    bool mesh;           /* some object is a mesh, in the tree or unrolled: the mesh texture is bound */
+    uint32_t unrolled_meshes; /* mesh objects outside the tree, each walked with its own uniforms */
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
 } gpu_fused_layout;
 
@@ -510,7 +513,8 @@ typedef struct gpu_fused_tree_dims {
 typedef struct gpu_fused_values {
     const bg_scene_state *state;
     const bg_render_settings *settings;
-    const gpu_fused_tree_dims *tree; /* NULL without the tree */
+    const gpu_fused_tree_dims *tree; /* NULL without the tree and the meshes */
+    const float *mesh_base;          /* per object: its mesh's root and first triangle texel (meshes only) */
     int width, height;
     bool float_output;
 } gpu_fused_values;
@@ -539,6 +543,7 @@ typedef struct gpu_fused_tree {
     uint32_t mesh_base_count;      /* objects mesh_base has room for */
     gpu_fused_tree_dims dims; /* of the prepared textures */
     uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
+    bool walks;               /* whether they were made for a layout that walks the tree */
     macs_texture *marks;      /* fused_tree_target.c: a frame's marked pixels, 32 to an RGBA8 texel */
     macs_pass *mark_pass;     /* writes marks from a frame of the marks' height */
 } gpu_fused_tree;
@@ -547,9 +552,9 @@ typedef struct gpu_fused_tree {
 bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
 /* False, with the reason, when the scene's meshes do not fit the mesh texture (part of _fits). */
 bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
-/* Makes the textures hold the committed scene's tree and objects, as seen from its camera, and
- * the meshes' nodes and triangles where it has meshes. */
-bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state);
+/* Makes the textures hold the committed scene's tree and objects, as seen from its camera (with
+ * walks: the layout walks the tree), and the meshes' nodes and triangles where it has meshes. */
+bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, bool walks);
 void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
  * returns how many there were. */
@@ -568,7 +573,7 @@ void bgi_gpu_fused_tree_marks_release(gpu_fused_tree *t);
 /* ---- mesh_source.c ---- */
 /* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10). */
 #define GPU_MESH_OFFSET_ULPS 256.0
-/* The tree variant's mesh code for layouts whose tree holds meshes: the globals a mesh hit leaves
+/* The fused plans' mesh code for layouts with meshes: the globals a mesh hit leaves
  * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
  * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
  * which turns a spawned ray into one leaving the triangle. */
@@ -588,6 +593,9 @@ bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need
 bool bgi_gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
 /* Whether the program walks a tree: the tree variant with some object in the scene's tree. */
 bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l);
+/* Whether the program's walks (the object tree's or a mesh's) share a step budget per pixel, so
+ * that a pixel may run out and go to the CPU reference. */
+bool bgi_gpu_fused_layout_budgeted(const gpu_fused_layout *l);
 bool bgi_gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object);
 
 /* ---- fused_uniforms.c ---- */

@@ -1,6 +1,6 @@
-/* The mesh code of the fused plan's tree variant (docs/gpu_pipeline.md, "Meshes"): when the object
- * tree's walk reaches a mesh object's leaf, the ray goes into the object's space and walks the mesh's
- * own tree, stackless and in the object tree's node format, from the mesh texture (fused_tree.c),
+/* The mesh code of the fused plans (docs/gpu_pipeline.md, "Meshes"): when the object tree's walk
+ * reaches a mesh object's leaf, or the unrolled code a mesh object, the ray goes into the object's
+ * space and walks the mesh's own tree, stackless and in the object tree's node format, from the mesh texture (fused_tree.c),
  * meeting triangles through bg_triangle.glsl. Every node step of both levels spends one of the
  * pixel's walk steps (bg_tree_left); a mesh walk that runs out marks the pixel (bg_tree_short) for
  * the CPU reference, as the object tree's walk does.
@@ -39,10 +39,11 @@ static void emit_mesh_loop(const gpu_fused_layout *l, gpu_text *t, const char *t
     bgi_gpu_text_printf(t, "        if (%s)\n            break;\n    }\n", stop);
 }
 
-/* The object-space ray of mesh object `index` and the start of its mesh's walk. */
+/* The object-space ray of a mesh object and the start of its mesh's walk: base is the texel of the
+ * mesh's root node and that of its first triangle (from the object's texel 4 in the tree, from its
+ * own uniform when unrolled). */
 static const char *const mesh_setup =
-    "    vec4 bases = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, index, 4.0);\n"
-    "    float node = bases.z;\n    float tris = bases.w;\n"
+    "    float node = base.x;\n    float tris = base.y;\n"
     "    float end = bg_mesh_fetch(bg_meshes, bg_mesh_dims, node + 1.0).w;\n"
     "    mat3 perm;\n    vec3 shear;\n"
     "    if (!bg_triangle_setup(d, perm, shear))\n        return false;\n"
@@ -62,7 +63,7 @@ void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t)
     /* Nearest: t_limit is the best distance so far; equal distances go to the lower triangle, and the
      * test's range is widened past t_limit by a few ulps so that a tie with another object reaches
      * the caller's rule (lower object index). */
-    bgi_gpu_text_append(t, "bool bg_mesh_nearest(vec4 ro, vec4 rd, float index, mat4 m, float t_limit, out float t, "
+    bgi_gpu_text_append(t, "bool bg_mesh_nearest(vec4 ro, vec4 rd, float index, mat4 m, vec2 base, float t_limit, out float t, "
                            "out bool front)\n{\n"
                            "    t = 0.0;\n    front = false;\n    bg_mesh_tri_j = -1.0;\n    bg_mesh_bary_j = vec3(0.0);\n"
                            "    float skip = ro.w == index && rd.w <= -2.0 ? -2.0 - rd.w : -1.0;\n"
@@ -77,7 +78,7 @@ void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t)
                    "                }\n");
     bgi_gpu_text_append(t, "    if (node < end)\n        bg_tree_short = 1.0;\n    return bg_mesh_tri_j >= 0.0;\n}\n");
 
-    bgi_gpu_text_append(t, "bool bg_mesh_blocked(vec3 p, vec3 l, float dist, float index, mat4 m, float skip)\n{\n"
+    bgi_gpu_text_append(t, "bool bg_mesh_blocked(vec3 p, vec3 l, float dist, mat4 m, vec2 base, float skip)\n{\n"
                            "    vec3 o = (m * vec4(p, 1.0)).xyz;\n    vec3 d = (m * vec4(l, 0.0)).xyz;\n"
                            "    float t_max = dist < 0.0 ? 1e38 : dist;\n    bool blocked = false;\n");
     bgi_gpu_text_append(t, mesh_setup);
