@@ -915,7 +915,7 @@ static void degenerate_triangles_are_kept_and_never_hit(void **state)
 
 /* ---- the GPU plans and meshes --------------------------------------------------------------- */
 
-/* Only the tree plan meets triangles (tests/test_bg_gpu_mesh.c compares its images): the multipass
+/* Only the fused plans meet triangles (tests/test_bg_gpu_mesh.c compares their images): the multipass
  * refuses a mesh scene at both entry points, BG_PLAN_AUTO renders it with the tree. */
 static void gpu_refuses_meshes(void **state)
 {
@@ -933,14 +933,14 @@ static void gpu_refuses_meshes(void **state)
     unsigned char px[16 * 16 * 4];
     bg_image img = {16, 16, BG_PIXEL_RGBA8, 0, px};
     assert_int_equal(bg_render_gpu(g.renderer, scene, &s, &img), BG_ERR_LIMIT);
-    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "meshes need BG_PLAN_FUSED_TREE"));
+    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "BG_PLAN_MULTIPASS does not intersect triangles"));
     bg_renderer_clear_error(g.renderer);
     macs_texture_desc td = {16, 16, MACS_FORMAT_RGBA8, MACS_FILTER_NEAREST, MACS_WRAP_DEFAULT, NULL, 0};
     macs_texture *target = NULL;
     assert_int_equal(macs_texture_create(g.ctx, &td, &target), MACS_OK);
     assert_int_equal(bg_render_gpu_to_texture(g.renderer, scene, &s, target), BG_ERR_LIMIT);
     assert_non_null(strstr(bg_renderer_error_message(g.renderer), "bg_render_gpu_to_texture"));
-    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "meshes need BG_PLAN_FUSED_TREE"));
+    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "BG_PLAN_MULTIPASS does not intersect triangles"));
     bg_renderer_clear_error(g.renderer);
     bg_render_settings automatic = bg_render_settings_init();
     util_render_gpu(g.renderer, g.ctx, scene, &automatic, &img, "a mesh under BG_PLAN_AUTO");
