@@ -325,8 +325,7 @@ BG_API bg_status bg_scene_add_plane(bg_scene *scene, bg_vec3 point, bg_vec3 norm
  * - transform and material follow bg_object_desc's rules;
  * - counts whose byte sizes overflow size_t, more than 2^23 triangles (the mesh tree's limit) or
  *   more than 2^32 - 1 vertices are BG_ERR_LIMIT.
- * Both renderers draw meshes; on the GPU the fused plans do (bg_gpu_plan), the multipass refuses
- * a scene with a mesh with BG_ERR_LIMIT. */
+ * Both renderers draw meshes, the GPU renderer in every plan (bg_gpu_plan). */
 typedef struct bg_mesh_desc {
     const float *positions;    /* 3 per vertex */
     size_t vertex_count;
@@ -441,19 +440,18 @@ typedef enum bg_gpu_plan {
                           bounded objects, BG_PLAN_FUSED_TREE from 8 or whenever the scene holds a
                           mesh), else multipass (the reason is logged at BG_LOG_INFO); multipass
                           whenever an option only it has is asked for: gpu_disable_skips, dmax,
-                          half_gbuffer or float_depth. A mesh scene the fused plan cannot render
-                          (a limit, or one of those options) fails with BG_ERR_LIMIT */
+                          half_gbuffer or float_depth */
     BG_PLAN_FUSED,     /* one fragment pass per frame traces, shades and encodes the whole image,
                           every object's test written into the shader (a mesh's test walks its own
                           tree, as in BG_PLAN_FUSED_TREE); bg_render_gpu fails (BG_ERR_LIMIT, or
                           BG_ERR_GL when GL refuses the program) where it cannot run */
-    BG_PLAN_MULTIPASS, /* ray maps, G-buffer, shadow, light and spawn passes level by level; refuses
-                          scenes with a mesh (BG_ERR_LIMIT) */
+    BG_PLAN_MULTIPASS, /* ray maps, G-buffer, shadow, light and spawn passes level by level, one
+                          intersection pass per object batch (a mesh's walks its own tree) */
     BG_PLAN_FUSED_TREE /* the fused pass with the bounded objects in a tree walked from textures, so
                           its program and its cost grow with the shapes and log(objects); meshes'
-                          own trees and triangles are walked from a third texture; in both fused
-                          plans a pixel whose walks would outrun the shader's loop limit is
-                          rendered by the CPU reference (bg_render_stats.fallback_pixels) */
+                          own trees and triangles are walked from a third texture. In every plan a
+                          pixel whose walks would outrun the shader's loop limit is rendered by
+                          the CPU reference (bg_render_stats.fallback_pixels) */
 } bg_gpu_plan;
 
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
@@ -531,8 +529,9 @@ BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_
  * drawn with texture coordinate (0, 0) at its bottom-left corner shows the image upright, and
  * macs_texture_read returns the rows bottom first, the reverse of bg_image's top-first rows.
  * Cost: nothing of the image comes back to the host. The fused and multipass plans write the target
- * with their last pass. BG_PLAN_FUSED_TREE must still render its pixels whose walks ran out of loop
- * steps on the CPU (bg_render_stats.fallback_pixels): one more pass packs those marks into one bit
+ * with their last pass. A plan must still render its pixels whose walks (BG_PLAN_FUSED_TREE's, or any
+ * plan's in a mesh) ran out of loop steps on the CPU (bg_render_stats.fallback_pixels): where the
+ * scene can have such pixels, one more pass packs those marks into one bit
  * per pixel, ceil(width / 32) x height x 4 bytes are read back (the call waits for the GPU there, as
  * bg_render_gpu's read-back does), and the CPU reference's pixels go up with one glTexSubImage2D per
  * run of marked pixels in a row; the frame is then what bg_render_gpu gives. The renderer keeps no
@@ -601,8 +600,9 @@ typedef struct bg_render_stats {
     int programs_compiled;           /* shader programs this render compiled, in any plan (0 when every
                                         program it needed was cached: a re-commit that changes only
                                         camera, lights, transforms or material values compiles none) */
-    uint64_t fallback_pixels;        /* BG_PLAN_FUSED_TREE: pixels whose tree walks would have run past
-                                        the shader's loop limit, rendered by the CPU reference instead */
+    uint64_t fallback_pixels;        /* pixels whose walks (of the object tree, or of a mesh's tree in
+                                        any plan) would have run past the shader's loop limit,
+                                        rendered by the CPU reference instead */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

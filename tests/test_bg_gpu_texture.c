@@ -242,6 +242,30 @@ static void tree_fallback_pixels(void **state)
     bg_scene_destroy(s);
 }
 
+/* The same for a mesh scene in every plan: the pixels whose mesh walks ran out arrive in the
+ * texture as the CPU reference renders them. */
+static void mesh_fallback_pixels(void **state)
+{
+    (void)state;
+    enum { TW = 40, TH = 40 };
+    bg_scene *s = util_triangle_stack_scene();
+    static const bg_gpu_plan plans[] = {BG_PLAN_FUSED_TREE, BG_PLAN_FUSED, BG_PLAN_MULTIPASS};
+    static const macs_format formats[] = {MACS_FORMAT_RGBA8, MACS_FORMAT_RGBA32F};
+    for (int p = 0; p < 3; p++)
+        for (int i = 0; i < 2; i++) {
+            bg_render_settings set = bg_render_settings_init();
+            set.gpu_plan = plans[p];
+            macs_texture *t = texture(util_fx.ctx, TW, TH, formats[i]);
+            bg_render_stats st = compare(s, &set, t, marks_bytes(TW, TH), "triangle stack");
+            assert_int_equal(st.plan, plans[p]);
+            if (st.fallback_pixels == 0 || st.fallback_pixels == (uint64_t)TW * TH)
+                fail_msg("triangle stack (plan %d) into %s: %llu CPU pixels; some (not all) should be", (int)plans[p],
+                         format_name(formats[i]), (unsigned long long)st.fallback_pixels);
+            macs_texture_destroy(t);
+        }
+    bg_scene_destroy(s);
+}
+
 /* ---- the caller's own GL texture ---- */
 
 static void caller_gl_texture_as_target(void **state)
@@ -377,6 +401,7 @@ int main(void)
         cmocka_unit_test(multipass_plan),
         cmocka_unit_test(tree_plan),
         cmocka_unit_test(tree_fallback_pixels),
+        cmocka_unit_test(mesh_fallback_pixels),
         cmocka_unit_test(caller_gl_texture_as_target),
         cmocka_unit_test(bad_targets_are_refused),
     };

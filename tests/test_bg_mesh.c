@@ -913,53 +913,6 @@ static void degenerate_triangles_are_kept_and_never_hit(void **state)
     bg_scene_destroy(scene);
 }
 
-/* ---- the GPU plans and meshes --------------------------------------------------------------- */
-
-/* Only the fused plans meet triangles (tests/test_bg_gpu_mesh.c compares their images): the multipass
- * refuses a mesh scene at both entry points, BG_PLAN_AUTO renders it with the tree. */
-static void gpu_refuses_meshes(void **state)
-{
-    (void)state;
-    util_gpu g;
-    util_gpu_open(&g, NULL);
-    mesh m = make_icosphere(1, false, false);
-    bg_scene *scene = new_scene(NULL);
-    uint32_t mat = white_material(scene);
-    bg_mesh_desc d = desc_of(&m, mat);
-    uint32_t id = add_mesh(scene, &d);
-    commit(scene);
-    bg_render_settings s = bg_render_settings_init();
-    s.gpu_plan = BG_PLAN_MULTIPASS;
-    unsigned char px[16 * 16 * 4];
-    bg_image img = {16, 16, BG_PIXEL_RGBA8, 0, px};
-    assert_int_equal(bg_render_gpu(g.renderer, scene, &s, &img), BG_ERR_LIMIT);
-    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "BG_PLAN_MULTIPASS does not intersect triangles"));
-    bg_renderer_clear_error(g.renderer);
-    macs_texture_desc td = {16, 16, MACS_FORMAT_RGBA8, MACS_FILTER_NEAREST, MACS_WRAP_DEFAULT, NULL, 0};
-    macs_texture *target = NULL;
-    assert_int_equal(macs_texture_create(g.ctx, &td, &target), MACS_OK);
-    assert_int_equal(bg_render_gpu_to_texture(g.renderer, scene, &s, target), BG_ERR_LIMIT);
-    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "bg_render_gpu_to_texture"));
-    assert_non_null(strstr(bg_renderer_error_message(g.renderer), "BG_PLAN_MULTIPASS does not intersect triangles"));
-    bg_renderer_clear_error(g.renderer);
-    bg_render_settings automatic = bg_render_settings_init();
-    util_render_gpu(g.renderer, g.ctx, scene, &automatic, &img, "a mesh under BG_PLAN_AUTO");
-    assert_int_equal(bg_render_gpu_to_texture(g.renderer, scene, &automatic, target), BG_OK);
-    bg_render_stats st;
-    bg_renderer_get_stats(g.renderer, &st);
-    assert_int_equal(st.plan, BG_PLAN_FUSED_TREE);
-    /* Without the mesh the same scene renders. */
-    assert_int_equal(bg_scene_remove_object(scene, id), BG_OK);
-    uint32_t sphere;
-    assert_int_equal(bg_scene_add_sphere(scene, bg_vec3_make(0, 0, 0), 1, mat, &sphere), BG_OK);
-    commit(scene);
-    util_render_gpu(g.renderer, g.ctx, scene, &s, &img, "after removing the mesh");
-    macs_texture_destroy(target);
-    bg_scene_destroy(scene);
-    mesh_free(&m);
-    util_gpu_close(&g);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -975,7 +928,6 @@ int main(void)
         cmocka_unit_test(degenerate_triangles_are_kept_and_never_hit),
         cmocka_unit_test(attributes_follow_the_rules),
         cmocka_unit_test(glass_icosphere_refracts_like_the_sphere),
-        cmocka_unit_test(gpu_refuses_meshes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

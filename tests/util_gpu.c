@@ -6,6 +6,7 @@
 
 #include <cmocka.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
@@ -116,6 +117,48 @@ bg_render_settings util_multipass_settings(void)
 {
     bg_render_settings s = bg_render_settings_init();
     s.gpu_plan = BG_PLAN_MULTIPASS;
+    return s;
+}
+
+bg_scene *util_triangle_stack_scene(void)
+{
+    enum { K = 40000 };
+    float *pos = malloc(sizeof(float) * 9 * K);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * K);
+    assert_non_null(pos);
+    assert_non_null(idx);
+    for (int k = 0; k < K; k++) {
+        float z = -1e-5f * (float)k;
+        const float tri[9] = {1.0f, -0.5f, z, 1.0f, 1.0f, z, -0.5f, 1.0f, z};
+        memcpy(pos + 9 * k, tri, sizeof tri);
+        for (int c = 0; c < 3; c++)
+            idx[3 * k + c] = (uint32_t)(3 * k + c);
+    }
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    uint32_t mat = 0, id = 0;
+    bg_material m = bg_material_init();
+    m.base.reflectance = (bg_color_param){0.7, 0.7, 0.7, 0};
+    assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
+    bg_mesh_desc d = bg_mesh_desc_init(mat);
+    d.positions = pos;
+    d.vertex_count = 3 * K;
+    d.indices = idx;
+    d.triangle_count = K;
+    assert_int_equal(bg_scene_add_mesh(s, &d, &id), BG_OK); /* the scene keeps its own copy */
+    free(pos);
+    free(idx);
+    const double ambient[3] = {0.05, 0.05, 0.05};
+    assert_int_equal(bg_scene_set_ambient(s, ambient), BG_OK);
+    bg_light l = bg_light_init();
+    l.position = (bg_vec3){3.0, 4.0, 5.0};
+    assert_int_equal(bg_scene_add_light(s, &l, &id), BG_OK);
+    bg_camera cam = bg_camera_init();
+    cam.position = (bg_vec3){0.0, 0.0, 3.0};
+    cam.look_at = (bg_vec3){0.0, 0.0, 0.0};
+    cam.fov_y_degrees = 40.0;
+    assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
     return s;
 }
 

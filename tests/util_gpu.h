@@ -28,6 +28,11 @@ bg_scene *util_scene(scene_id id);
  * limit leaves a pixel, so the tree plan hands those pixels to the CPU reference. */
 bg_scene *util_tube_scene(void);
 
+/* The same for meshes: a committed stack of 40000 triangles facing the camera, each triangle's box
+ * around the view axis but the triangle beside it, under one light: the pixels near the axis walk
+ * every node of the mesh's tree, and every plan hands them to the CPU reference. */
+bg_scene *util_triangle_stack_scene(void);
+
 /* The default settings with the paper's multipass plan forced: for the suites that check that
  * plan's passes, G-buffer, splits and skips (BG_PLAN_AUTO picks the fused plan where it can). */
 bg_render_settings util_multipass_settings(void);

@@ -32,6 +32,7 @@ void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_feat
         f->aniso |= layer_may_be_aniso(&m->base) || (m->has_coat && layer_may_be_aniso(&m->coat));
         f->bounce |= bgi_gpu_material_may_bounce(m);
     }
+    f->mesh = state->mesh_object_count > 0;
     if (generic) {
         f->transparent = f->aniso = f->coat = f->bounce = true;
     }
@@ -39,6 +40,7 @@ void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_feat
     f->slot[GPU_SLOT_XPARENT] = f->transparent;
     f->slot[GPU_SLOT_TANGENT] = f->aniso;
     f->slot[GPU_SLOT_COAT] = f->coat;
+    f->slot[GPU_SLOT_MESH] = f->mesh;
     for (int s = 0; s < GPU_SLOT_COUNT; s++)
         f->slot_count += f->slot[s] ? 1 : 0;
 }

@@ -328,13 +328,27 @@ static bg_status trace(frame *f)
     return BG_OK;
 }
 
-/* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the
- * encoding first. Into a texture: a resolve pass writes it, encoded or (a float target) as it is. */
-static bg_status finish(frame *f, const gpu_frame_out *o)
+/* A float image read straight from the accumulation: its alpha counts the hits whose mesh walk ran
+ * out of steps; made 0 there and 1 elsewhere, as the resolve passes write it. */
+static void float_marks(const bg_image *image, size_t stride)
+{
+    for (int y = 0; y < image->height; y++) {
+        unsigned char *row = (unsigned char *)image->pixels + (size_t)y * stride;
+        for (int x = 0; x < image->width; x++) {
+            float a;
+            memcpy(&a, row + (size_t)x * 16 + 12, sizeof a);
+            a = a > 0.5f ? 0.0f : 1.0f;
+            memcpy(row + (size_t)x * 16 + 12, &a, sizeof a);
+        }
+    }
+}
+
+/* The GPU's part of the frame's end: the image or texture as the passes leave it. */
+static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
 {
     bg_renderer *r = f->r;
     if (o->image && o->as_float)
-        return bgi_gpu_read_back(r, r->accum, o->image, o->stride, true);
+        return bgi_gpu_read_back(r, r->accum, o->image, o->stride, !r->features.mesh);
     macs_pass *resolve = r->passes.resolve;
     macs_texture *target = o->texture ? o->texture : r->encoded;
     bg_status st = BG_OK;
@@ -354,12 +368,42 @@ static bg_status finish(frame *f, const gpu_frame_out *o)
     return bgi_gpu_read_back(r, r->encoded, o->image, o->stride, true);
 }
 
+/* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the
+ * encoding first. Into a texture: a resolve pass writes it, encoded or (a float target) as it is.
+ * With meshes, the pixels a walk could not finish (alpha 0) are then rendered by the CPU reference,
+ * as in the fused plans (fused_tree.c, fused_tree_target.c). */
+static bg_status finish(frame *f, const gpu_frame_out *o)
+{
+    bg_status st = finish_gpu(f, o);
+    if (st != BG_OK || !f->r->features.mesh)
+        return st;
+    if (o->texture)
+        return bgi_gpu_fused_tree_fallback_texture(f->r, f->r->meshes, f->state, f->settings, o->texture,
+                                                   &f->r->stats.fallback_pixels);
+    if (o->as_float)
+        float_marks(o->image, o->stride);
+    f->r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(f->state, f->settings, o->image, o->stride);
+    return BG_OK;
+}
+
 static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
 {
     return a->valid && a->scene == b->scene && a->commit_count == b->commit_count &&
            a->fingerprint == b->fingerprint && a->width == b->width &&
            a->height == b->height && a->disable_skips == b->disable_skips && a->encoding == b->encoding &&
            a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
+}
+
+/* The mesh texture of the passes (fused_tree.c: the same layout and upload rule as the fused plans'). */
+static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
+{
+    if (!r->meshes) {
+        r->meshes = bgi_alloc(&r->allocator, sizeof *r->meshes);
+        if (!r->meshes)
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture");
+        memset(r->meshes, 0, sizeof *r->meshes);
+    }
+    return bgi_gpu_fused_tree_prepare(r, r->meshes, state, false);
 }
 
 static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
@@ -402,6 +446,8 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
     r->key.valid = false;
     if (st == BG_OK)
         st = bgi_gpu_targets_prepare(r, width, height);
+    if (st == BG_OK && r->features.mesh)
+        st = meshes_prepare(r, f->state);
     if (st == BG_OK)
         st = bgi_gpu_passes_build(r, f->state, s);
     bgi_gpu_passes_release_retired(r);
@@ -419,23 +465,12 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
     const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
         return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
-    /* Only the fused plans' walks meet triangles (fused_source.c, docs/gpu_pipeline.md "Meshes"). */
-    if (state->mesh_object_count > 0 && settings->gpu_plan == BG_PLAN_MULTIPASS)
-        return bgi_gpu_fail(r, BG_ERR_LIMIT,
-                            "%s: settings.gpu_plan: the committed scene holds %u mesh objects; meshes need "
-                            "a fused plan (BG_PLAN_AUTO takes one), BG_PLAN_MULTIPASS does not intersect triangles",
-                            out->fn, (unsigned)state->mesh_object_count);
     memset(&r->stats, 0, sizeof r->stats);
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
     bool fused = false;
     bg_status st = bgi_gpu_fused_render(r, state, settings, out, &fused);
-    if (st == BG_OK && !fused && state->mesh_object_count > 0)
-        st = bgi_gpu_fail(r, BG_ERR_LIMIT,
-                          "%s: the committed scene holds %u mesh objects; meshes need a fused plan, which "
-                          "cannot render this frame (the renderer's log says why), and the multipass does not "
-                          "intersect triangles", out->fn, (unsigned)state->mesh_object_count);
-    else if (st == BG_OK && !fused)
+    if (st == BG_OK && !fused)
         st = render_multipass(r, scene, settings, out);
     r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
     return st;

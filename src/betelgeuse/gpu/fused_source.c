@@ -258,11 +258,10 @@ static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
 {
     if (!bgi_gpu_fused_layout_budgeted(l) && !l->mesh)
         return;
-    bgi_gpu_text_append(t, "// ---- generated: walks of the object tree and the meshes\n"
-                       "float bg_tree_left;  // steps the pixel's walks may still take\n"
-                       "float bg_tree_short; // 1.0 once a walk ran out of them\n");
+    bgi_gpu_text_append(t, "// ---- generated: walks of the object tree and the meshes\n");
+    bgi_gpu_walk_globals(t);
     if (l->mesh)
-        bgi_gpu_mesh_walks(l, t);
+        bgi_gpu_mesh_walks(l->walk_budget, t);
     if (!bgi_gpu_fused_layout_walks(l))
         return;
     emit_tree_nearest(l, t);

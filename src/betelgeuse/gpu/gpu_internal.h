@@ -20,6 +20,9 @@ typedef enum gpu_slot {
     GPU_SLOT_XPARENT, /* path weight x opaque, transparency */
     GPU_SLOT_TANGENT, /* unit tangent, coat isotropy */
     GPU_SLOT_COAT,    /* coat reflectance, coat roughness (< 0: no coat) */
+    GPU_SLOT_MESH,    /* a mesh hit's offset: the geometric normal towards the ray times the start
+                         offset of rays leaving it (docs/shading.md 2.10), and its triangle; w -1 off
+                         a mesh, GPU_MESH_SHORT where a walk ran out of steps */
     GPU_SLOT_COUNT
 } gpu_slot;
 
@@ -30,6 +33,7 @@ typedef struct gpu_features {
     bool coat;        /* some material has a coat: COAT slot */
     bool bounce;      /* some material may reflect or refract: spawn passes */
     bool generic;     /* specialisation off: every slot, every texture lane */
+    bool mesh;        /* some object is a mesh: MESH slot, the mesh texture, the marks of short walks */
     bool slot[GPU_SLOT_COUNT];
     int slot_count;
 } gpu_features;
@@ -119,6 +123,7 @@ struct bg_renderer {
     gpu_passes passes;
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
     struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
+    struct gpu_fused_tree *meshes; /* the multipass's mesh texture and marks (fused_tree.c); NULL until used */
 };
 
 /* Where a frame ends: the caller's image, read back with its rows flipped to top-down (image set), or
@@ -577,7 +582,17 @@ void bgi_gpu_fused_tree_marks_release(gpu_fused_tree *t);
  * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
  * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
  * which turns a spawned ray into one leaving the triangle. */
-void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t);
+void bgi_gpu_mesh_walks(int walk_budget, gpu_text *t);
+/* The mesh slot's w where a walk of the pixel ran out of steps: the multipass marks the pixel for
+ * the CPU reference (frame.c). */
+#define GPU_MESH_SHORT (-2.0)
+/* What a multipass pass that walks `walks` meshes per pixel leaves its walks of llvmpipe's loop
+ * limit (each walk's loop ends take 3 iterations). */
+int bgi_gpu_mesh_pass_budget(int walks);
+/* The step count the walks share and the flag of one that ran out (set by the caller's main). */
+void bgi_gpu_walk_globals(gpu_text *t);
+/* The walk globals and the mesh walks of a multipass pass with `walks` mesh walks per pixel. */
+void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t);
 
 /* ---- fused_layout.c ---- */
 /* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),

@@ -73,9 +73,10 @@ typedef enum object_uniform {
     U_INDEX,           /* its object index (the hit code and the skip and inside tests) */
     U_TO_OBJECT,       /* world (camera-relative) to prototype */
     U_NORMAL_TO_WORLD, /* inverse transpose of the linear part */
-    U_TO_WORLD3,       /* the linear part, for tangents: only with the TANGENT slot */
+    U_TO_WORLD3,       /* the linear part, for tangents (only with the TANGENT slot) and a mesh's offset */
     U_UV_SCALE,        /* only for an object that samples a texture */
     U_IOR,             /* only with transparency */
+    U_MESH_BASE,       /* a mesh's root node and first triangle texels in the mesh texture */
     U_COUNT
 } object_uniform;
 
@@ -89,10 +90,13 @@ static const struct {
     [U_TO_WORLD3] = {"bg_to_world3_%d", MACS_UNIFORM_MAT3},
     [U_UV_SCALE] = {"bg_uv_scale_%d", MACS_UNIFORM_VEC2},
     [U_IOR] = {"bg_m%d_ior", MACS_UNIFORM_FLOAT},
+    [U_MESH_BASE] = {"bg_mesh_%d", MACS_UNIFORM_VEC2},
 };
 
-/* The uniforms of every intersection pass whatever its objects (set per level: bgi_gpu_hit_pass_set_dmax). */
-static const macs_uniform_desc shared_uniforms[] = {{"bg_dmax", MACS_UNIFORM_FLOAT, 0}};
+/* The uniforms of every intersection pass whatever its objects (set per level: bgi_gpu_hit_pass_set_dmax),
+ * then the one of a pass with a mesh: the mesh texture's geometry. */
+static const macs_uniform_desc shared_uniforms[] = {{"bg_dmax", MACS_UNIFORM_FLOAT, 0},
+                                                    {"bg_mesh_dims", MACS_UNIFORM_VEC4, 0}};
 #define SHARED_UNIFORM_COUNT ((int)(sizeof shared_uniforms / sizeof shared_uniforms[0]))
 
 #define UNIFORM_NAME_SIZE 28
@@ -104,6 +108,7 @@ typedef struct member {
     uint32_t textures[GPU_HIT_MAX_TEXTURES]; /* distinct scene textures it samples, 0 the white texel */
     int texture_count;
     bool need_uv; /* it samples some texture */
+    bool mesh;    /* a mesh object: its test walks its mesh's tree */
     bool declares[U_COUNT];
     char object_uniform[U_COUNT][UNIFORM_NAME_SIZE];
     char param_uniform[P_COUNT][UNIFORM_NAME_SIZE];
@@ -131,11 +136,13 @@ static void member_describe(const bg_renderer *r, const bg_scene_state *state, u
         if (samples_texture(&mb->p[i], f))
             bgi_gpu_hit_texture_lane(mb->textures, &mb->texture_count, mb->p[i].texture);
     mb->need_uv = mb->texture_count > 0;
+    mb->mesh = state->objects[object].shape == BGI_SHAPE_MESH;
 
     mb->declares[U_INDEX] = mb->declares[U_TO_OBJECT] = mb->declares[U_NORMAL_TO_WORLD] = true;
-    mb->declares[U_TO_WORLD3] = f->slot[GPU_SLOT_TANGENT];
+    mb->declares[U_TO_WORLD3] = f->slot[GPU_SLOT_TANGENT] || mb->mesh;
     mb->declares[U_UV_SCALE] = mb->need_uv;
     mb->declares[U_IOR] = f->transparent;
+    mb->declares[U_MESH_BASE] = mb->mesh;
     mb->uniform_count = 0;
     for (int u = 0; u < U_COUNT; u++) {
         snprintf(mb->object_uniform[u], UNIFORM_NAME_SIZE, object_uniform_row[u].format, j);
@@ -175,6 +182,15 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
     bool ok = bgi_gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, 48);
     if (need_tangent)
         ok = ok && bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, 48);
+    int meshes = 0;
+    for (int j = 0; j < count; j++)
+        meshes += m[j].mesh ? 1 : 0;
+    if (meshes > 0) {
+        ok = ok && bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 48) &&
+             bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, &n, 48) && bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, &n, 48);
+        if (ok)
+            bgi_gpu_mesh_pass_walks(meshes, t);
+    }
     uint32_t objects[GPU_BATCH_MAX];
     for (int j = 0; j < count; j++)
         objects[j] = m[j].object;
@@ -184,7 +200,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
     bool uv_done[BG_UV_COUNT_] = {false};
     for (int j = 0; j < count && ok; j++) {
         bg_uv_mapping mapping = state->objects[m[j].object].uv_mapping;
-        if ((m[j].need_uv || need_tangent) && !uv_done[mapping]) {
+        if (!m[j].mesh && (m[j].need_uv || need_tangent) && !uv_done[mapping]) {
             uv_done[mapping] = true;
             ok = uv_file[mapping] && bgi_gpu_text_snippet_renamed(t, uv_file[mapping], uv, uv_name[mapping], seen, &n, 48);
         }
@@ -193,7 +209,8 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
 }
 
 /* Sets a member's object constants (those it declares) into the pass. */
-static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const member *mb)
+static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const gpu_fused_tree *meshes,
+                                       const member *mb)
 {
     const bg_object_data *obj = &state->objects[mb->object];
     float fi = (float)mb->object, m16[16], m9[9];
@@ -216,6 +233,8 @@ static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *st
         float uv[2] = {(float)obj->uv_scale[0], (float)obj->uv_scale[1]};
         ms = macs_pass_set_uniform(pass, mb->object_uniform[U_UV_SCALE], uv);
     }
+    if (!ms && mb->declares[U_MESH_BASE])
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_MESH_BASE], &meshes->mesh_base[2 * (size_t)mb->object]);
     return ms;
 }
 
@@ -259,11 +278,25 @@ static macs_status set_material_uniforms(macs_pass *pass, const bg_scene_state *
     return ms;
 }
 
-/* The winner's surface: normal, hit code, UV, tangent and material, all from member j's uniforms. */
-static void emit_surface(gpu_text *t, const bg_scene_state *state, const member *mb, int j, bool need_tangent,
-                         bool transparent, bool coat)
+/* A mesh winner's normal, hit code, UV and tangent (docs/shading.md 2.10), and the offset of the
+ * rays that leave it, which the MESH slot carries to the shadow and spawn passes. */
+static void emit_mesh_geometry(gpu_text *t, const member *mb, int j, bool need_tangent)
 {
-    const bg_object_data *obj = &state->objects[mb->object];
+    bgi_gpu_text_printf(t, "    vec2 bg_uv;\n    vec3 bg_dpdu, bg_g;\n    float bg_off;\n"
+                           "    bg_mesh_attributes(bg_meshes, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "
+                           "bg_normal_to_world_%d, bg_to_world3_%d, bg_p, bg_rd.xyz, %.1f, bg_g, bg_n, bg_uv, bg_dpdu, bg_off);\n"
+                           "    bg_entering = bg_first;\n    bg_code = bg_hit_code(bg_index_%d, false, bg_entering);\n"
+                           "    bg_mesh_ov = bg_g * bg_off;\n",
+                        j, j, j, GPU_MESH_OFFSET_ULPS, j);
+    if (mb->need_uv)
+        bgi_gpu_text_printf(t, "    bg_uv *= bg_uv_scale_%d;\n", j);
+    if (need_tangent)
+        bgi_gpu_text_printf(t, "    bg_tg = bg_tangent(bg_to_world3_%d * bg_dpdu, bg_n);\n", j);
+}
+
+/* An analytic winner's normal, hit code, UV and tangent (docs/shading.md 3). */
+static void emit_shape_geometry(gpu_text *t, const bg_object_data *obj, const member *mb, int j, bool need_tangent)
+{
     const char *thin = bg_shape_thin(obj->shape) ? "true" : "false";
     bgi_gpu_text_printf(t, "    bg_n = bg_hit_normal(bg_normal_to_world_%d, bg_no, bg_rd.xyz, %s, bg_first, bg_entering);\n",
                     j, thin);
@@ -274,6 +307,11 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
         bgi_gpu_text_printf(t, "    bg_uv *= bg_uv_scale_%d;\n", j);
     if (need_tangent)
         bgi_gpu_text_printf(t, "    bg_tg = bg_tangent(bg_to_world3_%d * bg_dpdu, bg_n);\n", j);
+}
+
+/* The winner's material parameters and index of refraction from member mb's uniforms. */
+static void emit_params(gpu_text *t, const member *mb, bool transparent, bool coat)
+{
     const param *p = mb->p;
     for (int i = 0; i < P_COUNT; i++) {
         if (!p[i].used)
@@ -301,15 +339,29 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
         bgi_gpu_text_printf(t, "    bg_ior = %s;\n", mb->object_uniform[U_IOR]);
 }
 
+/* The winner's surface: normal, hit code, UV, tangent and material, all from member j's uniforms. */
+static void emit_surface(gpu_text *t, const bg_scene_state *state, const member *mb, int j, bool need_tangent,
+                         bool transparent, bool coat)
+{
+    const bg_object_data *obj = &state->objects[mb->object];
+    if (mb->mesh)
+        emit_mesh_geometry(t, mb, j, need_tangent);
+    else
+        emit_shape_geometry(t, obj, mb, j, need_tangent);
+    emit_params(t, mb, transparent, coat);
+}
+
 /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
- * used parameter samples something, the white texel where the material has no texture. */
-#define MAX_INPUTS (3 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
+ * used parameter samples something, the white texel where the material has no texture. The mesh
+ * texture follows them in a pass with a mesh. */
+#define MAX_INPUTS (4 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
 #define MAX_UNIFORMS (SHARED_UNIFORM_COUNT + GPU_BATCH_MAX * (U_COUNT + P_COUNT))
 
 /* Everything a pass description points at while the pass is made. */
 typedef struct hit_pass_parts {
     member *members;
     int count;
+    int meshes; /* members that are meshes */
     uint32_t lane_texture[MAX_INPUTS];
     int lanes;
     macs_input_desc inputs[MAX_INPUTS];
@@ -321,16 +373,18 @@ typedef struct hit_pass_parts {
     macs_output_desc outputs[GPU_SLOT_COUNT];
     macs_texture *output_tex[GPU_SLOT_COUNT];
     int output_count;
-    char once_value[128], tangent_value[64];
+    char once_value[128], tangent_value[64], mesh_value[64];
 } hit_pass_parts;
 
 /* Describes objects first .. of the batch and gives each sampling parameter its lane. */
 static void describe_members(const bg_renderer *r, const bg_scene_state *state, uint32_t first, hit_pass_parts *hp)
 {
     hp->lanes = 0;
+    hp->meshes = 0;
     for (int j = 0; j < hp->count; j++) {
         member *mb = &hp->members[j];
         member_describe(r, state, first + (uint32_t)j, j, mb);
+        hp->meshes += mb->mesh ? 1 : 0;
         for (int i = 0; i < P_COUNT; i++)
             if (samples_texture(&mb->p[i], &r->features))
                 mb->p[i].sampler = bgi_gpu_hit_texture_lane(hp->lane_texture, &hp->lanes, mb->p[i].texture);
@@ -352,13 +406,17 @@ static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
         hp->inputs[hp->input_count].name = hp->input_names[lane];
         hp->input_tex[hp->input_count++] = texture ? r->textures[texture - 1] : r->white;
     }
+    if (hp->meshes > 0) {
+        hp->inputs[hp->input_count].name = "bg_meshes";
+        hp->input_tex[hp->input_count++] = r->meshes->meshes.texture;
+    }
 }
 
 /* The shared uniforms, then each member's as it described them. */
 static void add_uniforms(hit_pass_parts *hp)
 {
     hp->uniform_count = 0;
-    for (int k = 0; k < SHARED_UNIFORM_COUNT; k++)
+    for (int k = 0; k < (hp->meshes > 0 ? SHARED_UNIFORM_COUNT : 1); k++)
         hp->uniforms[hp->uniform_count++] = shared_uniforms[k];
     for (int j = 0; j < hp->count; j++)
         for (int k = 0; k < hp->members[j].uniform_count; k++)
@@ -373,12 +431,18 @@ static void add_outputs(const bg_renderer *r, hit_pass_parts *hp)
     snprintf(hp->once_value, sizeof hp->once_value, "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), %s)",
              f->transparent ? "bg_ior" : "1.0");
     snprintf(hp->tangent_value, sizeof hp->tangent_value, "vec4(bg_tg, %s)", f->coat ? "bg_coat_p" : "1.0");
+    /* A pass without a mesh hits none: no offset, no triangle. */
+    if (hp->meshes > 0)
+        snprintf(hp->mesh_value, sizeof hp->mesh_value, "vec4(bg_mesh_ov, bg_short ? %.1f : bg_tri)", GPU_MESH_SHORT);
+    else
+        snprintf(hp->mesh_value, sizeof hp->mesh_value, "vec4(0.0, 0.0, 0.0, -1.0)");
     const char *const slot_value[GPU_SLOT_COUNT] = {
         "vec4(bg_p, bg_code)",      "vec4(bg_n, bg_base_r)", "vec4(bg_base_c, bg_base_p)",
         hp->once_value,             "vec4(bg_w.rgb * bg_opaque, bg_transparency)",
-        hp->tangent_value,          "vec4(bg_coat_c, bg_coat_r)",
+        hp->tangent_value,          "vec4(bg_coat_c, bg_coat_r)", hp->mesh_value,
     };
-    static const char *const slot_name[GPU_SLOT_COUNT] = {"hit", "normal", "base", "once", "xparent", "tangent", "coat"};
+    static const char *const slot_name[GPU_SLOT_COUNT] = {"hit", "normal", "base", "once", "xparent", "tangent", "coat",
+                                                          "mesh"};
     hp->output_count = 0;
     for (int s = 0; s < GPU_SLOT_COUNT; s++) {
         if (!f->slot[s])
@@ -405,8 +469,28 @@ static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state,
                     "float bg_t = 0.0, bg_z = 1.0, bg_key = 33554432.0, bg_win = -1.0;\n"
                     "vec3 bg_po = vec3(0.0), bg_no = vec3(0.0, 1.0, 0.0);\nbool bg_first = true;\n");
     const char *fixed24 = r->float_depth ? "false" : "true";
+    /* A mesh's walk spends the pass's steps (mesh_source.c); the winner's triangle and weights. */
+    if (hp->meshes > 0)
+        bgi_gpu_text_printf(main, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\nfloat bg_tri = -1.0;\n"
+                                  "vec3 bg_bary = vec3(0.0);\n",
+                            bgi_gpu_mesh_pass_budget(hp->meshes));
     for (int j = 0; j < hp->count; j++) {
         const bg_object_data *obj = &state->objects[hp->members[j].object];
+        if (hp->members[j].mesh) {
+            bgi_gpu_text_printf(main,
+                            "{\n    float bg_tj, bg_zj;\n    bool bg_fj;\n"
+                            "    if (bg_mesh_nearest(bg_ro, bg_rd, bg_index_%d, bg_to_object_%d, bg_mesh_%d, "
+                            "bg_win >= 0.0 ? bg_t : 1e38, bg_tj, bg_fj)) {\n"
+                            "        bg_zj = bg_depth(bg_tj, bg_dmax);\n"
+                            "        float bg_kj = bg_depth_key(bg_zj, %s);\n"
+                            "        if (bg_kj < bg_key) {\n"
+                            "            bg_key = bg_kj; bg_win = %d.0; bg_t = bg_tj; bg_z = bg_zj;\n"
+                            "            bg_po = vec3(0.0); bg_no = vec3(0.0, 1.0, 0.0); bg_first = bg_fj;\n"
+                            "            bg_tri = bg_mesh_tri_j; bg_bary = bg_mesh_bary_j;\n"
+                            "        }\n    }\n}\n",
+                            j, j, j, fixed24, j);
+            continue;
+        }
         bgi_gpu_text_printf(main,
                         "{\n    float bg_tj, bg_zj;\n    vec3 bg_poj, bg_noj;\n    bool bg_fj;\n"
                         "    if (bg_hit_root_%s(bg_ro, bg_rd, bg_index_%d, bg_to_object_%d, bg_tj, bg_poj, bg_noj, bg_fj)) {\n"
@@ -426,8 +510,14 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
 {
     const gpu_features *f = &r->features;
     bool need_tangent = f->slot[GPU_SLOT_TANGENT];
-    bgi_gpu_text_append(main, "if (bg_win < 0.0)\n    discard;\ngl_FragDepth = bg_z;\n"
-                          "vec3 bg_p = bg_ro.xyz + bg_t * bg_rd.xyz;\n"
+    /* A pixel whose walk ran out is kept at depth 0, marked in the MESH slot for the CPU reference
+     * (frame.c), whatever it met. */
+    if (hp->meshes > 0)
+        bgi_gpu_text_append(main, "bool bg_short = bg_tree_short > 0.0;\nif (bg_win < 0.0 && !bg_short)\n    discard;\n"
+                                  "gl_FragDepth = bg_short ? 0.0 : bg_z;\nvec3 bg_mesh_ov = vec3(0.0);\n");
+    else
+        bgi_gpu_text_append(main, "if (bg_win < 0.0)\n    discard;\ngl_FragDepth = bg_z;\n");
+    bgi_gpu_text_append(main, "vec3 bg_p = bg_ro.xyz + bg_t * bg_rd.xyz;\n"
                           "bool bg_entering;\nvec3 bg_n;\nfloat bg_code;\n");
     if (need_tangent)
         bgi_gpu_text_append(main, "vec3 bg_tg;\n");
@@ -492,8 +582,10 @@ static bg_status set_members_uniforms(bg_renderer *r, macs_pass *pass, const bg_
                                       const hit_pass_parts *hp)
 {
     macs_status ms = MACS_OK;
+    if (hp->meshes > 0)
+        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->meshes->dims.meshes);
     for (int j = 0; j < hp->count && !ms; j++) {
-        ms = set_object_uniforms(pass, state, &hp->members[j]);
+        ms = set_object_uniforms(pass, state, r->meshes, &hp->members[j]);
         if (!ms)
             ms = set_material_uniforms(pass, state, &hp->members[j]);
     }

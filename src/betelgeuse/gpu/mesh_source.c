@@ -15,11 +15,11 @@
 
 /* The loops of one mesh walk, as emit_walk in fused_source.c writes the object tree's: `body` is the
  * leaf's test, `found` ends the walk early (or NULL). */
-static void emit_mesh_loop(const gpu_fused_layout *l, gpu_text *t, const char *t_max, const char *found,
+static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, const char *found,
                            const char *body)
 {
     enum { INNER = 255 };
-    int outer = (l->walk_budget + INNER - 1) / INNER;
+    int outer = (walk_budget + INNER - 1) / INNER;
     char stop[96];
     snprintf(stop, sizeof stop, "node >= end || bg_tree_left <= 0.0%s%s", found ? " || " : "", found ? found : "");
     bgi_gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
@@ -50,7 +50,7 @@ static const char *const mesh_setup =
     "    vec3 inv = bg_tree_inverse(d);\n"
     "    bg_tree_left -= 3.0; // the iterations that end this walk's loops (fused_layout.c reserves them per walk)\n";
 
-void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t)
+void bgi_gpu_mesh_walks(int walk_budget, gpu_text *t)
 {
     bgi_gpu_text_append(t, "// ---- generated: mesh objects\n"
                            "float bg_mesh_tri_j;  // the triangle of bg_mesh_nearest's hit, -1 none\n"
@@ -70,7 +70,7 @@ void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t)
                            "    vec3 o = (m * vec4(ro.xyz, 1.0)).xyz;\n    vec3 d = (m * vec4(rd.xyz, 0.0)).xyz;\n");
     bgi_gpu_text_append(t, mesh_setup);
     bgi_gpu_text_append(t, "    float best = t_limit;\n");
-    emit_mesh_loop(l, t, "best", NULL,
+    emit_mesh_loop(walk_budget, t, "best", NULL,
                    "                if (bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, best * 1.0000003, tt, b, f) &&\n"
                    "                    (bg_mesh_tri_j < 0.0 || tt < best || (tt == best && lo.w < bg_mesh_tri_j))) {\n"
                    "                    best = tt;\n                    t = tt;\n                    front = f;\n"
@@ -82,7 +82,7 @@ void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t)
                            "    vec3 o = (m * vec4(p, 1.0)).xyz;\n    vec3 d = (m * vec4(l, 0.0)).xyz;\n"
                            "    float t_max = dist < 0.0 ? 1e38 : dist;\n    bool blocked = false;\n");
     bgi_gpu_text_append(t, mesh_setup);
-    emit_mesh_loop(l, t, "t_max", "blocked",
+    emit_mesh_loop(walk_budget, t, "t_max", "blocked",
                    "                blocked = bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, t_max, tt, b, f);\n");
     bgi_gpu_text_append(t, "    if (!blocked && node < end)\n        bg_tree_short = 1.0;\n    return blocked;\n}\n");
 
@@ -93,4 +93,21 @@ void bgi_gpu_mesh_walks(const gpu_fused_layout *l, gpu_text *t)
                            "    float side = dot(d.xyz, bg_hit_ng) >= 0.0 ? bg_hit_off : -bg_hit_off;\n"
                            "    o = vec4(o.xyz + side * bg_hit_ng, bg_hit_index(hit.w));\n"
                            "    d.w = -2.0 - bg_win_tri;\n}\n");
+}
+
+void bgi_gpu_walk_globals(gpu_text *t)
+{
+    bgi_gpu_text_append(t, "float bg_tree_left;  // steps the pixel's walks may still take\n"
+                           "float bg_tree_short; // 1.0 once a walk ran out of them\n");
+}
+
+int bgi_gpu_mesh_pass_budget(int walks)
+{
+    return GPU_FUSED_MAX_LOOP - 64 - 3 * walks;
+}
+
+void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t)
+{
+    bgi_gpu_walk_globals(t);
+    bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), t);
 }

@@ -56,11 +56,16 @@ static bool plane_can_shadow(const bg_scene_state *state, uint32_t o, int group)
 }
 
 /* Whether object o needs a shadow pass for a light group: it must cast shadows, some other object
- * must exist for it to shadow (a lone convex object can only shadow itself, which is never tested),
- * and a plane must have something on its far side from one of the group's lights. */
+ * must exist for it to shadow (a lone convex object can only shadow itself, which is never tested;
+ * a mesh shadows itself, docs/shading.md 2.10), and a plane must have something on its far side
+ * from one of the group's lights. */
 static bool shadow_needed(const bg_scene_state *state, uint32_t o, int group)
 {
-    if (!state->objects[o].casts_shadows || state->object_count < 2)
+    if (!state->objects[o].casts_shadows)
+        return false;
+    if (state->objects[o].shape == BGI_SHAPE_MESH)
+        return true;
+    if (state->object_count < 2)
         return false;
     return state->objects[o].bounded || plane_can_shadow(state, o, group);
 }

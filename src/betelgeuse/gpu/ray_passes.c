@@ -145,7 +145,7 @@ static bool spawn_passes_wanted(const bg_renderer *r)
     return r->key.bounces && (r->features.bounce || (r->key.disable_skips & BG_SKIP_BOUNCE_CULL));
 }
 
-enum { SPAWN_REFLECT = 0, SPAWN_REFRACT = 1, SPAWN_MAX_INPUTS = 8 };
+enum { SPAWN_REFLECT = 0, SPAWN_REFRACT = 1, SPAWN_MAX_INPUTS = 9 };
 
 /* The G-buffer slots a spawn pass reads, after the parent's direction and weight (at
  * GPU_SPAWN_IN_DIR and GPU_SPAWN_IN_WEIGHT, bound per ray set); returns how many inputs. */
@@ -166,6 +166,8 @@ static int spawn_inputs(const bg_renderer *r, int kind, macs_input_desc in[SPAWN
         in[ni].name = "bg_g_xparent", in_tex[ni++] = r->gbuffer[GPU_SLOT_XPARENT];
         in[ni].name = "bg_g_once", in_tex[ni++] = r->gbuffer[GPU_SLOT_ONCE];
     }
+    if (f->mesh)
+        in[ni].name = "bg_g_mesh", in_tex[ni++] = r->gbuffer[GPU_SLOT_MESH];
     return ni;
 }
 
@@ -183,6 +185,16 @@ static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
                     reflect && f->slot[GPU_SLOT_COAT] ? "texture2D(bg_g_coat, macs_uv)" : "vec4(0.0, 0.0, 0.0, -1.0)",
                     f->transparent ? "texture2D(bg_g_xparent, macs_uv).a" : "0.0",
                     f->transparent ? "texture2D(bg_g_once, macs_uv).a" : "1.0");
+    /* A ray leaving a mesh starts off the surface on its side and skips its triangle (the lanes of
+     * gpu/mesh_source.c); a pixel the CPU renders spawns nothing. */
+    if (f->mesh)
+        bgi_gpu_text_printf(main, "vec4 bg_m = texture2D(bg_g_mesh, macs_uv);\n"
+                                  "if (bg_m.w >= 0.0) {\n"
+                                  "    float bg_side = dot(bg_o1.xyz, bg_m.xyz) >= 0.0 ? 1.0 : -1.0;\n"
+                                  "    bg_o0 = vec4(bg_o0.xyz + bg_side * bg_m.xyz, bg_hit_index(texture2D(bg_g_hit, macs_uv).w));\n"
+                                  "    bg_o1.w = -2.0 - bg_m.w;\n"
+                                  "} else if (bg_m.w < %.1f + 0.5)\n    bg_o2 = vec4(0.0);\n",
+                            GPU_MESH_SHORT);
 }
 
 /* Secondary rays of one kind: every live hit pixel writes its child into ray set 0's maps, which
@@ -216,6 +228,12 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
     return ms ? bgi_gpu_fail_macs(r, ms, "spawn uniforms") : BG_OK;
 }
 
+/* The accumulation's radiance and, in bg_alpha, 0 where a mesh walk ran out of steps (the lighting
+ * passes counted those hits in its alpha; frame.c then renders the pixel with the CPU reference),
+ * else 1. */
+static const char *const resolve_main = "vec4 bg_a = texture2D(bg_accum, macs_uv);\nvec3 bg_l = bg_a.rgb;\n"
+                                        "float bg_alpha = bg_a.a > 0.5 ? 0.0 : 1.0;\n";
+
 /* Resolve to the output encoding, into an RGBA8 target read back by frame.c (or, rebound there, the
  * caller's RGBA8 texture). */
 static bg_status build_resolve_pass(bg_renderer *r)
@@ -224,21 +242,20 @@ static bg_status build_resolve_pass(bg_renderer *r)
     macs_texture *in_tex[1] = {r->accum};
     macs_texture *outs[1] = {r->encoded};
     const char *files[] = {"bg_stage_resolve.glsl", NULL};
-    return simple_pass(r, "resolve pass", files, "vec3 bg_l = texture2D(bg_accum, macs_uv).rgb;\n", in, 1, in_tex,
-                       NULL, 0,
-                       r->key.encoding == BG_ENCODING_LINEAR ? "vec4(bg_encode(bg_l, false), 1.0)"
-                                                             : "vec4(bg_encode(bg_l, true), 1.0)",
+    return simple_pass(r, "resolve pass", files, resolve_main, in, 1, in_tex, NULL, 0,
+                       r->key.encoding == BG_ENCODING_LINEAR ? "vec4(bg_encode(bg_l, false), bg_alpha)"
+                                                             : "vec4(bg_encode(bg_l, true), bg_alpha)",
                        outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve);
 }
 
-/* The accumulation as it is, alpha 1 as the image's read-back sets it, into a float target texture. */
+/* The accumulation as it is into a float target texture, alpha as the RGBA8 resolve writes it. */
 bg_status bgi_gpu_resolve_float_pass_build(bg_renderer *r, macs_texture *target)
 {
     macs_input_desc in[1] = {{"bg_accum"}};
     macs_texture *in_tex[1] = {r->accum};
     macs_texture *outs[1] = {target};
-    return simple_pass(r, "float resolve pass", NULL, "vec3 bg_l = texture2D(bg_accum, macs_uv).rgb;\n", in, 1, in_tex,
-                       NULL, 0, "vec4(bg_l, 1.0)", outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve_float);
+    return simple_pass(r, "float resolve pass", NULL, resolve_main, in, 1, in_tex, NULL, 0, "vec4(bg_l, bg_alpha)",
+                       outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve_float);
 }
 
 bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)

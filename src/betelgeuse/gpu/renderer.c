@@ -73,6 +73,11 @@ void bgi_gpu_release_all(bg_renderer *r)
     bgi_gpu_targets_release(r);
     bgi_gpu_scene_textures_release(r);
     bgi_gpu_fused_release(r);
+    if (r->meshes) {
+        bgi_gpu_fused_tree_release(&r->allocator, r->meshes);
+        bgi_free(&r->allocator, r->meshes);
+        r->meshes = NULL;
+    }
     memset(&r->key, 0, sizeof r->key);
 }
 

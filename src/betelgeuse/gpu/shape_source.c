@@ -39,7 +39,7 @@ bool bgi_gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const u
     bool ok = true;
     for (int j = 0; j < count && ok; j++) {
         bg_shape shape = state->objects[objects[j]].shape;
-        if (done[shape])
+        if (shape == BGI_SHAPE_MESH || done[shape]) /* a mesh's walk is generated (mesh_source.c) */
             continue;
         done[shape] = true;
         ok = bgi_gpu_text_snippet_renamed(t, shape_file[shape], span, shape_suffix[shape], seen, seen_count, seen_cap) &&

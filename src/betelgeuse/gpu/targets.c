@@ -30,6 +30,9 @@ macs_format bgi_gpu_slot_format(const bg_renderer *r, gpu_slot slot)
          * by up to |p| 2^-11, a defect (acne, light leaks) rather than a trade-off. The w lane is
          * the hit code, object index + 1 (+ 0.5), which half holds exactly only below 1024 objects. */
         return MACS_FORMAT_RGBA32F;
+    case GPU_SLOT_MESH:
+        /* The offset is a few float ulps of the point's magnitude, below half's normal range. */
+        return MACS_FORMAT_RGBA32F;
     case GPU_SLOT_ONCE:
         /* rgb is weight x (emission + opaque x ambient), which the API does not bound: above 65504
          * half gives Inf, which the renderer never lets reach a target. w is the index of refraction, which
