@@ -8,13 +8,15 @@
 #include "gpu_thresholds.h"
 #include "scenes/stress_cases.h"
 
-/* The normal thresholds of a case: its shared scene's row of gpu_thresholds.h; for a scene of its
- * own, the loosest bound of each column over the table (no row is a better model of an unmeasured
+/* The normal thresholds of a case: its shared scene's row of gpu_thresholds.h, the mesh row for a
+ * mesh scene of its own; for another scene of its own, the loosest bound of each column over the table (no row is a better model of an unmeasured
  * scene, and the envelope is still far below what a real mistake costs). */
 static inline gpu_threshold stress_threshold(const stress_case *c)
 {
     if (c->scene < SCENE_COUNT)
         return *gpu_threshold_of(c->scene);
+    if (c->meshes)
+        return gpu_mesh_threshold;
     gpu_threshold t = gpu_thresholds[0];
     for (int i = 1; i < SCENE_COUNT; i++) {
         const gpu_threshold *r = &gpu_thresholds[i];

@@ -1,5 +1,6 @@
 /* The float32 stress cases: the table and the small scenes of their own (stress_cases.h). */
 #include "stress_cases.h"
+#include "meshes.h"
 #include "scene_try.h"
 
 #include <string.h>
@@ -353,6 +354,42 @@ static bg_status mirror_floor_horizon(bg_scene *s)
     return view(s, bg_vec3_make(0, 0.5, 3), bg_vec3_make(0, 0.3, -10), Y, 45);
 }
 
+/* The heightfield terrain (meshes.h, 8192 smooth triangles) at a scale, with its camera and a low
+ * light scaled alike: every lit point sends its shadow segment across neighbouring triangles a few
+ * ulps away, which shadow it (acne) unless a ray leaving a triangle starts off it by an amount that
+ * scales with the point (docs/shading.md 2.10). The light has no attenuation, so the image is the
+ * same at every scale. */
+static bg_status terrain_at(bg_scene *s, double scale)
+{
+    mesh m;
+    memset(&m, 0, sizeof m);
+    mesh_heightfield_desc d = {64, 0.25, true, false};
+    TRY(mesh_heightfield(&d, &m, NULL, 0));
+    uint32_t ground = 0, id = 0;
+    bg_status st = mat(s, 0.7, 0.65, 0.5, 1, 0, 1.5, &ground);
+    bg_mesh_desc md = bg_mesh_desc_init(ground);
+    md.positions = m.positions;
+    md.vertex_count = m.vertex_count;
+    md.indices = m.indices;
+    md.triangle_count = m.triangle_count;
+    md.normals = m.normals;
+    md.transform = bg_mat4_scale(scale, scale, scale);
+    if (st == BG_OK)
+        st = bg_scene_add_mesh(s, &md, &id);
+    mesh_free(&m);
+    TRY(st);
+    TRY(lamp(s, 2.0 * scale, 1.4 * scale, 1.0 * scale, 1.0, 1, 0, 0));
+    const double amb[3] = {0.1, 0.1, 0.1};
+    TRY(bg_scene_set_ambient(s, amb));
+    /* Seen from above, the image all terrain: its outer edge, where float and double may split a
+     * pixel between hit and miss, stays out of view. */
+    return view(s, bg_vec3_make(0, 1.5 * scale, 0.9 * scale), bg_vec3_make(0, 0, 0.1 * scale), Y, 40);
+}
+
+static bg_status terrain_1em3(bg_scene *s) { return terrain_at(s, 1e-3); }
+static bg_status terrain_1(bg_scene *s) { return terrain_at(s, 1.0); }
+static bg_status terrain_1e4(bg_scene *s) { return terrain_at(s, 1e4); }
+
 /* ---- the table ---- */
 
 /* The offset directions (unit vectors): a diagonal, a mostly downward one, and straight along the
@@ -360,11 +397,13 @@ static bg_status mirror_floor_horizon(bg_scene *s)
 static const double directions[3][3] = {{0.6, 0.48, -0.64}, {-0.36, -0.8, 0.48}, {0.0, 0.0, -1.0}};
 
 #define SCALED(scene, label, s, cls, q) \
-    {#scene " scale " label, "scale: float range and scale-relative rules", cls, q, scene, s, 0, 0, NULL, 0, 0, 0}
+    {#scene " scale " label, "scale: float range and scale-relative rules", cls, q, scene, s, 0, 0, NULL, 0, 0, 0, false}
 #define MOVED(scene, label, k, dir, cls, q)                                                                    \
     {#scene " offset " label, "offset: |p| large against the scene's size (ulp of |p|)", cls, q, scene, 1, k, \
-     dir - 1, NULL, 0, 0, 0}
-#define OWN(name, what, fn, cls, q, depth, minw, dmax) {name, what, cls, q, SCENE_COUNT, 1, 0, 0, fn, depth, minw, dmax}
+     dir - 1, NULL, 0, 0, 0, false}
+#define OWN(name, what, fn, cls, q, depth, minw, dmax) \
+    {name, what, cls, q, SCENE_COUNT, 1, 0, 0, fn, depth, minw, dmax, false}
+#define OWN_MESH(name, what, fn, cls, q) {name, what, cls, q, SCENE_COUNT, 1, 0, 0, fn, 0, 0, 0, true}
 
 static const stress_case table[] = {
     /* scale of the paper scenes: must hold from 1e-3 to 1e4 */
@@ -418,8 +457,9 @@ static const stress_case table[] = {
     MOVED(SCENE_MANY_LIGHTS, "1e4 d1", 1e4, 1, STRESS_SWEEP, false),
     /* high bounce depth */
     {"mirror depth 16", "16 bounce levels (error compounds per level)", STRESS_SWEEP, true, SCENE_MIRROR, 1, 0, 0,
-     NULL, 16, 1e-4, 0},
-    {"glass depth 16", "16 bounce levels through glass", STRESS_SWEEP, false, SCENE_GLASS, 1, 0, 0, NULL, 16, 1e-4, 0},
+     NULL, 16, 1e-4, 0, false},
+    {"glass depth 16", "16 bounce levels through glass", STRESS_SWEEP, false, SCENE_GLASS, 1, 0, 0, NULL, 16, 1e-4, 0,
+     false},
     OWN("mirror corridor depth 16", "facing mirrors, 16 levels", mirror_corridor, STRESS_SWEEP, true, 16, 1e-4, 0),
     /* grazing angles */
     OWN("grazing camera", "floor hits up to the horizon (plane grazing cut)", grazing_camera, STRESS_SWEEP, true, 0, 0, 0),
@@ -451,6 +491,13 @@ static const stress_case table[] = {
     /* must hold since shadow segments are open at the light's end (docs/shading.md 2.8) */
     OWN("light on a surface", "point lights exactly on a sphere and on the floor", light_on_surface, STRESS_MUST_HOLD,
         true, 0, 0, 0),
+    /* a mesh's self-shadowing at the ends of the scale range */
+    OWN_MESH("terrain scale 1e-3", "mesh self-shadowing: the leaving offset at small scales", terrain_1em3,
+             STRESS_MUST_HOLD, true),
+    OWN_MESH("terrain scale 1", "mesh self-shadowing: triangles shadowing their neighbours", terrain_1, STRESS_MUST_HOLD,
+             false),
+    OWN_MESH("terrain scale 1e4", "mesh self-shadowing: the leaving offset at large scales", terrain_1e4,
+             STRESS_MUST_HOLD, true),
     OWN("pole of spherical UV", "the earth seen from above its pole (asin)", pole_uv, STRESS_SWEEP, true, 0, 0, 0),
 };
 

@@ -36,6 +36,7 @@ typedef struct stress_case {
     int max_depth;         /* 0 means the default */
     double min_weight;     /* 0 means the default */
     double dmax;           /* 0 means automatic */
+    bool meshes;           /* a scene of its own with meshes, judged by the mesh thresholds */
 } stress_case;
 
 /* The number of cases and case i (NULL past the end). */
