@@ -12,12 +12,21 @@
 // {v2, u2}, {n0, v0}, {n1, v1}, {n2, v2}: the object-space positions and normals of its corners
 // (normals 0 where the mesh has none) with the corners' texture coordinates in the w lanes.
 
-// The texel at index k.
-vec4 bg_mesh_fetch(sampler2D s, vec4 dims, float k)
+// The texel at index k: in s below 2^23, in hi from there on (llvmpipe reads the texels of one
+// texture past 2^23 wrongly: gpu/fused_tree.c); both textures have the rows 1 / dims.w.
+vec4 bg_mesh_fetch(sampler2D s, sampler2D hi, vec4 dims, float k)
 {
-    float row = floor(k * dims.y);
-    float column = k - row * dims.x;
-    return texture2D(s, vec2((column + 0.5) * dims.z, (row + 0.5) * dims.w));
+    bool upper = k >= 8388608.0;
+    float j = upper ? k - 8388608.0 : k;
+    float row = floor(j * dims.y);
+    float column = j - row * dims.x;
+    vec2 at = vec2((column + 0.5) * dims.z, (row + 0.5) * dims.w);
+    vec4 texel;
+    if (upper)
+        texel = texture2D(hi, at);
+    else
+        texel = texture2D(s, at);
+    return texel;
 }
 
 // The world attributes of a hit on triangle texels `at` with barycentric weights bary (of v0, v1,
@@ -26,16 +35,16 @@ vec4 bg_mesh_fetch(sampler2D s, vec4 dims, float k)
 // side of g the ray sees), the interpolated uv, dP/du in object space (0 without a uv direction),
 // and the offset a ray leaving the point starts at along g: `ulps` float ulps of the magnitude of
 // the point's terms (the camera-relative point, and the transformed vertex coordinates).
-void bg_mesh_attributes(sampler2D s, vec4 dims, float at, vec3 bary, bool front, mat3 normal_to_world,
+void bg_mesh_attributes(sampler2D s, sampler2D hi, vec4 dims, float at, vec3 bary, bool front, mat3 normal_to_world,
                         mat3 to_world3, vec3 p, vec3 d, float ulps, out vec3 g, out vec3 n, out vec2 uv,
                         out vec3 dpdu, out float offset)
 {
-    vec4 a0 = bg_mesh_fetch(s, dims, at);
-    vec4 a1 = bg_mesh_fetch(s, dims, at + 1.0);
-    vec4 a2 = bg_mesh_fetch(s, dims, at + 2.0);
-    vec4 b0 = bg_mesh_fetch(s, dims, at + 3.0);
-    vec4 b1 = bg_mesh_fetch(s, dims, at + 4.0);
-    vec4 b2 = bg_mesh_fetch(s, dims, at + 5.0);
+    vec4 a0 = bg_mesh_fetch(s, hi, dims, at);
+    vec4 a1 = bg_mesh_fetch(s, hi, dims, at + 1.0);
+    vec4 a2 = bg_mesh_fetch(s, hi, dims, at + 2.0);
+    vec4 b0 = bg_mesh_fetch(s, hi, dims, at + 3.0);
+    vec4 b1 = bg_mesh_fetch(s, hi, dims, at + 4.0);
+    vec4 b2 = bg_mesh_fetch(s, hi, dims, at + 5.0);
     vec3 e1 = a1.xyz - a0.xyz;
     vec3 e2 = a2.xyz - a0.xyz;
     g = bg_normalize_or(normal_to_world * cross(e1, e2), -d);

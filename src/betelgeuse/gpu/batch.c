@@ -77,8 +77,8 @@ static bool merge_pays(const bg_renderer *r, const bg_scene_state *state, int fi
 int bgi_gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out)
 {
     int n = (int)state->object_count, batches = 0;
-    /* The ray maps take three, the mesh texture one. */
-    int units = r->limits.max_texture_units - 3 - (r->features.mesh ? 1 : 0);
+    /* The ray maps take three, the mesh textures two. */
+    int units = r->limits.max_texture_units - 3 - (r->features.mesh ? 2 : 0);
     int budget = macs_context_max_uniform_components(r->ctx) - bgi_gpu_hit_shared_components();
     for (int o = 0; o < n;) {
         uint32_t textures[GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES];

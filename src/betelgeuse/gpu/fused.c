@@ -80,7 +80,7 @@ static const char *multipass_option(const bg_renderer *r, const bg_render_settin
  * meshes' (bind_frame sets them in this order). */
 static int input_count(const gpu_fused_layout *l)
 {
-    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 1 : 0);
+    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 2 : 0);
 }
 
 static int mesh_input(const gpu_fused_layout *l)
@@ -280,8 +280,10 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
         inputs[l->sampler_count].name = "bg_nodes";
         inputs[l->sampler_count + 1].name = "bg_objects";
     }
-    if (l->mesh)
+    if (l->mesh) {
         inputs[mesh_input(l)].name = "bg_meshes";
+        inputs[mesh_input(l) + 1].name = "bg_meshes_hi";
+    }
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
@@ -383,6 +385,8 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
     if (!ms && l->mesh)
         ms = macs_pass_set_input(f->pass, mesh_input(l), f->tree.meshes.texture);
+    if (!ms && l->mesh)
+        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, f->tree.meshes_hi.texture);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)

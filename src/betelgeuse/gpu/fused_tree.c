@@ -28,6 +28,11 @@
 enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096, MESH_TRIANGLE_TEXELS = 6 };
 /* Texel indices of the mesh texture travel as floats: every one must be a whole float. */
 #define MESH_MAX_TEXELS (1ull << 24)
+/* llvmpipe (Mesa 22.3) reads texels past the first 2^23 of one RGBA32F texture wrongly, though they
+ * upload and read back intact (measured: a terrain of 845,000 triangles, 8.45 million texels, lost
+ * its nearest rows; 720,000 rendered right): the texels from 2^23 on go to a second texture of the
+ * same size (bg_mesh.glsl). */
+#define MESH_TEXTURE_TEXELS (1ull << 23)
 
 /* Items per row (a power of two), width and height of a texture of `items` items of `per` texels
  * within max_size; false when even the widest rows need more than max_size of them. */
@@ -225,6 +230,8 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
     uint64_t texels = mesh_layout(state, NULL);
     int w = mesh_width(r->limits.max_texture_size);
     uint64_t rows = (texels + (uint64_t)w - 1) / (uint64_t)w;
+    if (rows > MESH_TEXTURE_TEXELS / (uint64_t)w)
+        rows = MESH_TEXTURE_TEXELS / (uint64_t)w; /* each of the two textures */
     if (texels > MESH_MAX_TEXELS || rows > (uint64_t)r->limits.max_texture_size) {
         snprintf(why, size, "the meshes' nodes and triangles need %llu texels, more than the %llu a float index or "
                  "%d rows of a %d-texel texture hold", (unsigned long long)texels,
@@ -268,11 +275,64 @@ static bg_status fill_meshes(const bg_scene_state *state, const gpu_fused_tree *
     return BG_OK;
 }
 
+/* Whether the mesh textures already hold the scene's distinct meshes in their order (a mesh's
+ * serial names its contents for good, so a commit that only moves the camera or objects keeps them,
+ * and the ten million texels of a million triangles need neither a rebuild nor a comparison);
+ * otherwise records them as what they are about to hold. False when out of memory for the record. */
+static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, bool *held)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < state->object_count; i++)
+        n += state->objects[i].mesh && first_of_mesh(state, i) ? 1 : 0;
+    bool same = t->meshes.texture && t->mesh_keys && n == t->mesh_key_count;
+    for (uint32_t i = 0, k = 0; i < state->object_count && same; i++)
+        if (state->objects[i].mesh && first_of_mesh(state, i))
+            same = t->mesh_keys[k++] == state->objects[i].mesh->serial;
+    *held = same;
+    if (same)
+        return true;
+    if (t->mesh_key_room < n) {
+        bgi_free(&r->allocator, t->mesh_keys);
+        t->mesh_key_room = 0;
+        t->mesh_keys = bgi_alloc(&r->allocator, (size_t)n * sizeof *t->mesh_keys);
+        if (!t->mesh_keys)
+            return false;
+        t->mesh_key_room = n;
+    }
+    t->mesh_key_count = 0;
+    for (uint32_t i = 0; i < state->object_count; i++)
+        if (state->objects[i].mesh && first_of_mesh(state, i))
+            t->mesh_keys[t->mesh_key_count++] = state->objects[i].mesh->serial;
+    return true;
+}
+
+/* Makes a mesh texture w x h hold `data` (h rows of w texels). */
+static bg_status mesh_texture_upload(bg_renderer *r, gpu_fused_tree_texture *t, int w, int h, const float *data)
+{
+    size_t floats = (size_t)w * (size_t)h * 4;
+    if (t->floats != floats) {
+        macs_texture_destroy(t->texture);
+        t->texture = NULL;
+        t->floats = 0;
+    }
+    bg_status st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &t->texture, "mesh texture");
+    if (st != BG_OK)
+        return st;
+    t->floats = floats;
+    macs_status ms = macs_texture_upload(t->texture, data, 0);
+    return ms ? bgi_gpu_fail_macs(r, ms, "mesh texture") : BG_OK;
+}
+
+/* Every distinct mesh into the mesh texture (and, past MESH_TEXTURE_TEXELS, the second one; a 1x1
+ * stand-in otherwise, so that the program binds the same samplers whatever the size). The host copy
+ * lives only while it goes up: the textures' keys say what they hold. */
 static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
 {
-    memset(t->dims.meshes, 0, sizeof t->dims.meshes);
     if (state->mesh_object_count == 0) {
         texture_release(&r->allocator, &t->meshes);
+        texture_release(&r->allocator, &t->meshes_hi);
+        t->mesh_key_count = 0;
+        memset(t->dims.meshes, 0, sizeof t->dims.meshes);
         return BG_OK;
     }
     if (t->mesh_base_count < state->object_count) {
@@ -285,12 +345,34 @@ static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scen
     }
     uint64_t texels = mesh_layout(state, t->mesh_base);
     int w = mesh_width(r->limits.max_texture_size);
-    int h = (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
+    bool split = texels > MESH_TEXTURE_TEXELS;
+    int h = split ? (int)(MESH_TEXTURE_TEXELS / (uint64_t)w) : (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
     t->dims.meshes[0] = (float)w;
     t->dims.meshes[1] = 1.0f / (float)w;
     t->dims.meshes[2] = 1.0f / (float)w;
-    t->dims.meshes[3] = 1.0f / (float)h;
-    return texture_prepare(r, t, &t->meshes, state, w, h, fill_meshes, "mesh texture");
+    t->dims.meshes[3] = 1.0f / (float)h; /* both textures' rows when split */
+    bool held = false;
+    if (!meshes_held(r, t, state, &held))
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's keys");
+    if (held)
+        return BG_OK;
+    size_t one = (size_t)w * (size_t)h * 4, floats = split ? 2 * one : one;
+    float *data = bgi_alloc(&r->allocator, floats * sizeof *data);
+    if (!data) {
+        t->mesh_key_count = 0;
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture (%zu floats)",
+                            floats);
+    }
+    memset(data, 0, floats * sizeof *data);
+    fill_meshes(state, t, data);
+    static const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    bg_status st = mesh_texture_upload(r, &t->meshes, w, h, data);
+    if (st == BG_OK)
+        st = split ? mesh_texture_upload(r, &t->meshes_hi, w, h, data + one) : mesh_texture_upload(r, &t->meshes_hi, 1, 1, none);
+    bgi_free(&r->allocator, data);
+    if (st != BG_OK)
+        t->mesh_key_count = 0; /* they may hold anything now */
+    return st;
 }
 
 bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, bool walks)
@@ -336,9 +418,13 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
     texture_release(a, &t->meshes);
+    texture_release(a, &t->meshes_hi);
     bgi_free(a, t->mesh_base);
     t->mesh_base = NULL;
     t->mesh_base_count = 0;
+    bgi_free(a, t->mesh_keys);
+    t->mesh_keys = NULL;
+    t->mesh_key_count = t->mesh_key_room = 0;
     bgi_gpu_fused_tree_marks_release(t);
     memset(&t->dims, 0, sizeof t->dims);
     t->serial = 0;

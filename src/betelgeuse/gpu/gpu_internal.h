@@ -544,8 +544,11 @@ typedef struct gpu_fused_tree_texture {
 typedef struct gpu_fused_tree {
     gpu_fused_tree_texture nodes, objects;
     gpu_fused_tree_texture meshes; /* every mesh's nodes and triangles (fused_tree.c); none without meshes */
+    gpu_fused_tree_texture meshes_hi; /* the mesh texels from 2^23 on (1x1 when there are fewer) */
     float *mesh_base;              /* per object: 2 floats, its mesh's root node and first triangle texel */
     uint32_t mesh_base_count;      /* objects mesh_base has room for */
+    uint64_t *mesh_keys;           /* the serials of the distinct meshes the mesh texture holds, in order */
+    uint32_t mesh_key_count, mesh_key_room;
     gpu_fused_tree_dims dims; /* of the prepared textures */
     uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
     bool walks;               /* whether they were made for a layout that walks the tree */

@@ -283,7 +283,7 @@ static macs_status set_material_uniforms(macs_pass *pass, const bg_scene_state *
 static void emit_mesh_geometry(gpu_text *t, const member *mb, int j, bool need_tangent)
 {
     bgi_gpu_text_printf(t, "    vec2 bg_uv;\n    vec3 bg_dpdu, bg_g;\n    float bg_off;\n"
-                           "    bg_mesh_attributes(bg_meshes, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "
+                           "    bg_mesh_attributes(bg_meshes, bg_meshes_hi, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "
                            "bg_normal_to_world_%d, bg_to_world3_%d, bg_p, bg_rd.xyz, %.1f, bg_g, bg_n, bg_uv, bg_dpdu, bg_off);\n"
                            "    bg_entering = bg_first;\n    bg_code = bg_hit_code(bg_index_%d, false, bg_entering);\n"
                            "    bg_mesh_ov = bg_g * bg_off;\n",
@@ -354,7 +354,7 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
 /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
  * used parameter samples something, the white texel where the material has no texture. The mesh
  * texture follows them in a pass with a mesh. */
-#define MAX_INPUTS (4 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
+#define MAX_INPUTS (5 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
 #define MAX_UNIFORMS (SHARED_UNIFORM_COUNT + GPU_BATCH_MAX * (U_COUNT + P_COUNT))
 
 /* Everything a pass description points at while the pass is made. */
@@ -409,6 +409,8 @@ static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
     if (hp->meshes > 0) {
         hp->inputs[hp->input_count].name = "bg_meshes";
         hp->input_tex[hp->input_count++] = r->meshes->meshes.texture;
+        hp->inputs[hp->input_count].name = "bg_meshes_hi";
+        hp->input_tex[hp->input_count++] = r->meshes->meshes_hi.texture;
     }
 }
 

@@ -271,10 +271,11 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     emit_shadow_main(r, state, &sp, &main);
     bool have = shadow_functions(&functions, state, &sp);
 
-    macs_input_desc inputs[4] = {{"bg_g_hit"}, {"bg_g_normal"}, {"bg_g_mesh"}, {"bg_meshes"}};
-    macs_texture *input_tex[4] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL], r->gbuffer[GPU_SLOT_MESH],
-                                  r->meshes ? r->meshes->meshes.texture : NULL};
-    int input_count = sp.meshes > 0 ? 4 : sp.on_meshes ? 3 : 2;
+    macs_input_desc inputs[5] = {{"bg_g_hit"}, {"bg_g_normal"}, {"bg_g_mesh"}, {"bg_meshes"}, {"bg_meshes_hi"}};
+    macs_texture *input_tex[5] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL], r->gbuffer[GPU_SLOT_MESH],
+                                  r->meshes ? r->meshes->meshes.texture : NULL,
+                                  r->meshes ? r->meshes->meshes_hi.texture : NULL};
+    int input_count = sp.meshes > 0 ? 5 : sp.on_meshes ? 3 : 2;
     macs_output_desc output = {"visibility", "bg_vis"};
     macs_texture *output_tex[1] = {r->vis};
     macs_pass_desc desc;

@@ -25,14 +25,14 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
     bgi_gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
                         outer > 0 ? outer : 1, INNER);
     bgi_gpu_text_printf(t, "            if (%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop);
-    bgi_gpu_text_append(t, "            vec4 lo = bg_mesh_fetch(bg_meshes, bg_mesh_dims, node);\n"
-                           "            vec4 hi = bg_mesh_fetch(bg_meshes, bg_mesh_dims, node + 1.0);\n");
+    bgi_gpu_text_append(t, "            vec4 lo = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, node);\n"
+                           "            vec4 hi = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, node + 1.0);\n");
     bgi_gpu_text_printf(t, "            bool entered = bg_tree_box(o, inv, %s, lo.xyz, hi.xyz);\n", t_max);
     bgi_gpu_text_append(t, "            if (entered && lo.w >= 0.0 && lo.w != skip) {\n"
                            "                float at = tris + 6.0 * lo.w;\n"
-                           "                vec3 v0 = bg_mesh_fetch(bg_meshes, bg_mesh_dims, at).xyz;\n"
-                           "                vec3 v1 = bg_mesh_fetch(bg_meshes, bg_mesh_dims, at + 1.0).xyz;\n"
-                           "                vec3 v2 = bg_mesh_fetch(bg_meshes, bg_mesh_dims, at + 2.0).xyz;\n"
+                           "                vec3 v0 = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, at).xyz;\n"
+                           "                vec3 v1 = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, at + 1.0).xyz;\n"
+                           "                vec3 v2 = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, at + 2.0).xyz;\n"
                            "                float tt;\n                vec3 b;\n                bool f;\n");
     bgi_gpu_text_append(t, body);
     bgi_gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 2.0 : hi.w;\n        }\n");
@@ -44,7 +44,7 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
  * own uniform when unrolled). */
 static const char *const mesh_setup =
     "    float node = base.x;\n    float tris = base.y;\n"
-    "    float end = bg_mesh_fetch(bg_meshes, bg_mesh_dims, node + 1.0).w;\n"
+    "    float end = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, node + 1.0).w;\n"
     "    mat3 perm;\n    vec3 shear;\n"
     "    if (!bg_triangle_setup(d, perm, shear))\n        return false;\n"
     "    vec3 inv = bg_tree_inverse(d);\n"

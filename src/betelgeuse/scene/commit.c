@@ -219,7 +219,7 @@ static void install_bounds(bg_scene_state *state)
 static pthread_mutex_t serial_lock = PTHREAD_MUTEX_INITIALIZER;
 static uint64_t last_serial;
 
-static uint64_t next_serial(void)
+uint64_t bgi_scene_next_serial(void)
 {
     pthread_mutex_lock(&serial_lock);
     uint64_t serial = ++last_serial;
@@ -265,7 +265,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     memcpy(state->ambient, scene->ambient, sizeof state->ambient);
     bgi_scene_tree_install(scene);
     state->commit_count++;
-    state->serial = next_serial();
+    state->serial = bgi_scene_next_serial();
     scene->committed = true;
     /* No committed state holds the texels of textures removed before this commit any more. */
     float **retired = scene->retired_texels.data;

@@ -228,6 +228,7 @@ bg_status bg_scene_add_mesh(bg_scene *scene, const bg_mesh_desc *desc, uint32_t 
         return st;
     }
     m->refs = 1;
+    m->serial = bgi_scene_next_serial();
     item.mesh = m;
     return bgi_pool_add(scene, &scene->objects, where_add, &item, out_object);
 }

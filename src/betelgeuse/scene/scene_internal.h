@@ -34,6 +34,7 @@ typedef struct bg_mesh_data {
     double box_min[3], box_max[3]; /* object-space box of the vertices the triangles use */
     bg_bvh tree;        /* over the triangles' object-space boxes: primitive i is triangle i */
     uint32_t refs;      /* live pending objects that show it */
+    uint64_t serial;    /* unique in the process (bgi_scene_next_serial): a GPU copy's key */
     struct bg_mesh_data *next_retired; /* on the scene's retired list once refs is 0 */
 } bg_mesh_data;
 
@@ -89,6 +90,8 @@ typedef struct bg_scene_state {
 
 /* The committed state, or NULL when the scene was never committed successfully. */
 const bg_scene_state *bgi_scene_committed(const bg_scene *scene);
+/* A number no earlier call in the process returned (commits and meshes are keyed by it). */
+uint64_t bgi_scene_next_serial(void);
 
 /* Records an error on the scene (first one sticks) and sends it to the logger; returns status. */
 bg_status bgi_scene_fail(bg_scene *scene, bg_status status, const char *format, ...);
