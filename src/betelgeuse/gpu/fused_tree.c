@@ -174,42 +174,61 @@ static uint64_t mesh_texels(const bg_mesh_data *m)
     return (uint64_t)NODE_TEXELS * m->tree.node_count + (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
 }
 
-/* Whether object i is the first to show its mesh (the texture holds each mesh once, in the order
- * of the objects that first show them). */
-static bool first_of_mesh(const bg_scene_state *state, uint32_t i)
+/* For every object, the first object that shows the same mesh (itself when it is the first; the
+ * texture holds each mesh once, in the order of the objects that first show them), found through a
+ * hash of the mesh pointers: linear in the objects, which may be thousands of instances. NULL when
+ * out of memory; the caller frees it. */
+static uint32_t *mesh_firsts(const bg_allocator *a, const bg_scene_state *state)
 {
-    for (uint32_t j = 0; j < i; j++)
-        if (state->objects[j].mesh == state->objects[i].mesh)
-            return false;
-    return true;
+    size_t room = 2;
+    while (room < 2 * (size_t)state->mesh_object_count)
+        room *= 2;
+    uint32_t *first = bgi_alloc(a, ((size_t)state->object_count + 1) * sizeof *first);
+    uint32_t *slot = bgi_alloc(a, room * sizeof *slot); /* an object index + 1, 0 empty */
+    if (!first || !slot) {
+        bgi_free(a, first);
+        bgi_free(a, slot);
+        return NULL;
+    }
+    memset(slot, 0, room * sizeof *slot);
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_mesh_data *m = state->objects[i].mesh;
+        first[i] = i;
+        if (!m)
+            continue;
+        size_t h = (size_t)(((uint64_t)(uintptr_t)m >> 4) * 0x9e3779b97f4a7c15ull >> 17) & (room - 1);
+        while (slot[h] != 0 && state->objects[slot[h] - 1].mesh != m)
+            h = (h + 1) & (room - 1);
+        if (slot[h] == 0)
+            slot[h] = i + 1;
+        else
+            first[i] = slot[h] - 1;
+    }
+    bgi_free(a, slot);
+    return first;
 }
 
-/* The texels every distinct mesh takes; also the texel bases of each mesh object into t->mesh_base
- * when it is not NULL (its mesh's root node, its first triangle). */
-static uint64_t mesh_layout(const bg_scene_state *state, float *base)
+/* The texels every distinct mesh takes; also the texel bases of each mesh object into base when it
+ * is not NULL (its mesh's root node, its first triangle). */
+static uint64_t mesh_layout(const bg_scene_state *state, const uint32_t *first, float *base)
 {
     uint64_t at = 0;
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_mesh_data *m = state->objects[i].mesh;
         if (!m)
             continue;
-        uint64_t here = at;
-        if (first_of_mesh(state, i))
-            at += mesh_texels(m);
-        else
-            for (uint32_t j = 0; j < i; j++)
-                if (state->objects[j].mesh == m) {
-                    if (base) {
-                        base[2 * (size_t)i] = base[2 * (size_t)j];
-                        base[2 * (size_t)i + 1] = base[2 * (size_t)j + 1];
-                    }
-                    here = UINT64_MAX;
-                    break;
-                }
-        if (base && here != UINT64_MAX) {
-            base[2 * (size_t)i] = (float)here;
-            base[2 * (size_t)i + 1] = (float)(here + (uint64_t)NODE_TEXELS * m->tree.node_count);
+        if (first[i] != i) {
+            if (base) {
+                base[2 * (size_t)i] = base[2 * (size_t)first[i]];
+                base[2 * (size_t)i + 1] = base[2 * (size_t)first[i] + 1];
+            }
+            continue;
         }
+        if (base) {
+            base[2 * (size_t)i] = (float)at;
+            base[2 * (size_t)i + 1] = (float)(at + (uint64_t)NODE_TEXELS * m->tree.node_count);
+        }
+        at += mesh_texels(m);
     }
     return at;
 }
@@ -227,7 +246,13 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
 {
     if (state->mesh_object_count == 0)
         return true;
-    uint64_t texels = mesh_layout(state, NULL);
+    uint32_t *first = mesh_firsts(&r->allocator, state);
+    if (!first) {
+        snprintf(why, size, "out of memory ordering the %u mesh objects", state->mesh_object_count);
+        return false;
+    }
+    uint64_t texels = mesh_layout(state, first, NULL);
+    bgi_free(&r->allocator, first);
     int w = mesh_width(r->limits.max_texture_size);
     uint64_t rows = (texels + (uint64_t)w - 1) / (uint64_t)w;
     if (rows > MESH_TEXTURE_TEXELS / (uint64_t)w)
@@ -243,11 +268,11 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
 
 /* Every distinct mesh once: its nodes as common/bvh.h lays them out, the miss links turned into
  * texel indices of the whole texture, then its triangles (docs/gpu_pipeline.md, "Meshes"). */
-static bg_status fill_meshes(const bg_scene_state *state, const gpu_fused_tree *t, float *out)
+static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_fused_tree *t, float *out)
 {
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_mesh_data *m = state->objects[i].mesh;
-        if (!m || !first_of_mesh(state, i))
+        if (!m || first[i] != i)
             continue;
         float root = t->mesh_base[2 * (size_t)i];
         float *o = out + (size_t)root * 4;
@@ -272,21 +297,21 @@ static bg_status fill_meshes(const bg_scene_state *state, const gpu_fused_tree *
             o += MESH_TRIANGLE_TEXELS * 4;
         }
     }
-    return BG_OK;
 }
 
 /* Whether the mesh textures already hold the scene's distinct meshes in their order (a mesh's
  * serial names its contents for good, so a commit that only moves the camera or objects keeps them,
  * and the ten million texels of a million triangles need neither a rebuild nor a comparison);
  * otherwise records them as what they are about to hold. False when out of memory for the record. */
-static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, bool *held)
+static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, const uint32_t *first,
+                        bool *held)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < state->object_count; i++)
-        n += state->objects[i].mesh && first_of_mesh(state, i) ? 1 : 0;
+        n += state->objects[i].mesh && first[i] == i ? 1 : 0;
     bool same = t->meshes.texture && t->mesh_keys && n == t->mesh_key_count;
     for (uint32_t i = 0, k = 0; i < state->object_count && same; i++)
-        if (state->objects[i].mesh && first_of_mesh(state, i))
+        if (state->objects[i].mesh && first[i] == i)
             same = t->mesh_keys[k++] == state->objects[i].mesh->serial;
     *held = same;
     if (same)
@@ -301,7 +326,7 @@ static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state 
     }
     t->mesh_key_count = 0;
     for (uint32_t i = 0; i < state->object_count; i++)
-        if (state->objects[i].mesh && first_of_mesh(state, i))
+        if (state->objects[i].mesh && first[i] == i)
             t->mesh_keys[t->mesh_key_count++] = state->objects[i].mesh->serial;
     return true;
 }
@@ -324,8 +349,44 @@ static bg_status mesh_texture_upload(bg_renderer *r, gpu_fused_tree_texture *t, 
 }
 
 /* Every distinct mesh into the mesh texture (and, past MESH_TEXTURE_TEXELS, the second one; a 1x1
- * stand-in otherwise, so that the program binds the same samplers whatever the size). The host copy
- * lives only while it goes up: the textures' keys say what they hold. */
+ * stand-in otherwise, so that the program binds the same samplers whatever the size), first[] the
+ * objects' first-of-mesh indices. The host copy lives only while it goes up: the textures' keys
+ * say what they hold. */
+static bg_status meshes_upload(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, const uint32_t *first)
+{
+    uint64_t texels = mesh_layout(state, first, t->mesh_base);
+    int w = mesh_width(r->limits.max_texture_size);
+    bool split = texels > MESH_TEXTURE_TEXELS;
+    int h = split ? (int)(MESH_TEXTURE_TEXELS / (uint64_t)w) : (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
+    t->dims.meshes[0] = (float)w;
+    t->dims.meshes[1] = 1.0f / (float)w;
+    t->dims.meshes[2] = 1.0f / (float)w;
+    t->dims.meshes[3] = 1.0f / (float)h; /* both textures' rows when split */
+    bool held = false;
+    if (!meshes_held(r, t, state, first, &held))
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's keys");
+    if (held)
+        return BG_OK;
+    size_t one = (size_t)w * (size_t)h * 4, floats = split ? 2 * one : one;
+    float *data = bgi_alloc(&r->allocator, floats * sizeof *data);
+    if (!data) {
+        t->mesh_key_count = 0;
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture (%zu floats)",
+                            floats);
+    }
+    memset(data, 0, floats * sizeof *data);
+    fill_meshes(state, first, t, data);
+    static const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    bg_status st = mesh_texture_upload(r, &t->meshes, w, h, data);
+    if (st == BG_OK)
+        st = split ? mesh_texture_upload(r, &t->meshes_hi, w, h, data + one) : mesh_texture_upload(r, &t->meshes_hi, 1, 1, none);
+    bgi_free(&r->allocator, data);
+    if (st != BG_OK)
+        t->mesh_key_count = 0; /* they may hold anything now */
+    return st;
+}
+
+/* The mesh textures and every mesh object's bases for the committed scene. */
 static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
 {
     if (state->mesh_object_count == 0) {
@@ -343,35 +404,11 @@ static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scen
             return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's bases");
         t->mesh_base_count = state->object_count;
     }
-    uint64_t texels = mesh_layout(state, t->mesh_base);
-    int w = mesh_width(r->limits.max_texture_size);
-    bool split = texels > MESH_TEXTURE_TEXELS;
-    int h = split ? (int)(MESH_TEXTURE_TEXELS / (uint64_t)w) : (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
-    t->dims.meshes[0] = (float)w;
-    t->dims.meshes[1] = 1.0f / (float)w;
-    t->dims.meshes[2] = 1.0f / (float)w;
-    t->dims.meshes[3] = 1.0f / (float)h; /* both textures' rows when split */
-    bool held = false;
-    if (!meshes_held(r, t, state, &held))
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's keys");
-    if (held)
-        return BG_OK;
-    size_t one = (size_t)w * (size_t)h * 4, floats = split ? 2 * one : one;
-    float *data = bgi_alloc(&r->allocator, floats * sizeof *data);
-    if (!data) {
-        t->mesh_key_count = 0;
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture (%zu floats)",
-                            floats);
-    }
-    memset(data, 0, floats * sizeof *data);
-    fill_meshes(state, t, data);
-    static const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    bg_status st = mesh_texture_upload(r, &t->meshes, w, h, data);
-    if (st == BG_OK)
-        st = split ? mesh_texture_upload(r, &t->meshes_hi, w, h, data + one) : mesh_texture_upload(r, &t->meshes_hi, 1, 1, none);
-    bgi_free(&r->allocator, data);
-    if (st != BG_OK)
-        t->mesh_key_count = 0; /* they may hold anything now */
+    uint32_t *first = mesh_firsts(&r->allocator, state);
+    if (!first)
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the meshes");
+    bg_status st = meshes_upload(r, t, state, first);
+    bgi_free(&r->allocator, first);
     return st;
 }
 
