@@ -58,9 +58,11 @@ SCENES_OBJ := $(SCENES_SRC:%.c=$(BUILD)/%.o)
 EXAMPLE_SRC := $(sort $(wildcard examples/*.c))
 EXAMPLE_BIN := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/examples/%)
 
-# Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export).
-# The Embree peer (bench_embree with bench/lib/embree_*.c) is built only where Embree 3 is installed
-# (Debian's libembree-dev has no pkg-config file, hence the header test) and linked into no other program.
+# Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export), and
+# they also link the counting allocator of the tests (tests/util_alloc.c).
+# The Embree peer (bench/lib/embree_*.c) is built only where Embree 3 is installed (Debian's
+# libembree-dev has no pkg-config file, hence the header test): bench_embree needs it, bench_mesh
+# links it (with BENCH_EMBREE defined) where it is and runs without its column elsewhere.
 EMBREE_LIBS := $(shell pkg-config --libs embree3 2>/dev/null || \
                  { test -f /usr/include/embree3/rtcore.h && echo -lembree3; })
 EMBREE_CFLAGS := $(if $(EMBREE_LIBS),$(shell pkg-config --cflags embree3 2>/dev/null))
@@ -70,7 +72,8 @@ EMBREE_SRC := bench/bench_embree.c $(EMBREE_PEER_SRC)
 BENCH_SRC := $(sort $(filter-out $(EMBREE_SRC),$(wildcard bench/*.c)) $(if $(EMBREE_LIBS),bench/bench_embree.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 BENCH_LIB_SRC := $(sort $(filter-out $(EMBREE_SRC),$(wildcard bench/lib/*.c)))
-BENCH_LIB_OBJ := $(BENCH_LIB_SRC:%.c=$(BUILD)/%.o)
+BENCH_LIB_OBJ := $(BENCH_LIB_SRC:%.c=$(BUILD)/%.o) $(BUILD)/tests/util_alloc.o
+EMBREE_BENCH_BIN := $(if $(EMBREE_LIBS),$(BUILD)/bench/bench_embree $(BUILD)/bench/bench_mesh)
 
 MACS_A  := $(BUILD)/libmacs.a
 BG_A    := $(BUILD)/libbetelgeuse.a
@@ -154,10 +157,10 @@ $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	$(CC) $(ALL_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
 $(EMBREE_PEER_OBJ): ALL_CFLAGS += $(EMBREE_CFLAGS)
-$(BUILD)/bench/bench_embree: bench/bench_embree.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
+$(EMBREE_BENCH_BIN): $(BUILD)/bench/%: bench/%.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(EMBREE_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) \
-	  $(SCENES_OBJ) $(STATIC_LINK) $(EMBREE_LIBS)
+	$(CC) $(ALL_CFLAGS) $(EMBREE_CFLAGS) -DBENCH_EMBREE -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) \
+	  $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(EMBREE_LIBS)
 
 examples: all $(EXAMPLE_BIN)
 

@@ -4,6 +4,7 @@
 #define EMBREE_INTERNAL_H
 
 #include <embree3/rtcore.h>
+#include <pthread.h>
 
 #include "embree_peer.h"
 #include "betelgeuse/common/render_settings.h"
@@ -12,12 +13,13 @@
 #define EMBREE_WAVE_MAX 64 /* rays traced together at one level; more are traced in further waves */
 #define EMBREE_MAX_THREADS BG_MAX_THREADS
 
-/* A ray of the Whitted tree, in double: the reference's ray with its skip/inside rule. */
+/* A ray of the Whitted tree, in double: the reference's ray with its skip/inside rule. A ray leaving
+ * a mesh skips only its triangle skip_triangle of object skip (BG_CPU_NONE: the whole object skip). */
 typedef struct peer_ray {
     double o[3], d[3];
     double weight[3];
     uint32_t pixel;  /* index into the tile's radiance */
-    uint32_t skip, inside;
+    uint32_t skip, skip_triangle, inside;
 } peer_ray;
 
 /* The nearest hit found so far for a ray; object BG_CPU_NONE: none. */
@@ -28,30 +30,45 @@ typedef struct peer_hit {
 } peer_hit;
 
 /* A shadow segment towards one light from the hit of ray `ray` of the wave, with what that light
- * brings when nothing blocks it (the BRDF is evaluated only then, as in the reference). */
+ * brings when nothing blocks it (the BRDF is evaluated only then, as in the reference). It never
+ * tests the analytic object self it starts on; from a mesh it skips only triangle self_triangle. */
 typedef struct shadow_ray {
     double o[3], l[3], t_max;
-    uint32_t self, ray;
+    uint32_t self, self_triangle, ray;
     double vl, radiance[3];
 } shadow_ray;
 
 /* One render thread's buffers (embree_trace.c). */
 typedef struct peer_worker peer_worker;
 
+/* Bytes Embree holds, from its memory monitor (called on its build threads, hence the lock). */
+typedef struct peer_memory {
+    pthread_mutex_t lock;
+    long long live;
+} peer_memory;
+
 struct embree_peer {
     RTCDevice device;
     int threads, packet_width;
     char device_error[256];
+    peer_memory memory;
     /* The BVH and the committed state it was built from. */
     RTCScene bvh;
     const bg_scene_state *state;
     uint64_t commit_count;
-    uint32_t *prim_object; /* Embree primitive -> object index (the bounded objects) */
+    uint32_t *prim_object; /* user primitive -> object index (the bounded analytic objects) */
     uint32_t prim_count;
     uint32_t *planes;      /* the unbounded objects, tested outside Embree */
     uint32_t plane_count;
+    /* Mesh objects: one Embree scene of triangles per mesh (instances share it), shown in the BVH by an
+     * instance, or directly by its triangles when one object shows it untransformed. */
+    RTCScene *mesh_scenes;
+    uint32_t mesh_scene_count;
+    uint32_t *geom_object; /* geomID in the BVH -> object index; BG_CPU_NONE for the user geometry */
+    uint32_t geom_count;
+    uint32_t instanced_objects; /* mesh objects shown through an instance */
     float box_pad;
-    double build_ms;
+    double build_ms, commit_ms;
     peer_worker *workers[EMBREE_MAX_THREADS];
 };
 

@@ -73,6 +73,24 @@ typedef struct render_job {
 
 /* ---- shading (docs/shading.md 7-9, the reference's helpers per hit) ------------------------- */
 
+/* How far a ray leaving a mesh starts off the surface, in float ulps (2^-23) of the point's
+ * magnitude: the reference's rule (docs/shading.md 2.10) in float units, since Embree rounds the
+ * origin to float and tests the triangles in float, so the reference's 256 double ulps would vanish.
+ * Measured against the reference (512x512, a terrain of 10^5 triangles 2e-3 units wide placed at
+ * (1, 0, 1), pixels off by more than 8/255): 0 ulps 937 (neighbour triangles shadow the start),
+ * 1 ulp 21, 4 ulps 51, 16 ulps 198, 256 ulps 2082 (the start moves far enough to shift shadows); at
+ * unit scale 4 ulps give 0 and 0 ulps 1. 4 is the GPU's own measured need, 4x the peer's. */
+#define LEAVE_FLOAT_ULPS 4.0
+#define LEAVE_REFERENCE_ULPS 256.0 /* mesh_hit.c's MESH_OFFSET_ULPS, in which hit->offset comes */
+
+/* Where a ray leaving hit in direction dir starts: the hit point for the analytic shapes; off a mesh,
+ * LEAVE_FLOAT_ULPS of the point's magnitude along the geometric normal, to dir's side. */
+static void leave_origin(const bg_cpu_hit *hit, const double dir[3], double origin[3])
+{
+    bg_cpu_hit h = *hit;
+    h.offset *= LEAVE_FLOAT_ULPS / LEAVE_REFERENCE_ULPS * ((double)FLT_EPSILON / DBL_EPSILON);
+    bgi_cpu_leave_origin(&h, dir, origin);
+}
 
 static void trace_wave(const render_job *job, peer_worker *w, int level);
 
@@ -135,8 +153,9 @@ static bool light_segment(const bg_light *light, const peer_shade *s, int r, sha
     out->vl = bg_v3_dot(s->hit.normal, out->l);
     if (!(out->vl > 0.0))
         return false; /* facing away from the light: none of it */
-    bg_v3_set(out->o, s->hit.position[0], s->hit.position[1], s->hit.position[2]);
+    leave_origin(&s->hit, out->l, out->o);
     out->self = s->hit.object;
+    out->self_triangle = s->hit.triangle;
     out->ray = (uint32_t)r;
     return true;
 }
@@ -176,6 +195,7 @@ static void secondary_rays(const render_job *job, peer_worker *w, int level, con
     const bg_cpu_hit *hit = &s->hit;
     const double *n = hit->normal, *d = ray->d;
     const bool thin = is_thin(job->state->objects[hit->object].shape);
+    const bool mesh = job->state->objects[hit->object].mesh != NULL;
     const double v = -bg_v3_dot(n, d);
     /* Interface: exact dielectric Fresnel for closed shapes; thin shapes pass light straight on. */
     double fresnel = 0.0, cos_t = 0.0, eta = 1.0;
@@ -195,12 +215,14 @@ static void secondary_rays(const render_job *job, peer_worker *w, int level, con
     refl.pixel = refr.pixel = ray->pixel;
     const double min_weight = job->settings->min_weight;
     /* A ray leaving a closed object's inside stays inside after reflection (far root); any other
-     * secondary ray leaves the object it starts on and skips it. */
-    const bool stays_inside = !thin && !hit->entering;
+     * secondary ray leaves the object it starts on and skips it. A mesh has no far root: a ray leaving
+     * it skips its triangle only, from just off the surface (leave_origin). */
+    const bool stays_inside = !thin && !hit->entering && !mesh;
+    refl.skip_triangle = refr.skip_triangle = hit->triangle;
     if (bgi_cpu_worth_following(refl.weight, min_weight)) {
         double dn = bg_v3_dot(d, n);
         bg_v3_set(refl.d, d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]);
-        bg_v3_set(refl.o, hit->position[0], hit->position[1], hit->position[2]);
+        leave_origin(hit, refl.d, refl.o);
         refl.skip = stays_inside ? BG_CPU_NONE : hit->object;
         refl.inside = stays_inside ? hit->object : BG_CPU_NONE;
         if (bg_v3_normalize(refl.d))
@@ -213,8 +235,8 @@ static void secondary_rays(const render_job *job, peer_worker *w, int level, con
             for (int i = 0; i < 3; i++)
                 refr.d[i] = eta * d[i] + k * n[i];
         }
-        bg_v3_set(refr.o, hit->position[0], hit->position[1], hit->position[2]);
-        const bool enters = !thin && hit->entering;
+        leave_origin(hit, refr.d, refr.o);
+        const bool enters = !thin && hit->entering && !mesh;
         refr.skip = enters ? BG_CPU_NONE : hit->object;
         refr.inside = enters ? hit->object : BG_CPU_NONE;
         if (bg_v3_normalize(refr.d))
@@ -262,7 +284,7 @@ static void camera_rays(const render_job *job, level_buffers *b, int x0, int y0)
         bgi_cpu_primary_ray(&job->state->camera, img->width, img->height, x, y, r->o, r->d);
         bg_v3_set(r->weight, 1.0, 1.0, 1.0);
         r->pixel = (uint32_t)(ly * TILE + lx);
-        r->skip = r->inside = BG_CPU_NONE;
+        r->skip = r->skip_triangle = r->inside = BG_CPU_NONE;
     }
 }
 
