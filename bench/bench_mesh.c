@@ -2,7 +2,8 @@
  * seen from above at an angle, lit by two point lights with shadows, no bounces. For each point:
  * the time from bg_scene_add_mesh to the end of the first commit (the copy of the arrays and the
  * mesh's tree, which the add builds), the bytes the scene holds afterwards (counted through its
- * allocator), and the frame times of the CPU reference, the GPU renderer and, where Embree is
+ * allocator), and the frame times of the CPU reference, the GPU renderer (BG_PLAN_AUTO, which takes
+ * the tree plan, and the multipass) and, where Embree is
  * installed, the Embree peer (bench/lib/embree_peer.h: Embree's own triangles, the reference's
  * shading), with the peer's BVH build time (its rtcCommitScene calls) and memory.
  *
@@ -41,8 +42,8 @@ static const int quick_n[] = {22, 71, 224};
 #define TARGET_BUILD_MS 1500.0  /* a BVH over 10^6 triangles */
 
 /* The contestants, in round order. */
-enum { PEER, GPU, CPU, CONTESTANTS };
-static const char *const contestant_names[CONTESTANTS] = {"Embree", "GPU", "CPU reference"};
+enum { PEER, GPU, MULTIPASS, CPU, CONTESTANTS };
+static const char *const contestant_names[CONTESTANTS] = {"Embree", "GPU", "multipass", "CPU reference"};
 
 /* ---- a point's scene ---- */
 
@@ -106,11 +107,11 @@ typedef struct point {
     double peer_build_ms, peer_commit_ms; /* medians */
     size_t peer_bytes;  /* held by Embree after its build */
     bg_scene *scene;
-    bg_renderer *renderer;
+    bg_renderer *renderer, *multipass; /* BG_PLAN_AUTO (the tree plan) and BG_PLAN_MULTIPASS */
     embree_peer *peer;
     bench_contestant *c; /* CONTESTANTS of them, in the series' list */
     bg_image images[CONTESTANTS]; /* images[CPU] is the reference */
-    bench_gpu_job gpu;
+    bench_gpu_job gpu, paper;
     bench_cpu_job cpu;
 #ifdef BENCH_EMBREE
     peer_job peer_frame;
@@ -221,14 +222,18 @@ static bool prepare(point *p, bench_gpu *gpu, int side, double *slowest)
     set.max_depth = 0;
     if (gpu) {
         bg_renderer_desc rd = {0};
-        p->renderer = bench_gpu_renderer(gpu, rd); /* one per point: each keeps its caches */
+        p->renderer = bench_gpu_renderer(gpu, rd); /* one per point and plan: each keeps its caches */
+        p->multipass = bench_gpu_renderer(gpu, rd);
     }
     p->gpu.renderer = p->renderer;
     p->gpu.scene = p->scene;
     p->gpu.settings = set;
+    p->paper = p->gpu;
+    p->paper.renderer = p->multipass;
+    p->paper.settings.gpu_plan = BG_PLAN_MULTIPASS;
     p->cpu = (bench_cpu_job){p->scene, set};
-    bench_frame_fn frames[CONTESTANTS] = {NULL, bench_gpu_frame, bench_cpu_frame};
-    void *jobs[CONTESTANTS] = {NULL, &p->gpu, &p->cpu};
+    bench_frame_fn frames[CONTESTANTS] = {NULL, bench_gpu_frame, bench_gpu_frame, bench_cpu_frame};
+    void *jobs[CONTESTANTS] = {NULL, &p->gpu, &p->paper, &p->cpu};
 #ifdef BENCH_EMBREE
     if (!build_peer(p))
         return false;
@@ -256,6 +261,10 @@ static bool prepare(point *p, bench_gpu *gpu, int side, double *slowest)
         p->c[GPU].rounds = 1;
     else
         note(p, "%sGPU not run: %s", p->renderer ? bg_renderer_error_message(p->renderer) : "no GPU context");
+    if (p->multipass && bench_warm_up(&p->c[MULTIPASS]))
+        p->c[MULTIPASS].rounds = 1;
+    else
+        note(p, "%smultipass not run: %s", p->multipass ? bg_renderer_error_message(p->multipass) : "no GPU context");
     for (int i = 0; i < CONTESTANTS; i++)
         if (p->c[i].rounds > 0 && p->c[i].warm_ms > *slowest)
             *slowest = p->c[i].warm_ms;
@@ -270,6 +279,7 @@ static void release(point *p)
     embree_peer_destroy(p->peer);
 #endif
     bg_renderer_destroy(p->renderer);
+    bg_renderer_destroy(p->multipass);
     bg_scene_destroy(p->scene);
 }
 
@@ -303,7 +313,7 @@ static bool run_series(series *s, bench_gpu *gpu, const int *ns, int count, int 
 
 /* ---- output ---- */
 
-#define TABLE_FORMAT(x) "%10" x " %9s %8s %9s %8s | %-24s | %-24s | %-24s | %7s %7s %7s | %-16s | %-16s %s\n"
+#define TABLE_FORMAT(x) "%10" x " %9s %8s %9s %8s | %-24s | %-24s | %-24s | %-24s | %7s %7s %7s %7s | %-16s | %-16s | %-16s %s\n"
 
 static char *ratio_text(double ratio, char *buffer, size_t size)
 {
@@ -336,20 +346,21 @@ static void print_header(const bench_gpu *gpu, const embree_peer *peer, int side
     printf("Embree peer: not built (libembree-dev not installed)\n");
 #endif
     printf("\nTerrain meshes, %dx%d, 2 point lights with shadows, no bounces: the Embree peer, the GPU renderer\n"
-           "(BG_PLAN_AUTO) and the CPU reference, every point in the same interleaved rounds (a round: one frame\n"
+           "(BG_PLAN_AUTO: the tree plan; and BG_PLAN_MULTIPASS) and the CPU reference, every point in the same\n"
+           "interleaved rounds (a round: one frame\n"
            "of each contestant of each point). Build, median of %d: ours (add + commit,\n"
            "one thread), Embree's (its rtcCommitScene calls, on the peer's threads); MB: held after the build.\n"
            "Cells: n rounds, ms median [min-max]; ratios: medians of per-round ratios; errors against the CPU\n"
            "reference.\n",
            side, side, BUILD_RUNS);
     printf(TABLE_FORMAT("s"), "triangles", "build ms", "scene MB", "Emb bld", "Emb MB", "Embree: n ms [min-max]",
-           "GPU: n ms [min-max]", "CPU: n ms [min-max]", "GPU/CPU", "GPU/Emb", "Emb/CPU", "GPU error",
-           "Embree error", "");
+           "GPU: n ms [min-max]", "multipass: n ms", "CPU: n ms [min-max]", "GPU/CPU", "GPU/Emb", "Emb/CPU", "MP/GPU",
+           "GPU error", "multipass error", "Embree error", "");
 }
 
 static void print_row(const point *p)
 {
-    char cell[CONTESTANTS][64], ratio[3][16], err[2][32], ebuild[16], ebytes[16], build[16], mb[16];
+    char cell[CONTESTANTS][64], ratio[4][16], err[3][32], ebuild[16], ebytes[16], build[16], mb[16];
     for (int i = 0; i < CONTESTANTS; i++)
         bench_contestant_text(&p->c[i], cell[i], sizeof cell[i]);
     snprintf(build, sizeof build, "%.1f", p->build_ms);
@@ -357,11 +368,12 @@ static void print_row(const point *p)
     bool peer = p->c[PEER].rounds > 0;
     snprintf(ebuild, sizeof ebuild, peer ? "%.1f" : "-", p->peer_commit_ms);
     snprintf(ebytes, sizeof ebytes, peer ? "%.1f" : "-", p->peer_bytes / 1048576.0);
-    printf(TABLE_FORMAT("u"), p->triangles, build, mb, ebuild, ebytes, cell[PEER], cell[GPU], cell[CPU],
-           ratio_text(bench_ratio(&p->c[GPU], &p->c[CPU]), ratio[0], 16),
+    printf(TABLE_FORMAT("u"), p->triangles, build, mb, ebuild, ebytes, cell[PEER], cell[GPU], cell[MULTIPASS],
+           cell[CPU], ratio_text(bench_ratio(&p->c[GPU], &p->c[CPU]), ratio[0], 16),
            ratio_text(bench_ratio(&p->c[GPU], &p->c[PEER]), ratio[1], 16),
-           ratio_text(bench_ratio(&p->c[PEER], &p->c[CPU]), ratio[2], 16), error_text(p, GPU, err[0], 32),
-           error_text(p, PEER, err[1], 32), p->note);
+           ratio_text(bench_ratio(&p->c[PEER], &p->c[CPU]), ratio[2], 16),
+           ratio_text(bench_ratio(&p->c[MULTIPASS], &p->c[GPU]), ratio[3], 16), error_text(p, GPU, err[0], 32),
+           error_text(p, MULTIPASS, err[2], 32), error_text(p, PEER, err[1], 32), p->note);
     fflush(stdout);
 }
 
@@ -369,7 +381,8 @@ static void print_row(const point *p)
     "triangles,build_ms,scene_bytes,cpu_median_ms,cpu_min_ms,cpu_max_ms,gpu_median_ms,rounds,gpu_min_ms,"   \
     "gpu_max_ms,embree_median_ms,embree_min_ms,embree_max_ms,embree_build_ms,embree_commit_ms,"             \
     "embree_bytes,gpu_over_cpu,gpu_over_embree,embree_over_cpu," BENCH_ERROR_CSV_NAMED("gpu_") ","          \
-    BENCH_ERROR_CSV_NAMED("embree_")
+    BENCH_ERROR_CSV_NAMED("embree_") ",multipass_median_ms,multipass_min_ms,multipass_max_ms,"              \
+    "multipass_over_gpu," BENCH_ERROR_CSV_NAMED("multipass_")
 
 /* A contestant that did not run has -1 times and empty error fields. */
 static void write_row(FILE *csv, const point *p)
@@ -390,6 +403,14 @@ static void write_row(FILE *csv, const point *p)
     fputc(',', csv);
     if (peer)
         bench_error_csv(csv, &p->error[PEER]);
+    else
+        fputs(",,,,", csv);
+    const bench_times *m = &p->c[MULTIPASS].times;
+    bool multi = p->c[MULTIPASS].rounds > 0;
+    fprintf(csv, ",%.3f,%.3f,%.3f,%.4f,", multi ? m->median : -1.0, multi ? m->min : -1.0, multi ? m->max : -1.0,
+            bench_ratio(&p->c[MULTIPASS], &p->c[GPU]));
+    if (multi)
+        bench_error_csv(csv, &p->error[MULTIPASS]);
     else
         fputs(",,,,", csv);
     fputc('\n', csv);
