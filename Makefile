@@ -42,8 +42,14 @@ BG_SRC   := $(sort $(wildcard src/betelgeuse/*/*.c))
 # ar keeps members by file name, so two sources with one name would silently drop one object.
 BG_DUP_NAMES := $(shell printf '%s\n' $(notdir $(BG_SRC)) | sort | uniq -d)
 $(if $(BG_DUP_NAMES),$(error src/betelgeuse: file names used twice: $(BG_DUP_NAMES)))
+# The scene-file library (include/betelgeuse_scenefile.h): JSON scenes and model files, on top of
+# libbetelgeuse's public API, with cJSON and assimp as its own dependencies.
+SF_SRC   := $(sort $(wildcard src/scenefile/*.c))
 MACS_OBJ := $(MACS_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/macs_shaders.o
 BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
+SF_OBJ   := $(SF_SRC:%.c=$(BUILD)/%.o)
+SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp 2>/dev/null || echo -I/usr/include/cjson)
+SF_LIBS   := $(shell pkg-config --libs libcjson assimp 2>/dev/null || echo -lcjson -lassimp)
 
 # Test helpers are tests/util_*.c; every tests/test_*.c is one cmocka suite.
 TEST_UTIL_SRC := $(sort $(wildcard tests/util_*.c))
@@ -79,22 +85,27 @@ MACS_A  := $(BUILD)/libmacs.a
 BG_A    := $(BUILD)/libbetelgeuse.a
 MACS_SO := $(BUILD)/libmacs.so.$(VERSION)
 BG_SO   := $(BUILD)/libbetelgeuse.so.$(VERSION)
+SF_A    := $(BUILD)/libbetelgeuse_scenefile.a
+SF_SO   := $(BUILD)/libbetelgeuse_scenefile.so.$(VERSION)
 
 STATIC_LINK := $(BG_A) $(MACS_A) $(BG_LIBS) $(MACS_LIBS)
 
 # The libraries export exactly the functions their headers mark (MACS_API, BG_API); every other
-# symbol is hidden from the shared libraries and carries the prefix macsi_ or bgi_ in the archives
+# symbol is hidden from the shared libraries and carries the prefix macsi_ or bgi_ (bgi_sf_ in the
+# scene-file library) in the archives
 # (tests/check_symbols.sh holds both to it).
-$(MACS_OBJ) $(BG_OBJ): ALL_CFLAGS += -fvisibility=hidden
+$(MACS_OBJ) $(BG_OBJ) $(SF_OBJ): ALL_CFLAGS += -fvisibility=hidden
+$(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
 .PHONY: FORCE all check check-symbols check-examples examples bench bench-programs stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
-all: $(MACS_A) $(BG_A) $(MACS_SO) $(BG_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc
+all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
+  $(BUILD)/betelgeuse_scenefile.pc
 
-$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
+$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/scenefile/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
@@ -120,6 +131,9 @@ $(MACS_A): $(MACS_OBJ)
 $(BG_A): $(BG_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
+$(SF_A): $(SF_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
 $(MACS_SO): $(MACS_OBJ)
 	$(CC) -shared -Wl,-soname,libmacs.so.$(SOVERSION) $(ALL_LDFLAGS) -o $@ $^ $(MACS_LIBS)
 	ln -sf libmacs.so.$(VERSION) $(BUILD)/libmacs.so.$(SOVERSION)
@@ -128,6 +142,11 @@ $(BG_SO): $(BG_OBJ) $(MACS_SO)
 	$(CC) -shared -Wl,-soname,libbetelgeuse.so.$(SOVERSION) $(ALL_LDFLAGS) -o $@ $(BG_OBJ) -L$(BUILD) -lmacs $(BG_LIBS)
 	ln -sf libbetelgeuse.so.$(VERSION) $(BUILD)/libbetelgeuse.so.$(SOVERSION)
 	ln -sf libbetelgeuse.so.$(SOVERSION) $(BUILD)/libbetelgeuse.so
+$(SF_SO): $(SF_OBJ) $(BG_SO)
+	$(CC) -shared -Wl,-soname,libbetelgeuse_scenefile.so.$(SOVERSION) $(ALL_LDFLAGS) -o $@ $(SF_OBJ) -L$(BUILD) \
+	  -lbetelgeuse $(SF_LIBS)
+	ln -sf libbetelgeuse_scenefile.so.$(VERSION) $(BUILD)/libbetelgeuse_scenefile.so.$(SOVERSION)
+	ln -sf libbetelgeuse_scenefile.so.$(SOVERSION) $(BUILD)/libbetelgeuse_scenefile.so
 
 # Always rewritten, so that the PREFIX of this make call (e.g. at install) is the one recorded.
 $(BUILD)/%.pc: FORCE
@@ -137,12 +156,21 @@ $(BUILD)/%.pc: FORCE
 	     echo 'Name: macs'; echo 'Description: GPGPU render passes over OpenGL 2.1'; \
 	     echo 'Version: $(VERSION)'; echo 'Libs: -L$${libdir} -lmacs'; \
 	     echo 'Libs.private: $(MACS_LIBS)'; \
+	   elif [ "$*" = betelgeuse_scenefile ]; then \
+	     echo 'Name: betelgeuse_scenefile'; echo 'Description: Betelgeuse scene files (JSON) and model files'; \
+	     echo 'Version: $(VERSION)'; echo 'Requires: betelgeuse'; echo 'Libs: -L$${libdir} -lbetelgeuse_scenefile'; \
+	     echo 'Libs.private: $(SF_LIBS)'; \
 	   else \
 	     echo 'Name: betelgeuse'; echo 'Description: Whitted ray tracing through OpenGL 2.1'; \
 	     echo 'Version: $(VERSION)'; echo 'Requires: macs'; echo 'Libs: -L$${libdir} -lbetelgeuse'; \
 	     echo 'Libs.private: $(BG_LIBS)'; \
 	   fi; \
 	   echo 'Cflags: -I$${includedir}'; } > $@
+
+# The scene-file suites also link the scene-file library and its dependencies.
+$(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) $(TEST_LIBS)
 
 $(BUILD)/tests/%: tests/%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
@@ -239,21 +267,24 @@ stress: all $(BENCH_BIN)
 
 install: all
 	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
-	install -m 644 include/macs.h include/betelgeuse.h $(DESTDIR)$(INCDIR)/
-	install -m 644 $(MACS_A) $(BG_A) $(DESTDIR)$(LIBDIR)/
-	install -m 755 $(MACS_SO) $(BG_SO) $(DESTDIR)$(LIBDIR)/
+	install -m 644 include/macs.h include/betelgeuse.h include/betelgeuse_scenefile.h $(DESTDIR)$(INCDIR)/
+	install -m 644 $(MACS_A) $(BG_A) $(SF_A) $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(MACS_SO) $(BG_SO) $(SF_SO) $(DESTDIR)$(LIBDIR)/
 	ln -sf libmacs.so.$(VERSION) $(DESTDIR)$(LIBDIR)/libmacs.so.$(SOVERSION)
 	ln -sf libmacs.so.$(SOVERSION) $(DESTDIR)$(LIBDIR)/libmacs.so
 	ln -sf libbetelgeuse.so.$(VERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse.so.$(SOVERSION)
 	ln -sf libbetelgeuse.so.$(SOVERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse.so
-	install -m 644 $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc $(DESTDIR)$(LIBDIR)/pkgconfig/
+	ln -sf libbetelgeuse_scenefile.so.$(VERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse_scenefile.so.$(SOVERSION)
+	ln -sf libbetelgeuse_scenefile.so.$(SOVERSION) $(DESTDIR)$(LIBDIR)/libbetelgeuse_scenefile.so
+	install -m 644 $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc $(BUILD)/betelgeuse_scenefile.pc $(DESTDIR)$(LIBDIR)/pkgconfig/
 
 # The pkgconfig folder goes too when nothing else is left in it (install made it where it was
 # missing); lib and include stay: they are the prefix's own (Debian ships /usr/local/include empty).
 uninstall:
-	rm -f $(DESTDIR)$(INCDIR)/macs.h $(DESTDIR)$(INCDIR)/betelgeuse.h
-	rm -f $(DESTDIR)$(LIBDIR)/libmacs.* $(DESTDIR)$(LIBDIR)/libbetelgeuse.*
+	rm -f $(DESTDIR)$(INCDIR)/macs.h $(DESTDIR)$(INCDIR)/betelgeuse.h $(DESTDIR)$(INCDIR)/betelgeuse_scenefile.h
+	rm -f $(DESTDIR)$(LIBDIR)/libmacs.* $(DESTDIR)$(LIBDIR)/libbetelgeuse.* $(DESTDIR)$(LIBDIR)/libbetelgeuse_scenefile.*
 	rm -f $(DESTDIR)$(LIBDIR)/pkgconfig/macs.pc $(DESTDIR)$(LIBDIR)/pkgconfig/betelgeuse.pc
+	rm -f $(DESTDIR)$(LIBDIR)/pkgconfig/betelgeuse_scenefile.pc
 	rmdir $(DESTDIR)$(LIBDIR)/pkgconfig 2>/dev/null || true
 
 clean:

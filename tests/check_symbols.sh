@@ -1,5 +1,5 @@
 #!/bin/sh
-# Holds both libraries to their headers. A shared library must export exactly the functions its
+# Holds the libraries to their headers. A shared library must export exactly the functions its
 # header marks public (MACS_API, BG_API), nothing more and nothing less; a static archive may hold
 # internal symbols too, but each one must carry the library's internal prefix (macsi_, bgi_), so
 # that a program can define any name outside the four reserved prefixes without replacing or
@@ -47,4 +47,5 @@ check() {
 
 check macs include/macs.h MACS_API macs_ macsi_
 check betelgeuse include/betelgeuse.h BG_API bg_ bgi_
+check betelgeuse_scenefile include/betelgeuse_scenefile.h BG_API bg_scenefile_ bgi_sf_
 exit $failed

@@ -1,0 +1,93 @@
+/* Betelgeuse scene files: JSON scenes (docs/scene_format.md) and model files (OBJ with MTL, PLY, STL,
+ * glTF 2.0 and whatever else assimp reads) loaded into a caller's bg_scene, with the camera, image
+ * size and render settings a command needs to render them.
+ *
+ * A library of its own (libbetelgeuse_scenefile, pkg-config betelgeuse_scenefile) so that
+ * libbetelgeuse keeps its dependencies: this one adds cJSON and assimp. It fills the scene through
+ * the public API of betelgeuse.h only.
+ *
+ * Errors: every loader returns a bg_status and writes a message into the caller's buffer (when not
+ * NULL) of the form "FILE: JSON.PATH: reason", e.g.
+ *     scene.json: objects[3].sphere.radius: must be > 0 (got -1)
+ * Bad input (bad JSON, wrong types, unknown keys, out-of-range or non-finite values, unknown
+ * material or texture names) is BG_ERR_INVALID_ARGUMENT; a file that cannot be read (the scene, a
+ * texture, a model) is BG_ERR_IO; BG_ERR_OUT_OF_MEMORY and BG_ERR_LIMIT come from the scene. The
+ * message also goes to the logger at BG_LOG_ERROR; the library never prints. On failure the scene
+ * may hold part of what the file adds (destroy it); on success it is committed.
+ */
+#ifndef BETELGEUSE_SCENEFILE_H
+#define BETELGEUSE_SCENEFILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdbool.h>
+
+#include "betelgeuse.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults: no logger; base_dir NULL (the current folder); name NULL ("<string>"). */
+typedef struct bg_scenefile_desc {
+    bg_logger logger;     /* errors (BG_LOG_ERROR) and what a model's materials lose (BG_LOG_WARNING) */
+    const char *base_dir; /* bg_scenefile_load_string only: the folder relative paths resolve
+                             against (file loads use the scene file's own folder) */
+    const char *name;     /* bg_scenefile_load_string only: the text's name in messages */
+} bg_scenefile_desc;
+
+/* The image a scene asks for. Defaults: 640 x 480, 1 sample per pixel. samples is the scene's wish:
+ * the caller passes it on to the renderer's settings where they have a field for it. */
+typedef struct bg_scenefile_image {
+    int width, height; /* 1 .. 16384 */
+    int samples;       /* 1 .. 1024 */
+} bg_scenefile_image;
+
+/* What was loaded, for a command's `info`: counts over the items the loader added, and the world
+ * box of the bounded objects (every analytic shape but the plane, every mesh vertex). */
+typedef struct bg_scenefile_summary {
+    size_t objects;      /* analytic objects and mesh objects, instances included */
+    size_t meshes;       /* mesh objects (instances included) */
+    uint64_t triangles;  /* summed over the mesh objects (an instance counts its triangles again) */
+    uint64_t vertices;   /* summed the same way */
+    size_t lights;
+    size_t materials;
+    size_t textures;
+    bool unbounded;      /* a plane is in the scene (it is not in the box) */
+    bool bounded;        /* some object is bounded: bounds_min and bounds_max hold its box */
+    bg_vec3 bounds_min, bounds_max;
+} bg_scenefile_summary;
+
+/* A loaded scene's settings; caller-owned, filled by the loaders (the scene itself holds the
+ * objects, materials, textures, lights, camera and ambient light). */
+typedef struct bg_scenefile_result {
+    bg_camera camera;              /* also set on the scene */
+    bg_scenefile_image image;
+    bg_render_settings settings;   /* bg_render_settings_init() with the file's max_depth,
+                                      background and encoding */
+    double ambient[3];             /* also set on the scene */
+    bool camera_from_file;         /* false: the default camera (JSON) or one framing the bounds (model) */
+    bool lights_from_file;         /* false for a model without lights: a default light was added */
+    bg_scenefile_summary summary;
+} bg_scenefile_result;
+
+/* Loads a JSON scene file (docs/scene_format.md) into scene, which should be empty. */
+BG_API bg_status bg_scenefile_load(const char *path, const bg_scenefile_desc *desc, bg_scene *scene,
+                                   bg_scenefile_result *out, char *message, size_t message_size);
+/* The same from JSON text (tests, generated scenes); desc->base_dir and desc->name apply. */
+BG_API bg_status bg_scenefile_load_string(const char *text, const bg_scenefile_desc *desc, bg_scene *scene,
+                                          bg_scenefile_result *out, char *message, size_t message_size);
+/* Loads a model file (OBJ, PLY, STL, glTF 2.0, ...) as a whole scene: its meshes with their materials
+ * (docs/scene_format.md, "Model files"), its first camera and its lights where it has them, else a
+ * camera framing its bounds and one point light; the image's aspect follows the file's camera. */
+BG_API bg_status bg_scenefile_load_model(const char *path, const bg_scenefile_desc *desc, bg_scene *scene,
+                                         bg_scenefile_result *out, char *message, size_t message_size);
+/* Loads either: a path ending in ".json" (any case) as a scene file, any other as a model file. */
+BG_API bg_status bg_scenefile_load_any(const char *path, const bg_scenefile_desc *desc, bg_scene *scene,
+                                       bg_scenefile_result *out, char *message, size_t message_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

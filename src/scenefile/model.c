@@ -1,0 +1,448 @@
+/* Model files through assimp's C API: every triangle mesh of the file's node tree becomes a mesh
+ * object (a mesh that several nodes show is added once and instanced), placed by the node's world
+ * transform after the caller's; materials are mapped as docs/scene_format.md ("Model files") says. */
+#include "scenefile_internal.h"
+
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+/* Triangulate polygons; join identical vertices (formats such as STL and assimp's OBJ reader give
+ * three per face); sort by primitive type so that point and line meshes stand apart and are skipped. */
+#define MODEL_FLAGS (aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType)
+
+/* Node trees deeper than this are refused rather than risking the stack. */
+#define MODEL_MAX_DEPTH 256
+
+typedef struct model {
+    bgi_sf_ctx *ctx;
+    const bgi_sf_model_desc *desc;
+    const struct aiScene *sc;
+    char dir[BGI_SF_PATH_MAX];  /* the model's folder: its texture paths are relative to it */
+    uint32_t *materials;        /* per file material, 0 until mapped */
+    uint32_t *first;            /* per file mesh, its first object (later nodes instance it) */
+    size_t added;               /* mesh objects added */
+} model;
+
+static bg_mat4 from_ai(const struct aiMatrix4x4 *a)
+{
+    bg_mat4 m;
+    const ai_real *r[4] = {&a->a1, &a->b1, &a->c1, &a->d1};
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            m.m[i][j] = (double)r[i][j];
+    return m;
+}
+
+static bool is_identity(bg_mat4 m)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (m.m[i][j] != (i == j ? 1.0 : 0.0))
+                return false;
+    return true;
+}
+
+/* a then b, skipping identities so that an untransformed model keeps the caller's bits. */
+static bg_mat4 compose(bg_mat4 outer, bg_mat4 inner)
+{
+    if (is_identity(inner))
+        return outer;
+    if (is_identity(outer))
+        return inner;
+    return bg_mat4_mul(outer, inner);
+}
+
+static bool color_of(const struct aiMaterial *am, const char *key, unsigned type, unsigned index, double rgb[3])
+{
+    struct aiColor4D c;
+    if (aiGetMaterialColor(am, key, type, index, &c) != aiReturn_SUCCESS)
+        return false;
+    double v[3] = {c.r, c.g, c.b};
+    for (int i = 0; i < 3; i++)
+        rgb[i] = isfinite(v[i]) && v[i] > 0 ? v[i] : 0.0;
+    return true;
+}
+
+static bool float_of(const struct aiMaterial *am, const char *key, unsigned type, unsigned index, double *out)
+{
+    ai_real f;
+    unsigned int n = 1;
+    if (aiGetMaterialFloatArray(am, key, type, index, &f, &n) != aiReturn_SUCCESS || n < 1 || !isfinite(f))
+        return false;
+    *out = f;
+    return true;
+}
+
+static double clamp01(double x)
+{
+    return x < 0 ? 0 : x > 1 ? 1 : x;
+}
+
+/* The material's colour texture: a PNG file relative to the model loads (a missing one is an
+ * error, as every missing file is); embedded or other formats are left out with a warning. */
+static bg_status color_texture(model *md, const struct aiMaterial *am, const char *mname, uint32_t *out)
+{
+    struct aiString s;
+    enum aiTextureType types[2] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
+    bool found = false;
+    for (int i = 0; i < 2 && !found; i++)
+        found = aiGetMaterialTexture(am, types[i], 0, &s, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS;
+    if (!found)
+        return BG_OK;
+    const char *file = s.data;
+    if (file[0] == '*') {
+        bgi_sf_warn(md->ctx, "material \"%s\": its embedded texture %s is left out (only PNG files are read)", mname,
+                    file);
+        return BG_OK;
+    }
+    size_t len = strlen(file);
+    if (len < 4 || strcasecmp(file + len - 4, ".png") != 0) {
+        bgi_sf_warn(md->ctx, "material \"%s\": texture \"%s\" is left out (only PNG files are read)", mname, file);
+        return BG_OK;
+    }
+    char path[BGI_SF_PATH_MAX];
+    int n = snprintf(path, sizeof path, "%s%s", file[0] == '/' ? "" : md->dir, file);
+    if (n < 0 || n >= (int)sizeof path)
+        return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "material \"%s\": texture path too long", mname);
+    bg_status st = bg_scene_load_texture_png(md->ctx->scene, path, NULL, out);
+    if (st != BG_OK)
+        return bgi_sf_fail(md->ctx, st, "material \"%s\" of %s: %s", mname, md->desc->path,
+                           bg_scene_error_message(md->ctx->scene));
+    md->ctx->out->summary.textures++;
+    return BG_OK;
+}
+
+/* The mapping of docs/scene_format.md, "Materials of model files". */
+static bg_status map_material(model *md, unsigned index, uint32_t *out)
+{
+    if (index >= md->sc->mNumMaterials)
+        return bgi_sf_default_material(md->ctx, out);
+    if (md->materials[index]) {
+        *out = md->materials[index];
+        return BG_OK;
+    }
+    const struct aiMaterial *am = md->sc->mMaterials[index];
+    struct aiString name;
+    const char *mname = aiGetMaterialString(am, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS ? name.data : "";
+    bg_material m = bg_material_init();
+    double rgb[3], x;
+    bool pbr = color_of(am, AI_MATKEY_BASE_COLOR, rgb);
+    if (pbr || color_of(am, AI_MATKEY_COLOR_DIFFUSE, rgb))
+        m.base.reflectance = (bg_color_param){rgb[0], rgb[1], rgb[2], 0};
+    BGI_SF_TRY(color_texture(md, am, mname, &m.base.reflectance.texture));
+    if (pbr) {
+        double metallic = 0.0, roughness = 1.0;
+        float_of(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
+        float_of(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness);
+        roughness = clamp01(roughness);
+        if (metallic >= 0.5) {
+            m.base.roughness.value = roughness; /* a metal: the base colour is its glossy reflectance */
+        } else if (roughness < 1.0) {
+            m.has_coat = true;                  /* a dielectric: diffuse base under a 4% coat */
+            m.coat.roughness.value = roughness;
+        }
+    } else if (color_of(am, AI_MATKEY_COLOR_SPECULAR, rgb) && (rgb[0] > 0 || rgb[1] > 0 || rgb[2] > 0)) {
+        m.has_coat = true;
+        m.coat.reflectance = (bg_color_param){rgb[0], rgb[1], rgb[2], 0};
+        if (float_of(am, AI_MATKEY_SHININESS, &x) && x >= 0)
+            m.coat.roughness.value = clamp01(sqrt(2.0 / (x + 2.0)));
+    }
+    if (color_of(am, AI_MATKEY_COLOR_AMBIENT, rgb) && (rgb[0] > 0 || rgb[1] > 0 || rgb[2] > 0))
+        m.ambient = (bg_color_param){rgb[0], rgb[1], rgb[2], 0};
+    if (color_of(am, AI_MATKEY_COLOR_EMISSIVE, rgb))
+        m.emission = (bg_color_param){rgb[0], rgb[1], rgb[2], 0};
+    if (float_of(am, AI_MATKEY_OPACITY, &x))
+        m.transparency.value = clamp01(1.0 - x);
+    if (float_of(am, AI_MATKEY_REFRACTI, &x) && x > 0)
+        m.ior = x;
+    static const enum aiTextureType unmapped[] = {aiTextureType_SPECULAR, aiTextureType_NORMALS, aiTextureType_HEIGHT,
+                                                  aiTextureType_OPACITY, aiTextureType_EMISSIVE,
+                                                  aiTextureType_SHININESS};
+    for (size_t i = 0; i < sizeof unmapped / sizeof unmapped[0]; i++)
+        if (aiGetMaterialTextureCount(am, unmapped[i]) > 0)
+            bgi_sf_warn(md->ctx, "material \"%s\": its %s texture is left out (only the colour texture is mapped)",
+                        mname, aiTextureTypeToString(unmapped[i]));
+    bg_status st = bg_scene_add_material(md->ctx->scene, &m, &md->materials[index]);
+    if (st != BG_OK)
+        return bgi_sf_scene_fail(md->ctx, st, "the model's material");
+    md->ctx->out->summary.materials++;
+    *out = md->materials[index];
+    return BG_OK;
+}
+
+/* Smooth normals: at each vertex the sum of the face normals around it weighted by area (a cross
+ * product of two edges is twice the area along the normal); the renderer normalises. */
+static void smooth_normals(const float *p, size_t nv, const uint32_t *idx, size_t nt, float *n)
+{
+    memset(n, 0, nv * 3 * sizeof *n);
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *i = &idx[3 * t];
+        const float *a = &p[3 * i[0]], *b = &p[3 * i[1]], *c = &p[3 * i[2]];
+        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++)
+                n[3 * i[k] + j] += (float)f[j];
+    }
+}
+
+static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t material, bg_mat4 m, uint32_t *out)
+{
+    bgi_sf_ctx *ctx = md->ctx;
+    size_t nv = am->mNumVertices, nt = 0;
+    for (unsigned f = 0; f < am->mNumFaces; f++)
+        nt += am->mFaces[f].mNumIndices == 3;
+    bool file_normals = md->desc->normals == BGI_SF_NORMALS_FILE && am->mNormals;
+    bool normals = file_normals || md->desc->normals == BGI_SF_NORMALS_SMOOTH;
+    bool uvs = am->mTextureCoords[0] != NULL;
+    float *p = malloc(nv * 3 * sizeof *p), *n = normals ? malloc(nv * 3 * sizeof *n) : NULL;
+    float *uv = uvs ? malloc(nv * 2 * sizeof *uv) : NULL;
+    uint32_t *idx = malloc(nt * 3 * sizeof *idx);
+    bg_status st = BG_OK;
+    if (!p || !idx || (normals && !n) || (uvs && !uv)) {
+        st = bgi_sf_fail(ctx, BG_ERR_OUT_OF_MEMORY, "out of memory for mesh \"%s\" of %s (%zu vertices)",
+                         am->mName.data, md->desc->path, nv);
+        goto done;
+    }
+    for (size_t v = 0; v < nv; v++) {
+        p[3 * v] = am->mVertices[v].x;
+        p[3 * v + 1] = am->mVertices[v].y;
+        p[3 * v + 2] = am->mVertices[v].z;
+        if (file_normals) {
+            n[3 * v] = am->mNormals[v].x;
+            n[3 * v + 1] = am->mNormals[v].y;
+            n[3 * v + 2] = am->mNormals[v].z;
+        }
+        if (uvs) {
+            uv[2 * v] = am->mTextureCoords[0][v].x;
+            uv[2 * v + 1] = am->mTextureCoords[0][v].y;
+        }
+    }
+    size_t t = 0;
+    for (unsigned f = 0; f < am->mNumFaces; f++)
+        if (am->mFaces[f].mNumIndices == 3) {
+            memcpy(&idx[3 * t], am->mFaces[f].mIndices, 3 * sizeof *idx);
+            t++;
+        }
+    if (normals && !file_normals)
+        smooth_normals(p, nv, idx, nt, n);
+    bg_mesh_desc d = bg_mesh_desc_init(material);
+    d.positions = p;
+    d.vertex_count = nv;
+    d.indices = idx;
+    d.triangle_count = nt;
+    d.normals = n;
+    d.uvs = uv;
+    d.transform = m;
+    d.casts_shadows = md->desc->casts_shadows;
+    st = bg_scene_add_mesh(ctx->scene, &d, out);
+    if (st != BG_OK) {
+        char what[512];
+        snprintf(what, sizeof what, "mesh \"%.200s\" of %.255s", am->mName.data, md->desc->path);
+        st = bgi_sf_scene_fail(ctx, st, what);
+    }
+done:
+    free(p);
+    free(n);
+    free(uv);
+    free(idx);
+    return st;
+}
+
+static bg_status add_mesh(model *md, unsigned index, bg_mat4 m)
+{
+    const struct aiMesh *am = md->sc->mMeshes[index];
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+        return BG_OK; /* points and lines: nothing a ray tracer can hit */
+    uint32_t material = md->desc->material;
+    if (!material)
+        BGI_SF_TRY(map_material(md, am->mMaterialIndex, &material));
+    uint32_t id;
+    if (md->first[index]) {
+        bg_status st = bg_scene_add_mesh_instance(md->ctx->scene, md->first[index], &m, material,
+                                                  md->desc->casts_shadows, &id);
+        if (st != BG_OK)
+            return bgi_sf_scene_fail(md->ctx, st, "a mesh instance");
+    } else {
+        BGI_SF_TRY(add_new_mesh(md, am, material, m, &id));
+        md->first[index] = id;
+    }
+    bg_scenefile_summary *s = &md->ctx->out->summary;
+    s->objects++;
+    s->meshes++;
+    for (unsigned f = 0; f < am->mNumFaces; f++)
+        s->triangles += am->mFaces[f].mNumIndices == 3;
+    s->vertices += am->mNumVertices;
+    for (unsigned v = 0; v < am->mNumVertices; v++)
+        bgi_sf_summary_point(s, m, am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
+    md->added++;
+    return BG_OK;
+}
+
+static bg_status walk(model *md, const struct aiNode *node, bg_mat4 parent, int depth)
+{
+    if (depth > MODEL_MAX_DEPTH)
+        return bgi_sf_fail(md->ctx, BG_ERR_LIMIT, "%s: the node tree is deeper than %d", md->desc->path, MODEL_MAX_DEPTH);
+    bg_mat4 world = compose(parent, from_ai(&node->mTransformation));
+    for (unsigned i = 0; i < node->mNumMeshes; i++)
+        if (node->mMeshes[i] < md->sc->mNumMeshes)
+            BGI_SF_TRY(add_mesh(md, node->mMeshes[i], world));
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        BGI_SF_TRY(walk(md, node->mChildren[i], world, depth + 1));
+    return BG_OK;
+}
+
+/* The world transform of the node named name (cameras and lights are placed by theirs). */
+static bool find_node(const struct aiNode *node, const char *name, bg_mat4 parent, bg_mat4 *out, int depth)
+{
+    if (depth > MODEL_MAX_DEPTH)
+        return false;
+    bg_mat4 world = compose(parent, from_ai(&node->mTransformation));
+    if (strcmp(node->mName.data, name) == 0) {
+        *out = world;
+        return true;
+    }
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        if (find_node(node->mChildren[i], name, world, out, depth + 1))
+            return true;
+    return false;
+}
+
+static bg_vec3 apply(bg_mat4 m, struct aiVector3D v, double w)
+{
+    double p[3];
+    for (int r = 0; r < 3; r++)
+        p[r] = m.m[r][0] * v.x + m.m[r][1] * v.y + m.m[r][2] * v.z + m.m[r][3] * w;
+    return bg_vec3_make(p[0], p[1], p[2]);
+}
+
+static bg_mat4 node_world(model *md, const char *name)
+{
+    bg_mat4 m = md->desc->transform;
+    if (!find_node(md->sc->mRootNode, name, md->desc->transform, &m, 0))
+        m = md->desc->transform;
+    return m;
+}
+
+static bool is_gltf(const char *path)
+{
+    size_t n = strlen(path);
+    return (n >= 5 && strcasecmp(path + n - 5, ".gltf") == 0) || (n >= 4 && strcasecmp(path + n - 4, ".glb") == 0);
+}
+
+/* The file's first camera, placed by its node. Two quirks of assimp 5's glTF 2.0 reader are undone
+ * here (docs/scene_format.md, "Model files"): it gives the camera's position already in world space
+ * (the node's translation baked in), and as mHorizontalFOV the vertical field of view times the
+ * aspect ratio rather than half the horizontal angle that other readers give. */
+static void read_camera(model *md)
+{
+    const struct aiCamera *c = md->sc->mCameras[0];
+    bg_mat4 m = node_world(md, c->mName.data);
+    bg_scenefile_result *out = md->ctx->out;
+    bool gltf = is_gltf(md->desc->path);
+    struct aiVector3D origin = {0, 0, 0};
+    bg_vec3 pos = apply(m, gltf ? origin : c->mPosition, 1.0);
+    bg_vec3 dir = apply(m, c->mLookAt, 0.0);
+    out->camera.position = pos;
+    out->camera.look_at = bg_vec3_make(pos.x + dir.x, pos.y + dir.y, pos.z + dir.z);
+    out->camera.up = apply(m, c->mUp, 0.0);
+    bool has_aspect = c->mAspect > 0 && isfinite(c->mAspect);
+    double aspect = has_aspect ? c->mAspect : (double)out->image.width / out->image.height;
+    if (has_aspect) {
+        double h = floor(out->image.width / aspect + 0.5);
+        out->image.height = h < 1 ? 1 : h > 16384 ? 16384 : (int)h;
+    }
+    double fov = 0.0;
+    if (c->mHorizontalFOV > 0 && isfinite(c->mHorizontalFOV))
+        fov = gltf ? c->mHorizontalFOV / (has_aspect ? aspect : 1.0) : 2.0 * atan(tan(c->mHorizontalFOV) / aspect);
+    fov *= 180.0 / 3.14159265358979323846;
+    if (fov > 0 && fov < 180)
+        out->camera.fov_y_degrees = fov;
+    out->camera_from_file = true;
+}
+
+static bg_status read_lights(model *md)
+{
+    for (unsigned i = 0; i < md->sc->mNumLights; i++) {
+        const struct aiLight *al = md->sc->mLights[i];
+        if (al->mType != aiLightSource_POINT && al->mType != aiLightSource_DIRECTIONAL &&
+            al->mType != aiLightSource_SPOT) {
+            bgi_sf_warn(md->ctx, "%s: light \"%s\" is left out (only point, spot and directional lights)",
+                        md->desc->path, al->mName.data);
+            continue;
+        }
+        bg_mat4 m = node_world(md, al->mName.data);
+        bg_light l = bg_light_init();
+        l.type = al->mType == aiLightSource_DIRECTIONAL ? BG_LIGHT_DIRECTIONAL : BG_LIGHT_POINT;
+        l.position = apply(m, al->mPosition, 1.0);
+        l.direction = apply(m, al->mDirection, 0.0);
+        double c[3] = {al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b};
+        for (int k = 0; k < 3; k++)
+            l.color[k] = isfinite(c[k]) && c[k] > 0 ? c[k] : 0.0;
+        double a[3] = {al->mAttenuationConstant, al->mAttenuationLinear, al->mAttenuationQuadratic};
+        if (al->mType != aiLightSource_DIRECTIONAL && isfinite(a[0] + a[1] + a[2]) && a[0] >= 0 && a[1] >= 0 &&
+            a[2] >= 0 && a[0] + a[1] + a[2] > 0)
+            memcpy(l.attenuation, a, sizeof a);
+        if (al->mType == aiLightSource_SPOT) {
+            double cut = al->mAngleOuterCone * 180.0 / 3.14159265358979323846;
+            l.spot_cutoff_degrees = cut > 0 && cut <= 90 ? cut : 90;
+        }
+        uint32_t id;
+        bg_status st = bg_scene_add_light(md->ctx->scene, &l, &id);
+        if (st != BG_OK) {
+            char what[512];
+            snprintf(what, sizeof what, "light \"%.200s\" of %.255s", al->mName.data, md->desc->path);
+            return bgi_sf_scene_fail(md->ctx, st, what);
+        }
+        md->ctx->out->summary.lights++;
+        md->ctx->out->lights_from_file = true;
+    }
+    return BG_OK;
+}
+
+bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
+{
+    FILE *f = fopen(desc->path, "rb");
+    if (!f)
+        return bgi_sf_fail(ctx, BG_ERR_IO, "cannot open model file \"%s\": %s", desc->path, strerror(errno));
+    fclose(f);
+    const struct aiScene *sc = aiImportFile(desc->path, MODEL_FLAGS);
+    if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
+        bg_status st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "cannot read model file \"%s\": %s", desc->path,
+                                   sc ? "the file holds no complete scene" : aiGetErrorString());
+        aiReleaseImport(sc);
+        return st;
+    }
+    model md = {ctx, desc, sc, "", NULL, NULL, 0};
+    const char *slash = strrchr(desc->path, '/');
+    size_t dl = slash ? (size_t)(slash - desc->path) + 1 : 0;
+    memcpy(md.dir, desc->path, dl);
+    md.dir[dl] = '\0';
+    md.materials = calloc(sc->mNumMaterials + 1, sizeof *md.materials);
+    md.first = calloc(sc->mNumMeshes + 1, sizeof *md.first);
+    bg_status st = BG_OK;
+    if (!md.materials || !md.first)
+        st = bgi_sf_fail(ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", desc->path);
+    if (st == BG_OK)
+        st = walk(&md, sc->mRootNode, desc->transform, 0);
+    if (st == BG_OK && md.added == 0)
+        st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\" holds no triangles", desc->path);
+    if (st == BG_OK && desc->scene_items) {
+        if (sc->mNumCameras > 0)
+            read_camera(&md);
+        st = read_lights(&md);
+    }
+    free(md.materials);
+    free(md.first);
+    aiReleaseImport(sc);
+    return st;
+}

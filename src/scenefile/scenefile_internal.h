@@ -1,0 +1,152 @@
+/* The scene-file library's inside: one load context that every reader shares. It holds where the
+ * reader stands in the JSON (path, e.g. "objects[3].sphere.radius"), so that every error can name
+ * the file, the path and the reason through one sink (bgi_sf_fail), and the name tables that JSON
+ * references resolve against. */
+#ifndef BG_SCENEFILE_INTERNAL_H
+#define BG_SCENEFILE_INTERNAL_H
+
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cJSON.h>
+
+#include "betelgeuse_scenefile.h"
+
+/* The longest path (file names, JSON paths) the loader builds; longer ones are refused by name. */
+#define BGI_SF_PATH_MAX 4096
+
+/* A name given in the file ("textures": {"earth": ...}) and the handle the scene gave its item. */
+typedef struct bgi_sf_name {
+    char *name;
+    uint32_t handle;
+} bgi_sf_name;
+
+typedef struct bgi_sf_names {
+    bgi_sf_name *items;
+    size_t count, capacity;
+} bgi_sf_names;
+
+typedef struct bgi_sf_ctx {
+    const char *file;            /* the file's name in messages */
+    char dir[BGI_SF_PATH_MAX];   /* folder relative paths resolve against; "" = the current one */
+    bg_logger logger;
+    bg_scene *scene;
+    bg_scenefile_result *out;
+    char *message;
+    size_t message_size;
+    bg_status status;            /* the first failure; later ones keep its message */
+    char path[1024];             /* where the reader stands in the JSON */
+    size_t path_len;
+    bgi_sf_names textures, materials;
+    uint32_t default_material;   /* bg_material_init(), added when an object names none */
+} bgi_sf_ctx;
+
+#define BGI_SF_TRY(call)              \
+    do {                              \
+        bg_status st_ = (call);       \
+        if (st_ != BG_OK)             \
+            return st_;               \
+    } while (0)
+
+/* ---- context.c ---- */
+void bgi_sf_ctx_init(bgi_sf_ctx *ctx, const char *file, const bg_scenefile_desc *desc, bg_scene *scene,
+                     bg_scenefile_result *out, char *message, size_t message_size);
+void bgi_sf_ctx_free(bgi_sf_ctx *ctx);
+/* Records "FILE: PATH: reason" (the first failure only), logs it and returns status. */
+bg_status bgi_sf_fail(bgi_sf_ctx *ctx, bg_status status, const char *format, ...);
+/* A scene call's failure: its status, with the scene's own message after the path. */
+bg_status bgi_sf_scene_fail(bgi_sf_ctx *ctx, bg_status status, const char *what);
+void bgi_sf_warn(bgi_sf_ctx *ctx, const char *format, ...);
+/* Path steps: each returns the length to give bgi_sf_pop to step back. */
+size_t bgi_sf_push_key(bgi_sf_ctx *ctx, const char *key);
+size_t bgi_sf_push_index(bgi_sf_ctx *ctx, size_t index);
+void bgi_sf_pop(bgi_sf_ctx *ctx, size_t length);
+/* Joins a relative path to ctx->dir (absolute paths stay) into out (BGI_SF_PATH_MAX). */
+bg_status bgi_sf_resolve(bgi_sf_ctx *ctx, const char *path, char *out);
+/* Sets ctx->dir to the folder of file ("" for a bare name). */
+void bgi_sf_set_dir_of(bgi_sf_ctx *ctx, const char *file);
+bg_status bgi_sf_names_add(bgi_sf_ctx *ctx, bgi_sf_names *names, const char *name, uint32_t handle);
+/* The handle of name, or 0. */
+uint32_t bgi_sf_names_find(const bgi_sf_names *names, const char *name);
+/* The default material, added at first use. */
+bg_status bgi_sf_default_material(bgi_sf_ctx *ctx, uint32_t *out);
+
+/* ---- json_value.c: typed readers of the value at the current path ---- */
+
+/* An interval of allowed numbers; open ends exclude their bound, infinite bounds are no bound. */
+typedef struct bgi_sf_range {
+    double lo, hi;
+    bool lo_open, hi_open;
+} bgi_sf_range;
+
+extern const bgi_sf_range bgi_sf_any;      /* every finite number */
+extern const bgi_sf_range bgi_sf_nonneg;   /* >= 0 */
+extern const bgi_sf_range bgi_sf_positive; /* > 0 */
+extern const bgi_sf_range bgi_sf_unit;     /* [0, 1] */
+
+const char *bgi_sf_type_name(const cJSON *v);
+/* v must be an object whose keys are all in allowed (NULL-terminated), each given once. */
+bg_status bgi_sf_check_object(bgi_sf_ctx *ctx, const cJSON *v, const char *const *allowed);
+bg_status bgi_sf_number(bgi_sf_ctx *ctx, const cJSON *v, bgi_sf_range range, double *out);
+bg_status bgi_sf_int(bgi_sf_ctx *ctx, const cJSON *v, int lo, int hi, int *out);
+bg_status bgi_sf_bool(bgi_sf_ctx *ctx, const cJSON *v, bool *out);
+bg_status bgi_sf_string(bgi_sf_ctx *ctx, const cJSON *v, const char **out);
+/* An array of exactly n numbers in range. */
+bg_status bgi_sf_numbers(bgi_sf_ctx *ctx, const cJSON *v, int n, bgi_sf_range range, double *out);
+bg_status bgi_sf_vec3(bgi_sf_ctx *ctx, const cJSON *v, bg_vec3 *out);
+/* A colour: a number (grey) or [r, g, b], each in range. */
+bg_status bgi_sf_rgb(bgi_sf_ctx *ctx, const cJSON *v, bgi_sf_range range, double out[3]);
+/* One of the names (NULL-terminated); out gets its index. */
+bg_status bgi_sf_enum(bgi_sf_ctx *ctx, const cJSON *v, const char *const *names, int *out);
+
+/* The same for a member of obj: absent leaves out unchanged. */
+const cJSON *bgi_sf_member(const cJSON *obj, const char *key);
+bg_status bgi_sf_field_number(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, bgi_sf_range range, double *out);
+bg_status bgi_sf_field_int(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, int lo, int hi, int *out);
+bg_status bgi_sf_field_bool(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, bool *out);
+bg_status bgi_sf_field_vec3(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, bg_vec3 *out);
+bg_status bgi_sf_field_rgb(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, bgi_sf_range range, double out[3]);
+bg_status bgi_sf_field_enum(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, const char *const *names, int *out);
+
+/* ---- the sections ---- */
+bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v);
+bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v);
+bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v);
+bg_status bgi_sf_read_textures(bgi_sf_ctx *ctx, const cJSON *v);
+bg_status bgi_sf_read_materials(bgi_sf_ctx *ctx, const cJSON *v);
+bg_status bgi_sf_read_objects(bgi_sf_ctx *ctx, const cJSON *v);
+bg_status bgi_sf_read_lights(bgi_sf_ctx *ctx, const cJSON *v);
+/* A transform: a list of steps applied in order, or one step ({"matrix": ...} among them). */
+bg_status bgi_sf_read_transform(bgi_sf_ctx *ctx, const cJSON *v, bg_mat4 *out);
+
+/* ---- model.c: model files through assimp ---- */
+
+/* How a model's normals are taken. */
+typedef enum bgi_sf_normals { BGI_SF_NORMALS_FILE = 0, BGI_SF_NORMALS_SMOOTH, BGI_SF_NORMALS_FLAT } bgi_sf_normals;
+
+typedef struct bgi_sf_model_desc {
+    const char *path;         /* resolved */
+    bg_mat4 transform;        /* placed before every node's own transform */
+    uint32_t material;        /* 0: the file's materials */
+    bool casts_shadows;
+    bgi_sf_normals normals;
+    bool scene_items;         /* also its cameras and lights (a model loaded as the whole scene) */
+} bgi_sf_model_desc;
+
+bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc);
+
+/* ---- summary.c ---- */
+void bgi_sf_summary_reset(bg_scenefile_summary *s);
+void bgi_sf_summary_point(bg_scenefile_summary *s, bg_mat4 m, double x, double y, double z);
+/* An analytic object of that shape under transform m. */
+void bgi_sf_summary_shape(bg_scenefile_summary *s, bg_shape shape, bg_mat4 m);
+
+/* ---- math ---- */
+/* The frame bg_scene_add_plane gives a unit normal (docs/shading.md, the plane's planar axes). */
+bg_mat4 bgi_sf_plane_frame(bg_vec3 n);
+/* n / |n|, computed as the scene library does, so that shorthand planes keep its bits. */
+bg_vec3 bgi_sf_normalize(bg_vec3 v);
+
+#endif

@@ -1,0 +1,44 @@
+/* The view sections: camera, image and settings. They fill the result; the loader sets the camera
+ * and ambient light on the scene once everything is read, so a bad later key changes nothing. */
+#include "scenefile_internal.h"
+
+#include <math.h>
+
+bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v)
+{
+    static const char *const keys[] = {"position", "look_at", "up", "fov_y", NULL};
+    static const bgi_sf_range fov = {0.0, 180.0, true, true};
+    BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
+    bg_camera *c = &ctx->out->camera;
+    BGI_SF_TRY(bgi_sf_field_vec3(ctx, v, "position", &c->position));
+    BGI_SF_TRY(bgi_sf_field_vec3(ctx, v, "look_at", &c->look_at));
+    BGI_SF_TRY(bgi_sf_field_vec3(ctx, v, "up", &c->up));
+    BGI_SF_TRY(bgi_sf_field_number(ctx, v, "fov_y", fov, &c->fov_y_degrees));
+    ctx->out->camera_from_file = true;
+    return BG_OK;
+}
+
+bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v)
+{
+    static const char *const keys[] = {"width", "height", "samples", NULL};
+    BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
+    bg_scenefile_image *im = &ctx->out->image;
+    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "width", 1, 16384, &im->width));
+    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "height", 1, 16384, &im->height));
+    return bgi_sf_field_int(ctx, v, "samples", 1, 1024, &im->samples);
+}
+
+bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v)
+{
+    static const char *const keys[] = {"max_depth", "background", "ambient", "encoding", NULL};
+    static const char *const encodings[] = {"srgb", "linear", NULL};
+    BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
+    bg_render_settings *s = &ctx->out->settings;
+    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "max_depth", 0, 64, &s->max_depth));
+    BGI_SF_TRY(bgi_sf_field_rgb(ctx, v, "background", bgi_sf_nonneg, s->background));
+    BGI_SF_TRY(bgi_sf_field_rgb(ctx, v, "ambient", bgi_sf_nonneg, ctx->out->ambient));
+    int e = (int)s->encoding;
+    BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "encoding", encodings, &e));
+    s->encoding = (bg_output_encoding)e;
+    return BG_OK;
+}

@@ -1,0 +1,274 @@
+/* Model files through the scene-file library: the small models of tests/data (an OBJ with its MTL,
+ * a PLY, an STL, a glTF 2.0 with an embedded buffer) load with the counts they were written with and
+ * render; the glTF brings its camera and light, the others get a camera framing them and a light;
+ * a scene file places a model with its own transform and material. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "betelgeuse.h"
+#include "betelgeuse_scenefile.h"
+
+enum { W = 64, H = 48 };
+
+static bg_scene *load(const char *path, bg_scenefile_result *r)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    char message[1024];
+    bg_status st = bg_scenefile_load_any(path, NULL, s, r, message, sizeof message);
+    if (st != BG_OK)
+        fail_msg("%s: %s", path, message);
+    return s;
+}
+
+/* Renders at W x H (the aspect of the file's camera does not matter for coverage) into out
+ * (W * H * 4 bytes) and returns how many pixels are not the background. */
+static size_t render(bg_scene *s, const bg_scenefile_result *r, unsigned char *out)
+{
+    bg_image im = {W, H, BG_PIXEL_RGBA8, 0, out};
+    assert_int_equal(bg_render_cpu(s, &r->settings, &im), BG_OK);
+    size_t n = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        n += out[4 * i] || out[4 * i + 1] || out[4 * i + 2];
+    return n;
+}
+
+typedef struct model_case {
+    const char *path;
+    size_t meshes;
+    uint64_t triangles, vertices;
+    size_t materials;
+} model_case;
+
+/* Vertex counts after assimp's joining of identical vertices: the OBJ's 8 cube corners and 4 floor
+ * corners, the PLY's 4, the STL's 12 (each facet carries its own normal, so no corner is shared). */
+static const model_case models[] = {
+    {"tests/data/two_boxes.obj", 2, 14, 12, 2},
+    {"tests/data/tetra.ply", 1, 4, 4, 1},
+    {"tests/data/tetra.stl", 1, 4, 12, 1},
+    {"tests/data/tetra_pair.gltf", 2, 8, 8, 1},
+    {"tests/data/bunny.ply", 1, 3674, 1839, 1},
+};
+
+static void every_model_loads_with_its_counts_and_renders(void **state)
+{
+    (void)state;
+    unsigned char *px = malloc((size_t)W * H * 4);
+    assert_non_null(px);
+    for (size_t i = 0; i < sizeof models / sizeof models[0]; i++) {
+        const model_case *m = &models[i];
+        bg_scenefile_result r;
+        bg_scene *s = load(m->path, &r);
+        if (r.summary.meshes != m->meshes || r.summary.triangles != m->triangles || r.summary.vertices != m->vertices ||
+            r.summary.materials != m->materials)
+            fail_msg("%s: %zu meshes, %llu triangles, %llu vertices, %zu materials; expected %zu, %llu, %llu, %zu",
+                     m->path, r.summary.meshes, (unsigned long long)r.summary.triangles,
+                     (unsigned long long)r.summary.vertices, r.summary.materials, m->meshes,
+                     (unsigned long long)m->triangles, (unsigned long long)m->vertices, m->materials);
+        assert_int_equal(r.summary.objects, m->meshes);
+        assert_int_equal(r.summary.lights, 1);
+        assert_true(r.summary.bounded);
+        size_t lit = render(s, &r, px);
+        /* The model covers a good part of the frame, and not all of it (it is framed, not filled). */
+        if (lit < (size_t)W * H / 20 || lit == (size_t)W * H)
+            fail_msg("%s: %zu of %d pixels lit", m->path, lit, W * H);
+        print_message("%s: %zu meshes, %llu triangles, %llu vertices; %zu of %d pixels lit\n", m->path,
+                      r.summary.meshes, (unsigned long long)r.summary.triangles,
+                      (unsigned long long)r.summary.vertices, lit, W * H);
+        bg_scene_destroy(s);
+    }
+    free(px);
+}
+
+static void a_model_without_camera_or_light_gets_defaults(void **state)
+{
+    (void)state;
+    bg_scenefile_result r;
+    bg_scene *s = load("tests/data/two_boxes.obj", &r);
+    assert_false(r.camera_from_file);
+    assert_false(r.lights_from_file);
+    /* The floor's map_Kd, a PNG beside the shipped scenes, found relative to the MTL file. */
+    assert_int_equal(r.summary.textures, 1);
+    /* Framed: the camera looks at the centre of the bounds (the floor's [-3, 3]^2 and the cube's
+     * height 1) from outside them. */
+    assert_true(r.camera.look_at.x == 0.0 && r.camera.look_at.y == 0.5 && r.camera.look_at.z == 0.0);
+    double d = sqrt(pow(r.camera.position.x, 2) + pow(r.camera.position.y - 0.5, 2) + pow(r.camera.position.z, 2));
+    assert_true(d > sqrt(3 * 3 + 0.5 * 0.5 + 3 * 3));
+    /* MTL: the cube's Kd is red and its Ks gives it a coat; the centre of the frame is the cube. */
+    unsigned char *px = malloc((size_t)W * H * 4);
+    assert_non_null(px);
+    render(s, &r, px);
+    const unsigned char *c = px + ((size_t)(H / 2) * W + W / 2) * 4;
+    if (!(c[0] > c[1] + 40 && c[0] > c[2] + 40))
+        fail_msg("the cube's centre pixel is (%d, %d, %d), not red", c[0], c[1], c[2]);
+    free(px);
+    bg_scene_destroy(s);
+}
+
+static void a_gltf_brings_its_camera_and_light(void **state)
+{
+    (void)state;
+    bg_scenefile_result r;
+    bg_scene *s = load("tests/data/tetra_pair.gltf", &r);
+    assert_true(r.camera_from_file);
+    assert_true(r.lights_from_file);
+    /* The camera node: translation (0.75, 0.4, 4), looking down -z; yfov 0.7 rad, aspect 1.5. */
+    assert_true(fabs(r.camera.position.x - 0.75) < 1e-6 && fabs(r.camera.position.z - 4) < 1e-6);
+    assert_true(r.camera.look_at.z < r.camera.position.z);
+    assert_true(fabs(r.camera.fov_y_degrees - 0.7 * 180 / 3.14159265358979) < 1e-4);
+    assert_int_equal(r.image.width, 640);
+    assert_int_equal(r.image.height, 427);
+    /* Two nodes show one mesh: the second is an instance, 1.5 to the right. */
+    assert_int_equal(r.summary.meshes, 2);
+    assert_true(fabs(r.summary.bounds_max.x - 2.5) < 1e-6);
+    bg_scene_destroy(s);
+}
+
+static void a_scene_file_places_a_model(void **state)
+{
+    (void)state;
+    static const char json[] =
+        "{\"materials\": {\"gold\": {\"base\": {\"reflectance\": [0.9, 0.7, 0.2], \"roughness\": 0.3}}},"
+        " \"objects\": [{\"mesh\": {\"file\": \"tetra.ply\", \"normals\": \"flat\"}, \"material\": \"gold\","
+        "   \"transform\": [{\"scale\": 2}, {\"translate\": [10, 0, 0]}], \"casts_shadows\": false},"
+        "  {\"mesh\": {\"file\": \"two_boxes.obj\"}}],"
+        " \"camera\": {\"position\": [11, 2, 4], \"look_at\": [11, 0.5, 0]},"
+        " \"lights\": [{\"position\": [11, 5, 5]}]}";
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_scenefile_desc d = {{NULL, NULL}, "tests/data", "placed.json"};
+    bg_scenefile_result r;
+    char message[1024];
+    if (bg_scenefile_load_string(json, &d, s, &r, message, sizeof message) != BG_OK)
+        fail_msg("%s", message);
+    assert_int_equal(r.summary.meshes, 3);
+    assert_int_equal(r.summary.triangles, 4 + 14);
+    /* The given material replaces the file's (none for the PLY): gold, plus the OBJ's two. */
+    assert_int_equal(r.summary.materials, 3);
+    assert_true(r.summary.bounds_max.x == 12.0 && r.summary.bounds_min.x == -3.0);
+    unsigned char *px = malloc((size_t)W * H * 4);
+    assert_non_null(px);
+    assert_true(render(s, &r, px) > (size_t)W * H / 20);
+    free(px);
+    bg_scene_destroy(s);
+}
+
+static bg_status load_text_as(const char *suffix, const char *text, char *message, size_t size)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/bg_scenefile_%ld%s", (long)getpid(), suffix);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_scenefile_result r;
+    bg_status st = bg_scenefile_load_model(path, NULL, s, &r, message, size);
+    remove(path);
+    bg_scene_destroy(s);
+    assert_non_null(strstr(message, path));
+    return st;
+}
+
+/* Model files that exist but are not models, or hold nothing to render, are bad input naming the
+ * file and the reason (assimp's, where it gives one); a missing one is BG_ERR_IO. */
+static void a_broken_model_is_refused(void **state)
+{
+    (void)state;
+    char message[1024];
+    assert_int_equal(load_text_as(".stl", "garbage garbage\n\x01\x02", message, sizeof message), BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(message, "cannot read model file"));
+    assert_int_equal(load_text_as(".ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n0\n1\n2\n",
+                                  message, sizeof message),
+                     BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(message, "holds no triangles"));
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_scenefile_result r;
+    assert_int_equal(bg_scenefile_load_model("tests/data/none.obj", NULL, s, &r, message, sizeof message), BG_ERR_IO);
+    assert_non_null(strstr(message, "tests/data/none.obj: cannot open model file"));
+    bg_scene_destroy(s);
+}
+
+typedef struct warnings {
+    int count;
+    char all[2048];
+} warnings;
+
+static void collect(bg_log_level level, const char *message, void *user)
+{
+    warnings *w = user;
+    if (level != BG_LOG_WARNING)
+        return;
+    w->count++;
+    size_t n = strlen(w->all);
+    snprintf(w->all + n, sizeof w->all - n, "%s\n", message);
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* What the MTL mapping leaves out it says, to the logger: a colour texture that is not a PNG and
+ * every map other than the colour one. A PNG colour texture that is missing is an error. */
+static void model_materials_say_what_they_leave_out(void **state)
+{
+    (void)state;
+    char obj[64], mtl[64];
+    snprintf(obj, sizeof obj, "/tmp/bg_sf_%ld.obj", (long)getpid());
+    snprintf(mtl, sizeof mtl, "/tmp/bg_sf_%ld.mtl", (long)getpid());
+    char text[256];
+    snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n", strrchr(mtl, '/') + 1);
+    write_file(obj, text);
+    write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd wood.jpg\nmap_Bump bump.png\n");
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    warnings w = {0, ""};
+    bg_scenefile_desc d = {{collect, &w}, NULL, NULL};
+    bg_scenefile_result r;
+    char message[1024];
+    bg_status st = bg_scenefile_load_model(obj, &d, s, &r, message, sizeof message);
+    bg_scene_destroy(s);
+    if (st != BG_OK)
+        fail_msg("%s", message);
+    if (w.count != 2 || !strstr(w.all, "texture \"wood.jpg\" is left out (only PNG files are read)") ||
+        !strstr(w.all, "texture is left out (only the colour texture is mapped)"))
+        fail_msg("%d warnings:\n%s", w.count, w.all);
+
+    write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd no_such_texture.png\n");
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    st = bg_scenefile_load_model(obj, NULL, s, &r, message, sizeof message);
+    bg_scene_destroy(s);
+    remove(obj);
+    remove(mtl);
+    assert_int_equal(st, BG_ERR_IO);
+    assert_non_null(strstr(message, "no_such_texture.png"));
+    assert_non_null(strstr(message, "material \"m\""));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_model_loads_with_its_counts_and_renders),
+        cmocka_unit_test(a_model_without_camera_or_light_gets_defaults),
+        cmocka_unit_test(a_gltf_brings_its_camera_and_light),
+        cmocka_unit_test(a_scene_file_places_a_model),
+        cmocka_unit_test(a_broken_model_is_refused),
+        cmocka_unit_test(model_materials_say_what_they_leave_out),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
