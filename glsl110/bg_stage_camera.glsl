@@ -1,8 +1,9 @@
 #version 110
 // requires:
-// Camera ray maps (docs/shading.md section 1). frag is gl_FragCoord.xy, the pixel centre in GL
-// window coordinates: GL rows count bottom-up, so (2 frag.y / H - 1) equals the doc's
-// (1 - 2 (y + 0.5) / H) for image row y = H - 1 - window row.
+// Camera ray maps (docs/shading.md section 1). frag is gl_FragCoord.xy plus the view's shift, the
+// sample point in GL window coordinates of the full frame of size `size` (1.1: the window's offset
+// and the sample's offset from the pixel centre): GL rows count bottom-up, so (2 frag.y / H - 1)
+// equals the doc's (1 - 2 (y + py) / H) for frame row y = H - 1 - window row.
 
 void bg_camera_ray(vec2 frag, vec2 size, vec3 eye, vec3 forward, vec3 right, vec3 up, vec2 tan_half,
                    out vec4 origin, out vec4 dir, out vec4 weight)

@@ -50,7 +50,8 @@ extern "C" {
     X(BG_ERR_GL, 5, "the GPU renderer failed (see the message)")                       \
     X(BG_ERR_LIMIT, 6, "a hardware or library limit was exceeded")                     \
     X(BG_ERR_THREAD, 7, "a worker thread could not be started")                        \
-    X(BG_ERR_GPU_OUT_OF_MEMORY, 8, "the GPU ran out of memory")
+    X(BG_ERR_GPU_OUT_OF_MEMORY, 8, "the GPU ran out of memory")                       \
+    X(BG_ERR_CANCELLED, 9, "the render was cancelled by its progress callback")
 
 /* Result of every fallible call; BG_OK is 0. */
 typedef enum bg_status {
@@ -454,9 +455,19 @@ typedef enum bg_gpu_plan {
                           the CPU reference (bg_render_stats.fallback_pixels) */
 } bg_gpu_plan;
 
+/* Told how much of a render is done: fraction in [0, 1], never decreasing from call to call, first
+ * 0 before any work and last exactly 1 once the image is complete (that last call's return value
+ * is ignored). Return false to cancel: the render stops at the next row (CPU) or sample pass (GPU)
+ * and returns BG_ERR_CANCELLED. Called from the thread that called the render, at least once per
+ * finished row on the CPU and once per sample pass and tile on the GPU (docs/shading.md 1.2). */
+typedef bool (*bg_progress_fn)(double fraction, void *user);
+
+#define BG_MAX_SAMPLES 256
+
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
  * min_weight 1/512, sRGB encoding, threads 0 (the online cores), dmax 0 (automatic), no phase
- * timing, every skip on, GPU plan automatic. */
+ * timing, every skip on, GPU plan automatic, one sample at each pixel centre, the frame is the
+ * image, no progress callback. */
 typedef struct bg_render_settings {
     double background[3];
     int max_depth;      /* bounce levels after the primary hit, 0 .. 64 */
@@ -470,13 +481,27 @@ typedef struct bg_render_settings {
                            (waits for the GPU between phases, so it slows the frame down) */
     unsigned gpu_disable_skips; /* GPU renderer only: BG_SKIP_* bits to switch off (testing) */
     bg_gpu_plan gpu_plan; /* GPU renderer only: the frame's plan; 0 = BG_PLAN_AUTO */
+    int samples;        /* camera rays per pixel, 0 .. BG_MAX_SAMPLES; 0 and 1 = one ray at the pixel
+                           centre. More are placed on a fixed stratified pattern (docs/shading.md 1.1),
+                           the same in both renderers, and averaged with equal weights (a box filter) */
+    int frame_width, frame_height; /* the full frame the image is a window of (a crop window, a tile):
+                           0 = the image's size; at most 16384 per side */
+    int window_x, window_y; /* the image's top-left pixel in the frame (x right, y down); the image must
+                           lie inside the frame. Every pixel is the frame's pixel at that place */
+    bg_progress_fn progress; /* NULL: no progress calls, no cancelling */
+    void *progress_user;     /* passed to progress */
+    double gpu_memory_budget; /* GPU renderer only, bg_render_gpu: bytes of render targets one tile may
+                           hold, by the renderer's estimate of the worst plan (docs/gpu_pipeline.md,
+                           "Tiles"); an image beyond it or beyond GL's texture size limit is rendered
+                           in tiles, bit-identical to one pass; 0 = 1 GiB, else at least 1 MiB */
 } bg_render_settings;
 
 /* The default settings described above. */
 BG_API bg_render_settings bg_render_settings_init(void);
 
 /* Renders the committed scene with the double-precision CPU reference renderer into a
- * caller-owned image (size 1 .. 16384 per side). The output does not depend on the thread count. */
+ * caller-owned image (size 1 .. 16384 per side). The output does not depend on the thread count.
+ * Cancelled (BG_ERR_CANCELLED): each row of the image is either complete or untouched. */
 BG_API bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_image *image);
 
 /* ---- GPU renderer -------------------------------------------------------------------------- */
@@ -514,7 +539,11 @@ BG_API void bg_renderer_clear_error(bg_renderer *renderer);
 
 /* Renders the committed scene on the GPU into a caller-owned image, with the same shading model
  * and output encoding as bg_render_cpu. A failure (image larger than the GL limits, GPU out of
- * memory) leaves the renderer usable for the next call. */
+ * memory) leaves the renderer usable for the next call. Images larger than the GL texture size limit or
+ * settings.gpu_memory_budget are rendered tile by tile (bg_render_stats.tiles), each tile a window of
+ * the frame, so the image is the same bit for bit. Cancelled (BG_ERR_CANCELLED), it leaves the image
+ * untouched but for the tiles already finished: a tile reaches the image only once its every sample
+ * pass is done. */
 BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
                                bg_image *image);
 
@@ -534,8 +563,11 @@ BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_
  * scene can have such pixels, one more pass packs those marks into one bit
  * per pixel, ceil(width / 32) x height x 4 bytes are read back (the call waits for the GPU there, as
  * bg_render_gpu's read-back does), and the CPU reference's pixels go up with one glTexSubImage2D per
- * run of marked pixels in a row; the frame is then what bg_render_gpu gives. The renderer keeps no
- * hold on target: destroying it after the call is fine.
+ * run of marked pixels in a row; the frame is then what bg_render_gpu gives. With settings.samples > 1
+ * every sample pass is read back and the average is uploaded into target once all are done
+ * (docs/gpu_pipeline.md, "Samples, windows and progress"), so a cancelled render leaves target
+ * untouched; a window (settings.frame_*, window_*) is honoured as by bg_render_gpu, but target is
+ * never tiled. The renderer keeps no hold on target: destroying it after the call is fine.
  * Errors: as bg_render_gpu's, with target in the image's place: BG_ERR_INVALID_ARGUMENT when target
  * is NULL or belongs to another macs_context, or is larger than 16384 per side; BG_ERR_LIMIT beyond
  * the GL texture size limit; BG_ERR_GL (with MACS's message) when GL cannot render into the target's
@@ -603,6 +635,9 @@ typedef struct bg_render_stats {
     uint64_t fallback_pixels;        /* pixels whose walks (of the object tree, or of a mesh's tree in
                                         any plan) would have run past the shader's loop limit,
                                         rendered by the CPU reference instead */
+    int tiles;                       /* tiles the image was rendered in (1: one piece); the other
+                                        fields describe the last tile's last sample pass, but
+                                        fallback_pixels and programs_compiled count every pass */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

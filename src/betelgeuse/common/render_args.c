@@ -7,7 +7,7 @@
 #include "render_settings.h"
 
 bg_status bgi_render_args_check(const char *where, const bg_render_settings *settings, const bg_image *image,
-                               size_t *out_stride, char *message, size_t size)
+                               size_t *out_stride, bgi_render_view *view, char *message, size_t size)
 {
     /* A missing argument is named before any field of the other is looked at. */
     if (!settings || !image) {
@@ -19,7 +19,9 @@ bg_status bgi_render_args_check(const char *where, const bg_render_settings *set
         return st;
     char why[256];
     st = bgi_image_check(image, out_stride, why, sizeof why);
-    if (st != BG_OK)
+    if (st != BG_OK) {
         snprintf(message, size, "%s: %s", where, why);
-    return st;
+        return st;
+    }
+    return bgi_render_view_make(settings, image->width, image->height, where, view, message, size);
 }

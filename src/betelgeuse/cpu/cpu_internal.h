@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "../scene/scene_internal.h"
+#include "../common/render_view.h"
 
 /* "No object" for the skip and inside indices of a ray. */
 #define BG_CPU_NONE UINT32_MAX
@@ -257,15 +258,22 @@ void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *se
 void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3]);
 
-/* Renders pixel (x, y) of a width x height image (row 0 at the top) into texel, 4 bytes (RGBA8 in
- * the settings' encoding) or 4 floats (RGBA32F), alpha 1: what bg_render_cpu writes there. */
-void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
-                         int x, int y, bg_pixel_format format, void *texel);
+/* The primary ray through the point (fx, fy) of a width x height frame, in pixels from its top-left
+ * corner (x right, y down; docs/shading.md 1): pixel (x, y)'s centre is (x + 0.5, y + 0.5). */
+void bgi_cpu_frame_ray(const bg_camera_data *camera, int width, int height, double fx, double fy, double o[3],
+                      double d[3]);
 
-/* Renders pixel (x, y) of image (rows `stride` bytes apart, row 0 at the top) in its format, alpha 1:
- * what bg_render_cpu writes there. The GPU's tree plan calls it for the pixels it cannot finish. */
-void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
-                         size_t stride, int x, int y);
+/* Renders pixel (x, y) of the view's image (row 0 at the top) into texel, 4 bytes (RGBA8 in the
+ * settings' encoding) or 4 floats (RGBA32F), alpha 1: the average of the view's samples
+ * sample_first .. sample_first + sample_count - 1 of the frame's pixel (x0 + x, y0 + y). With all
+ * the samples, what bg_render_cpu writes there. */
+void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings,
+                         const bgi_render_view *view, int x, int y, bg_pixel_format format, void *texel);
+
+/* Renders pixel (x, y) of image (rows `stride` bytes apart, row 0 at the top) in its format, alpha 1,
+ * as bgi_cpu_render_texel does. The GPU's tree plan calls it for the pixels it cannot finish. */
+void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings,
+                         const bgi_render_view *view, const bg_image *image, size_t stride, int x, int y);
 
 /* An 8-bit channel: floor(clamp(x, 0, 1) * 255 + 0.5) after the encoding. */
 uint8_t bgi_cpu_encode_channel(double linear, bg_output_encoding encoding);

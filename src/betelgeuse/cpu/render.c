@@ -1,6 +1,7 @@
-/* The CPU reference renderer: argument checks, rows handed to worker threads, output encoding
- * (docs/shading.md sections 1 and 10). Each pixel depends only on the scene and its position, so
- * the image is the same for every thread count. */
+/* The CPU reference renderer: argument checks, rows handed to worker threads, samples averaged,
+ * output encoding, progress and cancelling (docs/shading.md sections 1 and 10). Each pixel depends
+ * only on the scene, the settings and its position in the frame, so the image is the same for every
+ * thread count and a crop window is the same rectangle of the full frame bit for bit. */
 #include <pthread.h>
 #include <string.h>
 #include <unistd.h>
@@ -8,6 +9,7 @@
 #include "cpu_internal.h"
 #include "../common/render_args.h"
 #include "../common/render_settings.h"
+#include "../common/render_view.h"
 #include "../common/srgb.h"
 
 #define MAX_THREADS BG_MAX_THREADS
@@ -24,18 +26,34 @@ uint8_t bgi_cpu_encode_channel(double linear, bg_output_encoding encoding)
 typedef struct job {
     const bg_scene_state *state;
     const bg_render_settings *settings;
+    const bgi_render_view *view;
     const bg_image *image;
     size_t stride;
     pthread_mutex_t lock;
     int next_row;
+    int rows_done;
+    bool cancelled; /* set under lock by the caller's thread when progress asks to stop */
 } job;
 
-void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings, int width, int height,
-                         int x, int y, bg_pixel_format format, void *texel)
+void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings,
+                         const bgi_render_view *view, int x, int y, bg_pixel_format format, void *texel)
 {
-    double o[3], d[3], rgb[3];
-    bgi_cpu_primary_ray(&state->camera, width, height, x, y, o, d);
-    bgi_cpu_shade_ray(state, settings, o, d, rgb);
+    double rgb[3];
+    int first = view->sample_first, count = view->sample_count;
+    for (int s = first; s < first + count; s++) {
+        double px, py, o[3], d[3], one[3];
+        bgi_sample_position(view->samples, s, &px, &py);
+        bgi_cpu_frame_ray(&state->camera, view->frame_width, view->frame_height, (double)(view->x0 + x) + px,
+                          (double)(view->y0 + y) + py, o, d);
+        bgi_cpu_shade_ray(state, settings, o, d, one);
+        /* Summed in sample order, then divided once (docs/shading.md 1.1); one sample is kept as it
+         * is, so that samples 1 is today's image bit for bit (0 + -0 would be +0). */
+        for (int i = 0; i < 3; i++)
+            rgb[i] = s == first ? one[i] : rgb[i] + one[i];
+    }
+    if (count > 1)
+        for (int i = 0; i < 3; i++)
+            rgb[i] /= count;
     if (format == BG_PIXEL_RGBA32F) {
         float px[4] = {(float)rgb[0], (float)rgb[1], (float)rgb[2], 1.0f};
         memcpy(texel, px, sizeof px);
@@ -47,34 +65,51 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
     }
 }
 
-void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings, const bg_image *image,
-                         size_t stride, int x, int y)
+void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings,
+                         const bgi_render_view *view, const bg_image *image, size_t stride, int x, int y)
 {
     unsigned char *row = (unsigned char *)image->pixels + (size_t)y * stride;
     size_t size = image->format == BG_PIXEL_RGBA32F ? 16 : 4;
-    bgi_cpu_render_texel(state, settings, image->width, image->height, x, y, image->format, row + (size_t)x * size);
+    bgi_cpu_render_texel(state, settings, view, x, y, image->format, row + (size_t)x * size);
 }
 
 static void render_row(const job *jb, int y)
 {
     for (int x = 0; x < jb->image->width; x++)
-        bgi_cpu_render_pixel(jb->state, jb->settings, jb->image, jb->stride, x, y);
+        bgi_cpu_render_pixel(jb->state, jb->settings, jb->view, jb->image, jb->stride, x, y);
 }
 
-/* Takes rows from the shared counter until none is left (C99 has no atomics, hence the mutex). */
-static void *worker(void *arg)
+/* Takes rows from the shared counter until none is left or the render is cancelled (C99 has no
+ * atomics, hence the mutex). The caller's thread (reporter) tells progress after each of its rows;
+ * rows_done only grows, so the fractions it reports never decrease. */
+static void work(job *jb, bool reporter)
 {
-    job *jb = arg;
     for (;;) {
         pthread_mutex_lock(&jb->lock);
         int y = jb->next_row;
-        if (y < jb->image->height)
+        bool take = y < jb->image->height && !jb->cancelled;
+        if (take)
             jb->next_row = y + 1;
         pthread_mutex_unlock(&jb->lock);
-        if (y >= jb->image->height)
+        if (!take)
             break;
         render_row(jb, y);
+        pthread_mutex_lock(&jb->lock);
+        int done = ++jb->rows_done;
+        pthread_mutex_unlock(&jb->lock);
+        /* The final 1 is reported once, after every thread has finished. */
+        if (reporter && done < jb->image->height &&
+            !bgi_render_progress(jb->settings, (double)done / jb->image->height)) {
+            pthread_mutex_lock(&jb->lock);
+            jb->cancelled = true;
+            pthread_mutex_unlock(&jb->lock);
+        }
     }
+}
+
+static void *worker(void *arg)
+{
+    work(arg, false);
     return NULL;
 }
 
@@ -84,7 +119,8 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
         return BG_ERR_INVALID_ARGUMENT;
     char message[256];
     size_t stride = 0;
-    bg_status st = bgi_render_args_check("bg_render_cpu", settings, image, &stride, message, sizeof message);
+    bgi_render_view view;
+    bg_status st = bgi_render_args_check("bg_render_cpu", settings, image, &stride, &view, message, sizeof message);
     if (st != BG_OK)
         return bgi_scene_fail(scene, st, "%s", message);
     const bg_scene_state *state = bgi_scene_committed(scene);
@@ -99,12 +135,18 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
     if (threads > image->height)
         threads = image->height;
 
+    if (!bgi_render_progress(settings, 0.0))
+        return bgi_scene_fail(scene, BG_ERR_CANCELLED, "bg_render_cpu: cancelled by settings.progress before the "
+                              "first row; the image is untouched");
     job jb;
     jb.state = state;
     jb.settings = settings;
+    jb.view = &view;
     jb.image = image;
     jb.stride = stride;
     jb.next_row = 0;
+    jb.rows_done = 0;
+    jb.cancelled = false;
     if (pthread_mutex_init(&jb.lock, NULL) != 0)
         return bgi_scene_fail(scene, BG_ERR_THREAD, "bg_render_cpu: pthread_mutex_init failed");
 
@@ -117,9 +159,13 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
             break;
         started++;
     }
-    worker(&jb);
+    work(&jb, true);
     for (int i = 0; i < started; i++)
         pthread_join(pool[i], NULL);
     pthread_mutex_destroy(&jb.lock);
+    if (jb.cancelled)
+        return bgi_scene_fail(scene, BG_ERR_CANCELLED, "bg_render_cpu: cancelled by settings.progress after %d of "
+                              "%d rows; each row is complete or untouched", jb.rows_done, image->height);
+    bgi_render_progress(settings, 1.0);
     return BG_OK;
 }

@@ -269,9 +269,15 @@ void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *se
 void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],
                         double d[3])
 {
+    bgi_cpu_frame_ray(camera, width, height, x + 0.5, y + 0.5, o, d);
+}
+
+void bgi_cpu_frame_ray(const bg_camera_data *camera, int width, int height, double fx, double fy, double o[3],
+                      double d[3])
+{
     double aspect = (double)width / (double)height;
-    double sx = (2.0 * (x + 0.5) / width - 1.0) * aspect * camera->tan_half_fov_y;
-    double sy = (1.0 - 2.0 * (y + 0.5) / height) * camera->tan_half_fov_y;
+    double sx = (2.0 * fx / width - 1.0) * aspect * camera->tan_half_fov_y;
+    double sy = (1.0 - 2.0 * fy / height) * camera->tan_half_fov_y;
     bg_v3_set(o, camera->camera.position.x, camera->camera.position.y, camera->camera.position.z);
     for (int i = 0; i < 3; i++)
         d[i] = camera->forward[i] + sx * camera->right[i] + sy * camera->up[i];

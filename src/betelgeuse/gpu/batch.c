@@ -33,12 +33,12 @@ static bool batching(const bg_renderer *r)
     return !(r->key.disable_skips & BG_SKIP_BATCH);
 }
 
-bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4])
+bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, const gpu_view *view, int rect[4])
 {
     rect[0] = rect[1] = rect[2] = rect[3] = 0;
     for (int j = 0; j < b->count; j++) {
         int one[4];
-        if (!bgi_gpu_object_scissor(state, (uint32_t)(b->first + j), width, height, one))
+        if (!bgi_gpu_object_scissor(state, (uint32_t)(b->first + j), view, one))
             return false;
         bgi_gpu_rect_union(rect, one);
     }
@@ -53,7 +53,7 @@ static double camera_area(const bg_renderer *r, const bg_scene_state *state, int
         return full;
     gpu_batch b = {NULL, first, count, 0};
     int rect[4];
-    if (!bgi_gpu_batch_scissor(state, &b, r->width, r->height, rect))
+    if (!bgi_gpu_batch_scissor(state, &b, &r->view, rect))
         return full;
     return (double)rect[2] * (double)rect[3];
 }

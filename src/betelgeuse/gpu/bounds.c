@@ -66,14 +66,16 @@ void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *
     }
 }
 
-bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4])
+bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, const gpu_view *view, int rect[4])
 {
+    int frame_width = view->pixels.frame_width, frame_height = view->pixels.frame_height;
+    int width = view->pixels.width, height = view->pixels.height;
     const bg_object_data *o = &state->objects[object];
     if (!o->bounded)
         return false;
     const bg_camera_data *cam = &state->camera;
     const double *e = &cam->camera.position.x;
-    double aspect = (double)width / (double)height;
+    double aspect = (double)frame_width / (double)frame_height;
     double tx = aspect * cam->tan_half_fov_y, ty = cam->tan_half_fov_y;
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
     for (int c = 0; c < 8; c++) {
@@ -86,8 +88,10 @@ bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, int wi
             return false;
         double sx = (v[0] * cam->right[0] + v[1] * cam->right[1] + v[2] * cam->right[2]) / z;
         double sy = (v[0] * cam->up[0] + v[1] * cam->up[1] + v[2] * cam->up[2]) / z;
-        /* Pixel centre x + 0.5 = (sx / tx + 1) W / 2; GL rows count from the bottom the same way. */
-        double px = (sx / tx + 1.0) * 0.5 * width, py = (sy / ty + 1.0) * 0.5 * height;
+        /* The frame's point (sx / tx + 1) W / 2 is the camera stage's gl_FragCoord + shift; GL rows count
+         * from the bottom the same way. */
+        double px = (sx / tx + 1.0) * 0.5 * frame_width - view->shift[0];
+        double py = (sy / ty + 1.0) * 0.5 * frame_height - view->shift[1];
         xmin = px < xmin ? px : xmin;
         xmax = px > xmax ? px : xmax;
         ymin = py < ymin ? py : ymin;

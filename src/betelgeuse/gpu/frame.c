@@ -70,7 +70,7 @@ static void bounce_scissor(frame *f)
         if (!bgi_gpu_material_may_bounce(&state->materials[state->objects[o].material]))
             continue;
         int rect[4];
-        if (!bgi_gpu_object_scissor(state, o, r->width, r->height, rect)) {
+        if (!bgi_gpu_object_scissor(state, o, &r->view, rect)) {
             f->bounce_scissor = false;
             break;
         }
@@ -118,7 +118,7 @@ static bg_status intersect(frame *f, const gpu_ray_set *set, int level)
             return st;
         macs_run_desc d = set_run(f, level);
         int rect[4];
-        if (scissor && bgi_gpu_batch_scissor(f->state, batch, r->width, r->height, rect)) {
+        if (scissor && bgi_gpu_batch_scissor(f->state, batch, &r->view, rect)) {
             if (rect[2] == 0 || rect[3] == 0)
                 continue; /* entirely off screen */
             d.scissor = true;
@@ -460,11 +460,10 @@ static bg_status prepare(frame *f, bg_scene *scene, int width, int height)
 static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
                                   const gpu_frame_out *out);
 
-bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings, const gpu_frame_out *out)
+bg_status bgi_gpu_frame_pass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                             const gpu_frame_out *out)
 {
     const bg_scene_state *state = bgi_scene_committed(scene);
-    if (!state)
-        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
     memset(&r->stats, 0, sizeof r->stats);
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
@@ -473,6 +472,24 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
     if (st == BG_OK && !fused)
         st = render_multipass(r, scene, settings, out);
     r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
+    return st;
+}
+
+bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                               const gpu_frame_out *out, const bgi_render_view *view)
+{
+    const bg_scene_state *state = bgi_scene_committed(scene);
+    if (!state)
+        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
+    if (!bgi_render_progress(settings, 0.0))
+        return bgi_gpu_fail(r, BG_ERR_CANCELLED, "%s: cancelled by settings.progress before the first pass; the "
+                            "pixels of this frame (of this tile, when tiled) are untouched", out->fn);
+    if (view->samples > 1)
+        return bgi_gpu_samples_render(r, scene, settings, out, view);
+    bgi_gpu_view_for_sample(view, 0, &r->view);
+    bg_status st = bgi_gpu_frame_pass(r, scene, settings, out);
+    if (st == BG_OK)
+        bgi_render_progress(settings, 1.0);
     return st;
 }
 
@@ -485,16 +502,14 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
         return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "bg_render_gpu: scene is NULL");
     char message[256];
     size_t stride = 0;
-    bg_status st = bgi_render_args_check("bg_render_gpu", settings, image, &stride, message, sizeof message);
+    bgi_render_view view;
+    bg_status st = bgi_render_args_check("bg_render_gpu", settings, image, &stride, &view, message, sizeof message);
     if (st != BG_OK)
         return bgi_gpu_fail(r, st, "%s", message);
-    int max = r->limits.max_texture_size;
-    if (image->width > max || image->height > max)
-        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: image size %dx%d exceeds the GL texture size limit %d",
-                        image->width, image->height, max);
+    /* Beyond the GL texture size limit (or the memory budget) the image is rendered in tiles. */
     gpu_frame_out out = {image, stride, NULL, image->width, image->height, image->format == BG_PIXEL_RGBA32F,
                          "bg_render_gpu"};
-    return bgi_gpu_frame_render(r, scene, settings, &out);
+    return bgi_gpu_tiles_render(r, scene, settings, &out, &view);
 }
 
 /* The paper's frame: ray maps, G-buffer, one pass per object batch, light group and ray set. */
@@ -517,6 +532,9 @@ static bg_status render_multipass(bg_renderer *r, bg_scene *scene, const bg_rend
     phase_start(&f);
     st = prepare(&f, scene, out->width, out->height);
     phase_end(&f, BG_PHASE_SETUP);
+    /* The camera's shift follows the window and the sample: a uniform, set every frame. */
+    if (st == BG_OK)
+        st = bgi_gpu_camera_uniforms_set(r, state);
     if (st == BG_OK) {
         static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         macs_status ms = macs_texture_clear(r->accum, zero);

@@ -391,8 +391,8 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "binding the fused pass");
-    gpu_fused_values v = {state, settings, l->tree || l->mesh ? &f->tree.dims : NULL, f->tree.mesh_base, o->width,
-                          o->height, o->as_float};
+    gpu_fused_values v = {state, settings, l->tree || l->mesh ? &f->tree.dims : NULL, f->tree.mesh_base,
+                          o->width, o->height, o->as_float, &r->view};
     return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
 
@@ -417,7 +417,7 @@ static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_re
                      : BG_OK;
     bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
     if (st == BG_OK && walks)
-        r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(state, settings, o->image, o->stride);
+        r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(state, settings, &r->view.pixels, o->image, o->stride);
     return st;
 }
 

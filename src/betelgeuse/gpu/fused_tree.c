@@ -468,7 +468,7 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
 }
 
 uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
-                                 const bg_image *image, size_t stride)
+                                 const bgi_render_view *view, const bg_image *image, size_t stride)
 {
     uint64_t count = 0;
     bool as_float = image->format == BG_PIXEL_RGBA32F;
@@ -485,7 +485,7 @@ uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_rende
                 marked = row[(size_t)x * 4 + 3] == 0;
             }
             if (marked) {
-                bgi_cpu_render_pixel(state, settings, image, stride, x, y);
+                bgi_cpu_render_pixel(state, settings, view, image, stride, x, y);
                 count++;
             }
         }

@@ -109,7 +109,7 @@ bg_status bgi_gpu_fused_tree_fallback_texture(bg_renderer *r, gpu_fused_tree *t,
             }
             int first = x;
             for (; x < width && marked(mark_row, x); x++)
-                bgi_cpu_render_texel(state, settings, width, height, x, height - 1 - y, format,
+                bgi_cpu_render_texel(state, settings, &r->view.pixels, x, height - 1 - y, format,
                                     row + (size_t)(x - first) * texel);
             macs_status ms = macs_texture_upload_region(target, first, y, x - first, 1, row, 0);
             if (ms)

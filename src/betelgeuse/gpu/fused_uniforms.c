@@ -35,11 +35,19 @@ static void copy3(const double *d, float *out)
         out[i] = (float)d[i];
 }
 
+/* The full frame's: a window's pixels take the frame's camera rays (docs/shading.md 1.1). */
 static void image_size(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    out[0] = (float)v->width;
-    out[1] = (float)v->height;
+    out[0] = (float)v->view->pixels.frame_width;
+    out[1] = (float)v->view->pixels.frame_height;
+}
+
+static void pixel_shift(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    out[0] = v->view->shift[0];
+    out[1] = v->view->shift[1];
 }
 
 static void camera_forward(const gpu_fused_values *v, uint32_t i, float *out)
@@ -64,7 +72,7 @@ static void camera_up(const gpu_fused_values *v, uint32_t i, float *out)
 static void camera_tan_half(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    double aspect = (double)v->width / (double)v->height;
+    double aspect = (double)v->view->pixels.frame_width / (double)v->view->pixels.frame_height;
     out[0] = (float)(aspect * v->state->camera.tan_half_fov_y);
     out[1] = (float)v->state->camera.tan_half_fov_y;
 }

@@ -5,6 +5,7 @@
 
 #include "../../macs/first_error.h"
 #include "../scene/scene_internal.h"
+#include "../common/render_view.h"
 
 #define GPU_LIGHTS_PER_GROUP 4
 /* "No object" in the skip and inside lanes of a ray map (object indices are >= 0). */
@@ -93,6 +94,16 @@ typedef struct gpu_cache_key {
     bool valid;
 } gpu_cache_key;
 
+/* The pixels one pass computes: the window of the frame and the sample (pixels.sample_first, one
+ * sample per pass), and what the camera stage adds to gl_FragCoord.xy for it (docs/shading.md 1.1):
+ * the window's offset in the frame in GL's bottom-up rows plus the sample's offset from the pixel
+ * centre, all multiples of 2^-BGI_SAMPLE_BITS, so the sum is exact in float and a window's rays are
+ * bit for bit the full frame's. */
+typedef struct gpu_view {
+    bgi_render_view pixels;
+    float shift[2];
+} gpu_view;
+
 struct bg_renderer {
     bg_allocator allocator;
     bg_logger logger;
@@ -124,7 +135,9 @@ struct bg_renderer {
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
     struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
     struct gpu_fused_tree *meshes; /* the multipass's mesh texture and marks (fused_tree.c); NULL until used */
+    gpu_view view;           /* of the pass being rendered (frame.c sets it) */
 };
+
 
 /* Where a frame ends: the caller's image, read back with its rows flipped to top-down (image set), or
  * the caller's texture, written on the GPU with GL's rows, bottom row first (texture set). */
@@ -210,7 +223,7 @@ uint64_t bgi_gpu_textures_fingerprint(const bg_scene_state *state);
 void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax);
 /* The pixel rectangle (GL window coordinates, bottom-up) that holds every camera ray able to hit a
  * bounded object; false when the object may cover the whole image (or is behind the camera). */
-bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, int width, int height, int rect[4]);
+bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, const gpu_view *view, int rect[4]);
 
 /* ---- targets.c ---- */
 /* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
@@ -262,6 +275,9 @@ bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, 
 /* The pass that copies the accumulation's linear radiance, alpha 1, into target (RGBA32F or RGBA16F):
  * the float frame's end in a texture (the RGBA8 one is the resolve pass's). */
 bg_status bgi_gpu_resolve_float_pass_build(bg_renderer *r, macs_texture *target);
+/* Sets the camera pass's uniforms for the committed camera and r->view (every frame: the view's
+ * shift changes with the window and the sample). */
+bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *state);
 
 /* ---- passes.c: every pass of a frame, in the order the frame needs them ---- */
 /* Builds every pass of the frame for the scene, with the renderer's targets bound as outputs. */
@@ -281,7 +297,7 @@ int bgi_gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state
                            gpu_batch *out);
 /* The camera-ray scissor rectangle of a batch (the union of its objects'); false when unbounded.
  * An empty rectangle means every object is off screen. */
-bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, int width, int height, int rect[4]);
+bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, const gpu_view *view, int rect[4]);
 /* Uniform components of the declared uniforms u[0 .. count - 1] as old hardware allocates them
  * (every float, vec2 or vec3 a whole vec4; arrays per element): what batches are planned by. */
 int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count);
@@ -355,9 +371,31 @@ void bgi_gpu_rect_union(int a[4], const int b[4]);
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
 #define GPU_STENCIL_LIVE 0x1u
 #define GPU_STENCIL_HIT 0x2u
-/* One frame of the committed scene into out (whose arguments the entry point checked): the fused
- * plan where it runs, else the multipass; fills the renderer's statistics. */
-bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings, const gpu_frame_out *out);
+/* One frame of the committed scene into out (whose arguments the entry point checked, view their
+ * window and samples): progress at 0, the one pass of a single sample, or samples.c's passes,
+ * progress at 1; fills the renderer's statistics. */
+bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                               const gpu_frame_out *out, const bgi_render_view *view);
+/* One pass of the frame for r->view (one sample): the fused plan where it runs, else the multipass;
+ * resets and fills the renderer's statistics. */
+bg_status bgi_gpu_frame_pass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                             const gpu_frame_out *out);
+
+/* ---- tiles.c ---- */
+/* bg_render_gpu's frame into out->image: in one piece through bgi_gpu_frame_render, or as tiles of
+ * the frame when the image exceeds max_texture_size or the settings' GPU memory budget; sets
+ * stats.tiles. */
+bg_status bgi_gpu_tiles_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                               const gpu_frame_out *out, const bgi_render_view *view);
+
+/* ---- samples.c ---- */
+/* The gpu_view of sample s of view: that one sample, and its camera shift (docs/shading.md 1.1). */
+void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out);
+/* A frame of view->samples > 1: one pass per sample into a float image on the host, summed there in
+ * sample order and divided by the count, then encoded into out's image or uploaded into its
+ * texture; progress after each pass, cancelling between passes leaves out untouched. */
+bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                                 const gpu_frame_out *out, const bgi_render_view *view);
 
 /* ---- fused.c ---- (with fused_layout.c, fused_uniforms.c, fused_source.c) */
 /* The fused plan (BG_PLAN_FUSED): one fragment pass per frame computes the whole image. Its program
@@ -405,6 +443,7 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
  * from this list and GPU_FUSED_PARAMS. */
 #define GPU_FUSED_UNIFORMS(X)                                                   \
     X(SIZE, FRAME, "bg_size", VEC2, ALWAYS, image_size)                         \
+    X(SHIFT, FRAME, "bg_shift", VEC2, ALWAYS, pixel_shift)                      \
     X(FORWARD, FRAME, "bg_forward", VEC3, ALWAYS, camera_forward)               \
     X(RIGHT, FRAME, "bg_right", VEC3, ALWAYS, camera_right)                     \
     X(UP, FRAME, "bg_up", VEC3, ALWAYS, camera_up)                              \
@@ -522,6 +561,7 @@ typedef struct gpu_fused_values {
     const float *mesh_base;          /* per object: its mesh's root and first triangle texel (meshes only) */
     int width, height;
     bool float_output;
+    const gpu_view *view; /* the frame size, the window and the sample */
 } gpu_fused_values;
 
 /* Renders the frame with the fused plan when settings (and, for BG_PLAN_AUTO, the scene and the GL
@@ -567,7 +607,7 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t);
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
  * returns how many there were. */
 uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
-                                 const bg_image *image, size_t stride);
+                                 const bgi_render_view *view, const bg_image *image, size_t stride);
 
 /* ---- fused_tree_target.c ---- */
 /* The same for a frame that ended in the caller's texture: finds the marked pixels from a one-bit-a-

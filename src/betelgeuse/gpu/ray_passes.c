@@ -52,11 +52,14 @@ static bool stencil_skip(const bg_renderer *r)
     return !(r->key.disable_skips & BG_SKIP_STENCIL);
 }
 
-/* The camera's frame as uniforms, relative to the camera (its eye is the frame's origin). */
-static bg_status set_camera_uniforms(bg_renderer *r, const bg_scene_state *state, macs_pass *pass)
+/* The camera's frame as uniforms, relative to the camera (its eye is the frame's origin); the size
+ * and aspect are the full frame's, the shift the view's window and sample (docs/shading.md 1.1). */
+bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *state)
 {
+    macs_pass *pass = r->passes.camera;
     const bg_camera_data *c = &state->camera;
-    float size[2] = {(float)r->width, (float)r->height};
+    int fw_px = r->view.pixels.frame_width, fh_px = r->view.pixels.frame_height;
+    float size[2] = {(float)fw_px, (float)fh_px};
     float eye[3];
     bgi_gpu_origin_point(state, &c->camera.position, eye); /* (0, 0, 0): the frame's origin */
     float fw[3], rt[3], up[3];
@@ -65,7 +68,7 @@ static bg_status set_camera_uniforms(bg_renderer *r, const bg_scene_state *state
         rt[i] = (float)c->right[i];
         up[i] = (float)c->up[i];
     }
-    double aspect = (double)r->width / (double)r->height;
+    double aspect = (double)fw_px / (double)fh_px;
     float th[2] = {(float)(aspect * c->tan_half_fov_y), (float)c->tan_half_fov_y};
     macs_status ms = macs_pass_set_uniform(pass, "bg_size", size);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_eye", eye);
@@ -73,23 +76,26 @@ static bg_status set_camera_uniforms(bg_renderer *r, const bg_scene_state *state
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_right", rt);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_up", up);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_tan_half", th);
+    if (!ms) ms = macs_pass_set_uniform(pass, "bg_shift", r->view.shift);
     return ms ? bgi_gpu_fail_macs(r, ms, "camera pass uniforms") : BG_OK;
 }
 
-/* Camera rays: one per pixel centre into ray set 0. */
+/* Camera rays: one per pixel, at the view's sample point (bgi_gpu_camera_uniforms_set), into ray
+ * set 0. */
 static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, const gpu_ray_set *set0)
 {
-    macs_uniform_desc u[6] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
+    macs_uniform_desc u[7] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
                               {"bg_forward", MACS_UNIFORM_VEC3, 0}, {"bg_right", MACS_UNIFORM_VEC3, 0},
-                              {"bg_up", MACS_UNIFORM_VEC3, 0},      {"bg_tan_half", MACS_UNIFORM_VEC2, 0}};
+                              {"bg_up", MACS_UNIFORM_VEC3, 0},      {"bg_tan_half", MACS_UNIFORM_VEC2, 0},
+                              {"bg_shift", MACS_UNIFORM_VEC2, 0}};
     macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
     const char *files[] = {"bg_stage_camera.glsl", NULL};
     bg_status st = simple_pass(r, "camera pass", files,
                                "vec4 bg_o0, bg_o1, bg_o2;\n"
-                               "bg_camera_ray(gl_FragCoord.xy, bg_size, bg_eye, bg_forward, bg_right, bg_up, "
-                               "bg_tan_half, bg_o0, bg_o1, bg_o2);\n",
-                               NULL, 0, NULL, u, 6, NULL, outs, 3, MACS_BLEND_NONE, NULL, &r->passes.camera);
-    return st == BG_OK ? set_camera_uniforms(r, state, r->passes.camera) : st;
+                               "bg_camera_ray(gl_FragCoord.xy + bg_shift, bg_size, bg_eye, bg_forward, bg_right, "
+                               "bg_up, bg_tan_half, bg_o0, bg_o1, bg_o2);\n",
+                               NULL, 0, NULL, u, 7, NULL, outs, 3, MACS_BLEND_NONE, NULL, &r->passes.camera);
+    return st == BG_OK ? bgi_gpu_camera_uniforms_set(r, state) : st;
 }
 
 /* Marking: counts a set's live rays (occlusion query) and, with the stencil skip on, sets their

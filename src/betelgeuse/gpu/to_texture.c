@@ -39,6 +39,12 @@ bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const
     /* RGBA8 takes the settings' encoding; the float formats take linear radiance (RGBA16F rounded to
      * half by GL when the shader's output is stored). */
     macs_format format = macs_texture_format(target);
+    bgi_render_view view;
+    st = bgi_render_view_make(settings, width, height, FN, &view, message, sizeof message);
+    if (st != BG_OK)
+        return bgi_gpu_fail(r, st, "%s", message);
     gpu_frame_out out = {NULL, 0, target, width, height, format != MACS_FORMAT_RGBA8, FN};
-    return bgi_gpu_frame_render(r, scene, settings, &out);
+    st = bgi_gpu_frame_render(r, scene, settings, &out, &view);
+    r->stats.tiles = 1;
+    return st;
 }
