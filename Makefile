@@ -1,5 +1,6 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries), check, check-symbols, check-examples, examples, bench, stress, install, uninstall, clean.
+# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command,
+# check-cluster, examples, bench, stress, install, uninstall, clean.
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
 VERSION   := 0.1.0
@@ -50,6 +51,11 @@ BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
 SF_OBJ   := $(SF_SRC:%.c=$(BUILD)/%.o)
 SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp 2>/dev/null || echo -I/usr/include/cjson)
 SF_LIBS   := $(shell pkg-config --libs libcjson assimp 2>/dev/null || echo -lcjson -lassimp)
+# The command (src/cli, docs/command.md) on the three libraries.
+CLI_SRC  := $(sort $(wildcard src/cli/*.c))
+CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
+CLI_BIN  := $(BUILD)/betelgeuse
+BINDIR   ?= $(PREFIX)/bin
 
 # Test helpers are tests/util_*.c; every tests/test_*.c is one cmocka suite.
 TEST_UTIL_SRC := $(sort $(wildcard tests/util_*.c))
@@ -99,11 +105,11 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples examples bench bench-programs stress install uninstall clean glsl-check valgrind
+.PHONY: FORCE all check check-symbols check-examples check-command check-cluster examples bench bench-programs stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
-  $(BUILD)/betelgeuse_scenefile.pc
+  $(BUILD)/betelgeuse_scenefile.pc $(CLI_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/scenefile/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
 	@mkdir -p $(dir $@)
@@ -172,6 +178,11 @@ $(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENE
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) $(TEST_LIBS)
 
+$(CLI_OBJ): ALL_CFLAGS += -DBG_CLI_VERSION='"$(VERSION)"'
+$(CLI_BIN): $(CLI_OBJ) $(SF_A) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS)
+
 $(BUILD)/tests/%: tests/%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(TEST_LIBS)
@@ -228,7 +239,18 @@ check-examples: all $(EXAMPLE_BIN)
 check-symbols: all
 	sh tests/check_symbols.sh $(BUILD)
 
-check: all glsl-check check-symbols check-examples $(TEST_BIN)
+# The command end to end: shipped scenes, broken files and options (exit codes and messages),
+# tiles and crop windows against one render, assemble (tests/check_command.sh).
+check-command: all
+	@env $(TEST_ENV) sh tests/check_command.sh $(CLI_BIN)
+
+# A single-node Slurm cluster started and stopped by the test renders a shared scene as a job array
+# of 4 tiles, assembles them and compares the frame with one render (tests/check_cluster.sh; needs
+# the slurm-wlm and munge packages).
+check-cluster: all
+	@env $(TEST_ENV) bash tests/check_cluster.sh $(CLI_BIN)
+
+check: all glsl-check check-symbols check-examples check-command $(TEST_BIN)
 	@TEST_ENV="$(TEST_ENV)" sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
 # valgrind over the MACS suites and the GPU renderer's error and smoke suites (renderer create/destroy
@@ -266,7 +288,8 @@ stress: all $(BENCH_BIN)
 	  [ "$$(cat $(BENCH_OUT)/stress.status)" = 0 ]
 
 install: all
-	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCDIR) $(DESTDIR)$(LIBDIR)/pkgconfig
+	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(BINDIR)
+	install -m 755 $(CLI_BIN) $(DESTDIR)$(BINDIR)/
 	install -m 644 include/macs.h include/betelgeuse.h include/betelgeuse_scenefile.h $(DESTDIR)$(INCDIR)/
 	install -m 644 $(MACS_A) $(BG_A) $(SF_A) $(DESTDIR)$(LIBDIR)/
 	install -m 755 $(MACS_SO) $(BG_SO) $(SF_SO) $(DESTDIR)$(LIBDIR)/
@@ -281,6 +304,7 @@ install: all
 # The pkgconfig folder goes too when nothing else is left in it (install made it where it was
 # missing); lib and include stay: they are the prefix's own (Debian ships /usr/local/include empty).
 uninstall:
+	rm -f $(DESTDIR)$(BINDIR)/betelgeuse
 	rm -f $(DESTDIR)$(INCDIR)/macs.h $(DESTDIR)$(INCDIR)/betelgeuse.h $(DESTDIR)$(INCDIR)/betelgeuse_scenefile.h
 	rm -f $(DESTDIR)$(LIBDIR)/libmacs.* $(DESTDIR)$(LIBDIR)/libbetelgeuse.* $(DESTDIR)$(LIBDIR)/libbetelgeuse_scenefile.*
 	rm -f $(DESTDIR)$(LIBDIR)/pkgconfig/macs.pc $(DESTDIR)$(LIBDIR)/pkgconfig/betelgeuse.pc

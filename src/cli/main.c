@@ -1,0 +1,69 @@
+/* The `betelgeuse` command (docs/command.md): render, assemble and info, --help and --version. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+#ifndef BG_CLI_VERSION
+#define BG_CLI_VERSION "unknown"
+#endif
+
+static const char help[] =
+    "usage: betelgeuse render SCENE -o OUT.png [options]\n"
+    "       betelgeuse assemble TILE.png... -o OUT.png\n"
+    "       betelgeuse info SCENE [--renderer gpu|cpu] [--backend egl|osmesa]\n"
+    "       betelgeuse --help | --version\n"
+    "\n"
+    "SCENE is a JSON scene file (docs/scene_format.md) or a model file (OBJ, PLY, STL, glTF), which is\n"
+    "rendered with its cameras and lights, or a camera framing it and a default light.\n"
+    "\n"
+    "render options:\n"
+    "  -o, --output OUT.png   the image (8-bit RGBA; it records its place in the frame for assemble)\n"
+    "  --size WxH             the frame's size (default: the scene file's image, else 640x480)\n"
+    "  --samples N            camera rays per pixel, 1 .. 256, stratified, box-filtered (default: the file's, else 1)\n"
+    "  --renderer gpu|cpu     the GPU renderer on a headless context (default) or the CPU reference\n"
+    "  --backend egl|osmesa   the headless context for the GPU: EGL (a GPU device, else surfaceless) or\n"
+    "                         OSMesa; default: EGL device, EGL surfaceless, then OSMesa\n"
+    "  --crop X0,Y0,X1,Y1     render only this window of the frame (pixels, X1 and Y1 exclusive)\n"
+    "  --tile I/N             render only band I of N of the frame (or of the crop): rows\n"
+    "                         [floor((I-1) H / N), floor(I H / N)); `assemble` joins the bands\n"
+    "  --max-depth D          bounce levels, 0 .. 64 (default: the file's, else 5)\n"
+    "  --linear               write linear values instead of sRGB\n"
+    "  --float OUT.pfm        also write the linear radiance as a PFM (renders the frame a second time)\n"
+    "  -q, --quiet            print nothing but errors (no progress bar, no warnings)\n"
+    "\n"
+    "A progress bar with the elapsed and remaining time goes to stderr when it is a terminal; Ctrl-C\n"
+    "cancels the render and writes nothing. Pixels are the same whatever the crop or tile.\n"
+    "\n"
+    "exit codes: 0 done; 1 the render or a write failed (or was cancelled); 2 bad usage, or a bad\n"
+    "scene, model or tile file (the message names the file, the field and the reason).\n";
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(help, stderr);
+        return CLI_EXIT_USAGE;
+    }
+    const char *command = argv[1];
+    if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
+        fputs(help, stdout);
+        return CLI_EXIT_OK;
+    }
+    if (strcmp(command, "--version") == 0) {
+        printf("betelgeuse %s\n", BG_CLI_VERSION);
+        return CLI_EXIT_OK;
+    }
+    for (int i = 2; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            fputs(help, stdout);
+            return CLI_EXIT_OK;
+        }
+    if (strcmp(command, "render") == 0)
+        return cli_render(argc - 2, argv + 2);
+    if (strcmp(command, "assemble") == 0)
+        return cli_assemble(argc - 2, argv + 2);
+    if (strcmp(command, "info") == 0)
+        return cli_info(argc - 2, argv + 2);
+    fprintf(stderr, "betelgeuse: unknown command '%s' (render, assemble, info; see betelgeuse --help)\n", command);
+    return CLI_EXIT_USAGE;
+}

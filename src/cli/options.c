@@ -1,0 +1,181 @@
+/* Option parsing for the command (options.h): every value is checked here, with the option and the
+ * reason in the message, before any file is read. */
+#include "options.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A whole number in [lo, hi] that is all of text. */
+static bool parse_int(const char *text, int lo, int hi, int *out)
+{
+    if (!text || !*text)
+        return false;
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (errno != 0 || *end != '\0' || v < lo || v > hi)
+        return false;
+    *out = (int)v;
+    return true;
+}
+
+/* "A<sep>B" with each a whole number in [lo, hi]. */
+static bool parse_pair(const char *text, char sep, int lo, int hi, int *a, int *b)
+{
+    const char *at = text ? strchr(text, sep) : NULL;
+    if (!at || at == text)
+        return false;
+    char first[32];
+    size_t n = (size_t)(at - text);
+    if (n >= sizeof first)
+        return false;
+    memcpy(first, text, n);
+    first[n] = '\0';
+    return parse_int(first, lo, hi, a) && parse_int(at + 1, lo, hi, b);
+}
+
+static bool parse_crop(const char *text, cli_options *o)
+{
+    int v[4];
+    char extra;
+    if (!text || sscanf(text, "%d,%d,%d,%d%c", &v[0], &v[1], &v[2], &v[3], &extra) != 4)
+        return false;
+    o->crop = true;
+    o->crop_x0 = v[0];
+    o->crop_y0 = v[1];
+    o->crop_x1 = v[2];
+    o->crop_y1 = v[3];
+    return v[0] >= 0 && v[1] >= 0 && v[2] > v[0] && v[3] > v[1];
+}
+
+static bool fail(char *why, size_t size, const char *format, const char *option, const char *value)
+{
+    snprintf(why, size, format, option, value ? value : "");
+    return false;
+}
+
+bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char *why, size_t size)
+{
+    memset(o, 0, sizeof *o);
+    o->max_depth = -1;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        /* Options with a value take it from the next argument or after '='. */
+        const char *value = NULL;
+        char name[32];
+        const char *eq = a[0] == '-' && a[1] == '-' ? strchr(a, '=') : NULL;
+        if (eq && (size_t)(eq - a) < sizeof name) {
+            memcpy(name, a, (size_t)(eq - a));
+            name[eq - a] = '\0';
+            value = eq + 1;
+            a = name;
+        }
+#define VALUE()                                                                                \
+    do {                                                                                       \
+        if (!value) {                                                                          \
+            if (i + 1 >= argc)                                                                 \
+                return fail(why, size, "%s needs a value%s", a, NULL);                         \
+            value = argv[++i];                                                                 \
+        }                                                                                      \
+    } while (0)
+        if (strcmp(a, "--renderer") == 0) {
+            VALUE();
+            if (strcmp(value, "gpu") == 0)
+                o->renderer = CLI_RENDERER_GPU;
+            else if (strcmp(value, "cpu") == 0)
+                o->renderer = CLI_RENDERER_CPU;
+            else
+                return fail(why, size, "%s: '%s' is neither gpu nor cpu", a, value);
+        } else if (strcmp(a, "--backend") == 0) {
+            VALUE();
+            if (strcmp(value, "egl") == 0)
+                o->backend = CLI_BACKEND_EGL;
+            else if (strcmp(value, "osmesa") == 0)
+                o->backend = CLI_BACKEND_OSMESA;
+            else
+                return fail(why, size, "%s: '%s' is neither egl nor osmesa", a, value);
+        } else if (!render && a[0] == '-' && a[1] != '\0') {
+            return fail(why, size, "unknown option %s for info%s", a, NULL);
+        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            VALUE();
+            o->output = value;
+        } else if (strcmp(a, "--float") == 0) {
+            VALUE();
+            o->float_output = value;
+        } else if (strcmp(a, "--size") == 0) {
+            VALUE();
+            if (!parse_pair(value, 'x', 1, 65536, &o->width, &o->height))
+                return fail(why, size, "%s: '%s' is not WIDTHxHEIGHT with each 1 .. 65536", a, value);
+        } else if (strcmp(a, "--samples") == 0) {
+            VALUE();
+            if (!parse_int(value, 1, 256, &o->samples))
+                return fail(why, size, "%s: '%s' is not a whole number of samples, 1 .. 256", a, value);
+        } else if (strcmp(a, "--max-depth") == 0) {
+            VALUE();
+            if (!parse_int(value, 0, 64, &o->max_depth))
+                return fail(why, size, "%s: '%s' is not a bounce depth, 0 .. 64", a, value);
+        } else if (strcmp(a, "--crop") == 0) {
+            VALUE();
+            if (!parse_crop(value, o))
+                return fail(why, size, "%s: '%s' is not X0,Y0,X1,Y1 with 0 <= X0 < X1 and 0 <= Y0 < Y1", a, value);
+        } else if (strcmp(a, "--tile") == 0) {
+            VALUE();
+            if (!parse_pair(value, '/', 1, 65536, &o->tile, &o->tiles) || o->tile > o->tiles)
+                return fail(why, size, "%s: '%s' is not I/N with 1 <= I <= N", a, value);
+        } else if (strcmp(a, "--linear") == 0) {
+            o->linear = true;
+        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            o->quiet = true;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return fail(why, size, "unknown option %s%s", a, NULL);
+        } else if (o->scene) {
+            return fail(why, size, "a second scene file '%s' (one is rendered at a time)%s", a, NULL);
+        } else {
+            o->scene = a;
+        }
+        if (eq && value == eq + 1 && (strcmp(a, "--linear") == 0 || strcmp(a, "--quiet") == 0))
+            return fail(why, size, "%s takes no value%s", a, NULL);
+#undef VALUE
+    }
+    if (!o->scene)
+        return fail(why, size, "no scene file given%s%s", "", NULL);
+    if (render && !o->output)
+        return fail(why, size, "-o OUT.png is required%s%s", "", NULL);
+    return true;
+}
+
+bool cli_options_window(const cli_options *o, int frame_width, int frame_height, int *x, int *y, int *w, int *h,
+                        char *why, size_t size)
+{
+    int x0 = 0, y0 = 0, x1 = frame_width, y1 = frame_height;
+    if (o->crop) {
+        if (o->crop_x1 > frame_width || o->crop_y1 > frame_height) {
+            snprintf(why, size, "--crop %d,%d,%d,%d: beyond the %dx%d frame", o->crop_x0, o->crop_y0, o->crop_x1,
+                     o->crop_y1, frame_width, frame_height);
+            return false;
+        }
+        x0 = o->crop_x0;
+        y0 = o->crop_y0;
+        x1 = o->crop_x1;
+        y1 = o->crop_y1;
+    }
+    if (o->tiles > 0) {
+        int rows = y1 - y0;
+        if (o->tiles > rows) {
+            snprintf(why, size, "--tile %d/%d: more tiles than the %d rows to split", o->tile, o->tiles, rows);
+            return false;
+        }
+        int top = y0 + (int)((long long)(o->tile - 1) * rows / o->tiles);
+        int bottom = y0 + (int)((long long)o->tile * rows / o->tiles);
+        y0 = top;
+        y1 = bottom;
+    }
+    *x = x0;
+    *y = y0;
+    *w = x1 - x0;
+    *h = y1 - y0;
+    return true;
+}

@@ -1,0 +1,37 @@
+/* The options of `betelgeuse render` and `betelgeuse info`, parsed and checked (options.c). */
+#ifndef CLI_OPTIONS_H
+#define CLI_OPTIONS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+typedef enum cli_renderer { CLI_RENDERER_GPU = 0, CLI_RENDERER_CPU } cli_renderer;
+typedef enum cli_backend { CLI_BACKEND_DEFAULT = 0, CLI_BACKEND_EGL, CLI_BACKEND_OSMESA } cli_backend;
+
+typedef struct cli_options {
+    const char *scene;      /* the scene or model file */
+    const char *output;     /* -o: the PNG */
+    const char *float_output; /* --float: the PFM, or NULL */
+    int width, height;      /* --size; 0: the scene file's */
+    int samples;            /* --samples; 0: the scene file's */
+    int max_depth;          /* --max-depth; -1: the scene file's */
+    cli_renderer renderer;
+    cli_backend backend;
+    bool crop;              /* --crop X0,Y0,X1,Y1 (x1, y1 exclusive) */
+    int crop_x0, crop_y0, crop_x1, crop_y1;
+    int tile, tiles;        /* --tile I/N (1-based); tiles 0: none */
+    bool linear;            /* --linear: the PNG holds linear values, not sRGB */
+    bool quiet;             /* --quiet: errors only */
+} cli_options;
+
+/* Parses argv (after the subcommand's name); render wants -o, info takes only SCENE and
+ * --renderer/--backend. False with the reason in why (a usage error). */
+bool cli_options_parse(int argc, char **argv, bool render, cli_options *out, char *why, size_t why_size);
+
+/* The window of the frame the options ask for: the crop rectangle (or the whole frame), then the
+ * band of rows of tile I of N in it (rows [floor((I - 1) h / N), floor(I h / N))). False with the
+ * reason when it lies outside the frame or is empty. */
+bool cli_options_window(const cli_options *o, int frame_width, int frame_height, int *x, int *y, int *w, int *h,
+                        char *why, size_t why_size);
+
+#endif

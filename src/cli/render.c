@@ -1,0 +1,301 @@
+/* `betelgeuse render` and `betelgeuse info` (docs/command.md): a scene or model file through the
+ * scene-file library into a scene, rendered by the GPU (a headless context) or the CPU reference,
+ * with the frame, samples, window and tile the options ask for, written as a PNG that records its
+ * place in the frame (and a PFM of the radiance with --float). Ctrl-C cancels through the progress
+ * callback: the render returns BG_ERR_CANCELLED and nothing is written. */
+#include "cli.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "betelgeuse.h"
+#include "betelgeuse_scenefile.h"
+#include "macs.h"
+#include "options.h"
+#include "progress.h"
+#include "tile_file.h"
+
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int signal)
+{
+    (void)signal;
+    interrupted = 1;
+}
+
+/* What the render's progress calls reach: the bar, and the interrupt flag. */
+static bool on_progress(double fraction, void *user)
+{
+    cli_progress_update(user, fraction);
+    return !interrupted;
+}
+
+/* Warnings (what a model's materials lose) when someone watches; errors come back as messages. */
+static void on_log(bg_log_level level, const char *message, void *user)
+{
+    const bool *quiet = user;
+    if (level == BG_LOG_WARNING && !*quiet)
+        fprintf(stderr, "betelgeuse: warning: %s\n", message);
+}
+
+/* The GPU's pieces, made and freed together. */
+typedef struct gpu {
+    macs_headless *headless;
+    macs_context *context;
+    bg_renderer *renderer;
+} gpu;
+
+static void gpu_close(gpu *g)
+{
+    bg_renderer_destroy(g->renderer);
+    macs_context_destroy(g->context);
+    macs_headless_destroy(g->headless);
+    memset(g, 0, sizeof *g);
+}
+
+static bool gpu_open(cli_backend backend, gpu *g, char *why, size_t size)
+{
+    memset(g, 0, sizeof *g);
+    macs_headless_desc hd;
+    memset(&hd, 0, sizeof hd);
+    hd.backend = backend == CLI_BACKEND_OSMESA ? MACS_HEADLESS_OSMESA : MACS_HEADLESS_DEFAULT;
+    macs_status ms = MACS_OK;
+    if (backend == CLI_BACKEND_EGL) {
+        /* EGL on a GPU device first, then EGL surfaceless. */
+        hd.backend = MACS_HEADLESS_EGL_DEVICE;
+        ms = macs_headless_create(&hd, &g->headless, why, size);
+        if (ms != MACS_OK) {
+            hd.backend = MACS_HEADLESS_EGL;
+            ms = macs_headless_create(&hd, &g->headless, why, size);
+        }
+    } else {
+        ms = macs_headless_create(&hd, &g->headless, why, size);
+    }
+    if (ms != MACS_OK)
+        return false;
+    macs_context_desc cd;
+    memset(&cd, 0, sizeof cd);
+    cd.get_proc_address = macs_headless_get_proc_address(g->headless);
+    cd.get_proc_address_user = macs_headless_proc_user(g->headless);
+    if (macs_context_create(&cd, &g->context, why, size) != MACS_OK) {
+        gpu_close(g);
+        return false;
+    }
+    bg_renderer_desc rd;
+    memset(&rd, 0, sizeof rd);
+    rd.context = g->context;
+    if (bg_renderer_create(&rd, &g->renderer, why, size) != BG_OK) {
+        gpu_close(g);
+        return false;
+    }
+    return true;
+}
+
+/* One render of the window into image, on the chosen renderer. */
+static bg_status render_once(const cli_options *o, gpu *g, bg_scene *scene, const bg_render_settings *settings,
+                             bg_image *image, char *why, size_t size)
+{
+    bg_status st;
+    if (o->renderer == CLI_RENDERER_CPU) {
+        st = bg_render_cpu(scene, settings, image);
+        if (st != BG_OK)
+            snprintf(why, size, "%s", bg_scene_error_message(scene));
+    } else {
+        st = bg_render_gpu(g->renderer, scene, settings, image);
+        if (st != BG_OK)
+            snprintf(why, size, "%s", bg_renderer_error_message(g->renderer));
+    }
+    return st;
+}
+
+static bool loaded(const char *path, bg_status st, const char *message)
+{
+    if (st == BG_OK)
+        return true;
+    fprintf(stderr, "betelgeuse: %s\n", message[0] ? message : bg_status_string(st));
+    (void)path;
+    return false;
+}
+
+int cli_render(int argc, char **argv)
+{
+    cli_options o;
+    char why[1024];
+    if (!cli_options_parse(argc, argv, true, &o, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse render: %s\n(see betelgeuse --help)\n", why);
+        return CLI_EXIT_USAGE;
+    }
+    bool quiet_logs = o.quiet || !isatty(2);
+    bg_scene_desc sd;
+    memset(&sd, 0, sizeof sd);
+    bg_scene *scene = NULL;
+    if (bg_scene_create(&sd, &scene) != BG_OK) {
+        fprintf(stderr, "betelgeuse: out of memory creating the scene\n");
+        return CLI_EXIT_FAILED;
+    }
+    bg_scenefile_desc fd;
+    memset(&fd, 0, sizeof fd);
+    fd.logger.func = on_log;
+    fd.logger.user = &quiet_logs;
+    bg_scenefile_result file;
+    why[0] = '\0';
+    bg_status st = bg_scenefile_load_any(o.scene, &fd, scene, &file, why, sizeof why);
+    if (!loaded(o.scene, st, why)) {
+        bg_scene_destroy(scene);
+        return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
+    }
+    int frame_w = o.width ? o.width : file.image.width, frame_h = o.height ? o.height : file.image.height;
+    int x, y, w, h;
+    if (!cli_options_window(&o, frame_w, frame_h, &x, &y, &w, &h, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse render: %s\n", why);
+        bg_scene_destroy(scene);
+        return CLI_EXIT_USAGE;
+    }
+    bg_render_settings settings = file.settings;
+    settings.samples = o.samples ? o.samples : file.image.samples;
+    if (o.max_depth >= 0)
+        settings.max_depth = o.max_depth;
+    if (o.linear)
+        settings.encoding = BG_ENCODING_LINEAR;
+    settings.frame_width = frame_w;
+    settings.frame_height = frame_h;
+    settings.window_x = x;
+    settings.window_y = y;
+
+    gpu g;
+    memset(&g, 0, sizeof g);
+    if (o.renderer == CLI_RENDERER_GPU && !gpu_open(o.backend, &g, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse: no GPU context: %s (--renderer cpu renders without one)\n", why);
+        bg_scene_destroy(scene);
+        return CLI_EXIT_FAILED;
+    }
+    bg_image image = {w, h, BG_PIXEL_RGBA8, 0, malloc((size_t)w * (size_t)h * 4)};
+    bg_image radiance = {w, h, BG_PIXEL_RGBA32F, 0, NULL};
+    if (o.float_output)
+        radiance.pixels = malloc((size_t)w * (size_t)h * 16);
+    if (!image.pixels || (o.float_output && !radiance.pixels)) {
+        fprintf(stderr, "betelgeuse: out of memory for a %dx%d image\n", w, h);
+        free(image.pixels);
+        free(radiance.pixels);
+        gpu_close(&g);
+        bg_scene_destroy(scene);
+        return CLI_EXIT_FAILED;
+    }
+    cli_progress bar;
+    cli_progress_start(&bar, !o.quiet);
+    settings.progress = on_progress;
+    settings.progress_user = &bar;
+    struct sigaction action, previous;
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_interrupt;
+    sigaction(SIGINT, &action, &previous);
+    /* The float frame renders first when asked for: it is the one progress runs over twice. */
+    st = o.float_output ? render_once(&o, &g, scene, &settings, &radiance, why, sizeof why) : BG_OK;
+    if (st == BG_OK)
+        st = render_once(&o, &g, scene, &settings, &image, why, sizeof why);
+    sigaction(SIGINT, &previous, NULL);
+    cli_progress_finish(&bar, st == BG_OK);
+    int status = CLI_EXIT_OK;
+    if (st != BG_OK) {
+        fprintf(stderr, "betelgeuse: %s\n", st == BG_ERR_CANCELLED ? "cancelled; nothing was written" : why);
+        status = CLI_EXIT_FAILED;
+    }
+    cli_placement where = {x, y, frame_w, frame_h};
+    if (status == CLI_EXIT_OK && !cli_png_write(o.output, &image, &where, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse: %s\n", why);
+        status = CLI_EXIT_FAILED;
+    }
+    if (status == CLI_EXIT_OK && o.float_output && !cli_pfm_write(o.float_output, &radiance, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse: %s\n", why);
+        status = CLI_EXIT_FAILED;
+    }
+    if (status == CLI_EXIT_OK && !o.quiet && isatty(2))
+        fprintf(stderr, "betelgeuse: %dx%d%s written to %s in %.1f s\n", w, h,
+                w != frame_w || h != frame_h ? " window" : "", o.output, cli_now() - bar.start);
+    free(image.pixels);
+    free(radiance.pixels);
+    gpu_close(&g);
+    bg_scene_destroy(scene);
+    return status;
+}
+
+static const char *plan_name(bg_gpu_plan p)
+{
+    switch (p) {
+    case BG_PLAN_FUSED:
+        return "fused (BG_PLAN_FUSED)";
+    case BG_PLAN_FUSED_TREE:
+        return "fused with the object tree (BG_PLAN_FUSED_TREE)";
+    case BG_PLAN_MULTIPASS:
+        return "multipass (BG_PLAN_MULTIPASS)";
+    default:
+        return "automatic";
+    }
+}
+
+int cli_info(int argc, char **argv)
+{
+    cli_options o;
+    char why[1024];
+    if (!cli_options_parse(argc, argv, false, &o, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse info: %s\n(see betelgeuse --help)\n", why);
+        return CLI_EXIT_USAGE;
+    }
+    bool quiet_logs = !isatty(2);
+    bg_scene *scene = NULL;
+    if (bg_scene_create(NULL, &scene) != BG_OK)
+        return CLI_EXIT_FAILED;
+    bg_scenefile_desc fd;
+    memset(&fd, 0, sizeof fd);
+    fd.logger.func = on_log;
+    fd.logger.user = &quiet_logs;
+    bg_scenefile_result file;
+    why[0] = '\0';
+    bg_status st = bg_scenefile_load_any(o.scene, &fd, scene, &file, why, sizeof why);
+    if (!loaded(o.scene, st, why)) {
+        bg_scene_destroy(scene);
+        return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
+    }
+    const bg_scenefile_summary *s = &file.summary;
+    printf("scene      %s\n", o.scene);
+    printf("image      %dx%d, %d sample%s per pixel\n", file.image.width, file.image.height, file.image.samples,
+           file.image.samples == 1 ? "" : "s");
+    printf("objects    %zu (%zu meshes: %llu triangles, %llu vertices)\n", s->objects, s->meshes,
+           (unsigned long long)s->triangles, (unsigned long long)s->vertices);
+    printf("lights     %zu%s\n", s->lights, file.lights_from_file ? "" : " (the default light)");
+    printf("materials  %zu, textures %zu\n", s->materials, s->textures);
+    if (s->bounded)
+        printf("bounds     (%g, %g, %g) .. (%g, %g, %g)%s\n", s->bounds_min.x, s->bounds_min.y, s->bounds_min.z,
+               s->bounds_max.x, s->bounds_max.y, s->bounds_max.z, s->unbounded ? ", and unbounded planes" : "");
+    else
+        printf("bounds     %s\n", s->unbounded ? "unbounded (planes only)" : "none (empty)");
+    printf("camera     (%g, %g, %g) looking at (%g, %g, %g), fov_y %g degrees%s\n", file.camera.position.x,
+           file.camera.position.y, file.camera.position.z, file.camera.look_at.x, file.camera.look_at.y,
+           file.camera.look_at.z, file.camera.fov_y_degrees, file.camera_from_file ? "" : " (framing the bounds)");
+    /* The plan is the GPU renderer's choice for this scene and these settings: one pixel shows it. */
+    if (o.renderer == CLI_RENDERER_GPU) {
+        gpu g;
+        if (!gpu_open(o.backend, &g, why, sizeof why)) {
+            printf("GPU plan   unknown: no GPU context (%s)\n", why);
+        } else {
+            unsigned char pixel[4];
+            bg_image one = {1, 1, BG_PIXEL_RGBA8, 0, pixel};
+            bg_render_settings set = file.settings;
+            set.frame_width = file.image.width;
+            set.frame_height = file.image.height;
+            st = bg_render_gpu(g.renderer, scene, &set, &one);
+            bg_render_stats stats;
+            bg_renderer_get_stats(g.renderer, &stats);
+            if (st == BG_OK)
+                printf("GPU plan   %s\n", plan_name(stats.plan));
+            else
+                printf("GPU plan   none: %s\n", bg_renderer_error_message(g.renderer));
+            gpu_close(&g);
+        }
+    }
+    bg_scene_destroy(scene);
+    return CLI_EXIT_OK;
+}

@@ -1,0 +1,195 @@
+/* Tile PNGs and PFMs (tile_file.h). The library's own PNG writer goes through libpng's simplified
+ * API, which writes no text chunks; the placement needs one, so the command uses libpng's full API
+ * here, with its errors turned into messages through setjmp. */
+#include "tile_file.h"
+
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TILE_KEY "Betelgeuse-Tile"
+
+static bool fail(char *why, size_t size, const char *format, const char *path, const char *detail)
+{
+    snprintf(why, size, format, path, detail);
+    return false;
+}
+
+/* libpng's error callback: keeps the message and unwinds to the caller's setjmp. */
+static void on_png_error(png_structp png, png_const_charp message)
+{
+    char *keep = png_get_error_ptr(png);
+    snprintf(keep, 256, "%s", message);
+    png_longjmp(png, 1);
+}
+
+static void on_png_warning(png_structp png, png_const_charp message)
+{
+    (void)png;
+    (void)message; /* a warning changes nothing the command writes or reads */
+}
+
+bool cli_png_write(const char *path, const bg_image *image, const cli_placement *where, char *why, size_t why_size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return fail(why, why_size, "%s: cannot create: %s", path, strerror(errno));
+    char message[256] = "";
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!png || !info) {
+        png_destroy_write_struct(&png, NULL);
+        fclose(f);
+        remove(path);
+        return fail(why, why_size, "%s: %s", path, "out of memory");
+    }
+    size_t stride = image->stride ? image->stride : (size_t)image->width * 4;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        fclose(f);
+        remove(path);
+        return fail(why, why_size, "%s: %s", path, message);
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)image->width, (png_uint_32)image->height, 8, PNG_COLOR_TYPE_RGB_ALPHA,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    char text[96];
+    snprintf(text, sizeof text, "%d %d %d %d", where->x, where->y, where->frame_width, where->frame_height);
+    png_text t;
+    memset(&t, 0, sizeof t);
+    t.compression = PNG_TEXT_COMPRESSION_NONE;
+    t.key = (png_charp)TILE_KEY;
+    t.text = text;
+    png_set_text(png, info, &t, 1);
+    png_write_info(png, info);
+    for (int y = 0; y < image->height; y++)
+        png_write_row(png, (png_const_bytep)image->pixels + (size_t)y * stride);
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    if (fclose(f) != 0) {
+        remove(path);
+        return fail(why, why_size, "%s: cannot finish writing: %s", path, strerror(errno));
+    }
+    return true;
+}
+
+/* The placement in the text chunks, if any; false when the chunk is there but malformed. */
+static bool placement_of(png_structp png, png_infop info, const bg_image *image, cli_placement *where)
+{
+    *where = (cli_placement){0, 0, image->width, image->height};
+    png_textp texts = NULL;
+    int n = 0;
+    png_get_text(png, info, &texts, &n);
+    for (int i = 0; i < n; i++) {
+        if (strcmp(texts[i].key, TILE_KEY) != 0)
+            continue;
+        cli_placement p;
+        char extra;
+        if (sscanf(texts[i].text, "%d %d %d %d %c", &p.x, &p.y, &p.frame_width, &p.frame_height, &extra) != 4)
+            return false;
+        if (p.x < 0 || p.y < 0 || p.frame_width < 1 || p.frame_height < 1 || p.x > p.frame_width - image->width ||
+            p.y > p.frame_height - image->height)
+            return false;
+        *where = p;
+    }
+    return true;
+}
+
+bool cli_png_read(const char *path, bg_image *image, cli_placement *where, char *why, size_t why_size)
+{
+    memset(image, 0, sizeof *image);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return fail(why, why_size, "%s: cannot open: %s", path, strerror(errno));
+    unsigned char signature[8];
+    if (fread(signature, 1, 8, f) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
+        fclose(f);
+        return fail(why, why_size, "%s: %s", path, "not a PNG file");
+    }
+    char message[256] = "";
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!png || !info) {
+        png_destroy_read_struct(&png, NULL, NULL);
+        fclose(f);
+        return fail(why, why_size, "%s: %s", path, "out of memory");
+    }
+    unsigned char *volatile pixels = NULL;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        fclose(f);
+        free(pixels);
+        return fail(why, why_size, "%s: %s", path, message);
+    }
+    png_init_io(png, f);
+    png_set_sig_bytes(png, 8);
+    png_read_info(png, info);
+    /* Any PNG becomes 8-bit RGBA, so that tiles from other tools assemble too. */
+    png_set_expand(png);
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+    if (w == 0 || h == 0 || w > 65536 || h > 65536 || png_get_rowbytes(png, info) != (size_t)w * 4) {
+        png_destroy_read_struct(&png, &info, NULL);
+        fclose(f);
+        return fail(why, why_size, "%s: %s", path, "unsupported image size or layout");
+    }
+    pixels = malloc((size_t)w * h * 4);
+    png_bytep *rows = pixels ? malloc(h * sizeof *rows) : NULL;
+    if (!rows) {
+        png_destroy_read_struct(&png, &info, NULL);
+        fclose(f);
+        free(pixels);
+        return fail(why, why_size, "%s: %s", path, "out of memory");
+    }
+    for (png_uint_32 y = 0; y < h; y++)
+        rows[y] = pixels + (size_t)y * w * 4;
+    png_read_image(png, rows);
+    png_read_end(png, info);
+    free(rows);
+    *image = (bg_image){(int)w, (int)h, BG_PIXEL_RGBA8, 0, pixels};
+    bool placed = placement_of(png, info, image, where);
+    png_destroy_read_struct(&png, &info, NULL);
+    fclose(f);
+    if (!placed) {
+        free(pixels);
+        memset(image, 0, sizeof *image);
+        return fail(why, why_size, "%s: %s", path, "malformed " TILE_KEY " text chunk");
+    }
+    return true;
+}
+
+bool cli_pfm_write(const char *path, const bg_image *image, char *why, size_t why_size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return fail(why, why_size, "%s: cannot create: %s", path, strerror(errno));
+    size_t stride = image->stride ? image->stride : (size_t)image->width * 16;
+    /* The scale's sign gives the byte order of the floats: negative little-endian. */
+    const uint16_t probe = 1;
+    bool little = *(const unsigned char *)&probe == 1;
+    bool ok = fprintf(f, "PF\n%d %d\n%s\n", image->width, image->height, little ? "-1.0" : "1.0") > 0;
+    float *row = malloc((size_t)image->width * 3 * sizeof *row);
+    ok = ok && row;
+    for (int y = image->height - 1; y >= 0 && ok; y--) {
+        const float *src = (const float *)((const unsigned char *)image->pixels + (size_t)y * stride);
+        for (int x = 0; x < image->width; x++)
+            memcpy(row + 3 * x, src + 4 * x, 3 * sizeof *row);
+        ok = fwrite(row, sizeof *row, (size_t)image->width * 3, f) == (size_t)image->width * 3;
+    }
+    free(row);
+    if (fclose(f) != 0)
+        ok = false;
+    if (!ok) {
+        remove(path);
+        return fail(why, why_size, "%s: cannot write: %s", path, strerror(errno));
+    }
+    return true;
+}

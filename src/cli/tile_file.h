@@ -1,0 +1,30 @@
+/* The command's image files: an 8-bit RGBA PNG that may carry where it lies in a bigger frame (a
+ * tile of `betelgeuse render --tile`, or a --crop window), read back by `betelgeuse assemble`, and
+ * a PFM of the linear radiance. */
+#ifndef CLI_TILE_FILE_H
+#define CLI_TILE_FILE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "betelgeuse.h"
+
+/* Where an image lies in its frame: the window's top-left pixel and the frame's size. A whole
+ * frame is {0, 0, width, height}. */
+typedef struct cli_placement {
+    int x, y;
+    int frame_width, frame_height;
+} cli_placement;
+
+/* Writes an RGBA8 image as a PNG with its placement in a "Betelgeuse-Tile" text chunk
+ * ("x y frame_width frame_height"); false with the reason in why. */
+bool cli_png_write(const char *path, const bg_image *image, const cli_placement *where, char *why, size_t why_size);
+
+/* Reads a PNG written by cli_png_write into *image (pixels allocated with malloc, RGBA8, rows
+ * top-down) and its placement; a PNG without the chunk is a whole frame. False with the reason. */
+bool cli_png_read(const char *path, bg_image *image, cli_placement *where, char *why, size_t why_size);
+
+/* Writes an RGBA32F image's RGB as a little-endian PFM (rows bottom-up, as the format has them). */
+bool cli_pfm_write(const char *path, const bg_image *image, char *why, size_t why_size);
+
+#endif
