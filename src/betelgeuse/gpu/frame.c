@@ -382,7 +382,7 @@ static bg_status finish(frame *f, const gpu_frame_out *o)
                                                    &f->r->stats.fallback_pixels);
     if (o->as_float)
         float_marks(o->image, o->stride);
-    f->r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(f->state, f->settings, o->image, o->stride);
+    f->r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(f->state, f->settings, &f->r->view.pixels, o->image, o->stride);
     return BG_OK;
 }
 
