@@ -12,21 +12,33 @@
 // {v2, u2}, {n0, v0}, {n1, v1}, {n2, v2}: the object-space positions and normals of its corners
 // (normals 0 where the mesh has none) with the corners' texture coordinates in the w lanes.
 
-// The texel at index k: in s below 2^23, in hi from there on (llvmpipe reads the texels of one
-// texture past 2^23 wrongly: gpu/fused_tree.c); both textures have the rows 1 / dims.w.
+// The texel at index k. With BG_MESH_SPLIT defined (the generator does, for mesh data past 2^23
+// texels) it is in s below 2^23 and in hi from there on (llvmpipe reads the texels of one texture
+// past 2^23 wrongly: gpu/fused_tree.c), both textures with the rows 1 / dims.w; without, every
+// texel is in s. The choice made the whole frame about 1.7 times as slow on llvmpipe (measured:
+// `betelgeuse render` of the bunny at 1024x1024, compile included, median 2.6 s against 1.5 s), so
+// scenes that fit one texture do not pay for it.
 vec4 bg_mesh_fetch(sampler2D s, sampler2D hi, vec4 dims, float k)
 {
+#ifdef BG_MESH_SPLIT
     bool upper = k >= 8388608.0;
     float j = upper ? k - 8388608.0 : k;
+#else
+    float j = k;
+#endif
     float row = floor(j * dims.y);
     float column = j - row * dims.x;
     vec2 at = vec2((column + 0.5) * dims.z, (row + 0.5) * dims.w);
+#ifdef BG_MESH_SPLIT
     vec4 texel;
     if (upper)
         texel = texture2D(hi, at);
     else
         texel = texture2D(s, at);
     return texel;
+#else
+    return texture2D(s, at);
+#endif
 }
 
 // The world attributes of a hit on triangle texels `at` with barycentric weights bary (of v0, v1,

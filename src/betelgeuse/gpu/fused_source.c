@@ -95,8 +95,7 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     if (ok && (l->tree || l->mesh))
         ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
     if (ok && l->mesh)
-        ok = bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, &n, SEEN_CAP) &&
-             bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, &n, SEEN_CAP);
+        ok = bgi_gpu_mesh_library(t, l->mesh_split, seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)

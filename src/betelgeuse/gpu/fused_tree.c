@@ -266,6 +266,19 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
     return true;
 }
 
+bool bgi_gpu_meshes_split(const bg_allocator *a, const bg_scene_state *state, bool *split)
+{
+    *split = false;
+    if (state->mesh_object_count == 0)
+        return true;
+    uint32_t *first = mesh_firsts(a, state);
+    if (!first)
+        return false;
+    *split = mesh_layout(state, first, NULL) > MESH_TEXTURE_TEXELS;
+    bgi_free(a, first);
+    return true;
+}
+
 /* Every distinct mesh once: its nodes as common/bvh.h lays them out, the miss links turned into
  * texel indices of the whole texture, then its triangles (docs/gpu_pipeline.md, "Meshes"). */
 static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_fused_tree *t, float *out)
@@ -357,6 +370,7 @@ static bg_status meshes_upload(bg_renderer *r, gpu_fused_tree *t, const bg_scene
     uint64_t texels = mesh_layout(state, first, t->mesh_base);
     int w = mesh_width(r->limits.max_texture_size);
     bool split = texels > MESH_TEXTURE_TEXELS;
+    t->split = split;
     int h = split ? (int)(MESH_TEXTURE_TEXELS / (uint64_t)w) : (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
     t->dims.meshes[0] = (float)w;
     t->dims.meshes[1] = 1.0f / (float)w;

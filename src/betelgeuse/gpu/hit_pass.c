@@ -175,7 +175,8 @@ int bgi_gpu_hit_shared_components(void)
 
 /* The functions of the pass: each distinct shape's root and each distinct UV mapping, renamed by
  * suffix so that they coexist in one program. */
-static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member *m, int count, bool need_tangent)
+static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member *m, int count, bool need_tangent,
+                          bool split)
 {
     const char *seen[48];
     int n = 0;
@@ -187,7 +188,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
         meshes += m[j].mesh ? 1 : 0;
     if (meshes > 0) {
         ok = ok && bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 48) &&
-             bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, &n, 48) && bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, &n, 48);
+             bgi_gpu_mesh_library(t, split, seen, &n, 48);
         if (ok)
             bgi_gpu_mesh_pass_walks(meshes, t);
     }
@@ -570,7 +571,7 @@ static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pa
     bgi_gpu_text_init(&functions, &r->allocator);
     emit_nearest_root(r, state, hp, &main);
     emit_winner_surface(r, state, hp, &main);
-    bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent);
+    bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent, r->meshes && r->meshes->split);
 
     macs_pass_desc desc;
     bgi_gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,

@@ -130,6 +130,7 @@ typedef struct shadow_pass_parts {
     bool mesh[GPU_BATCH_MAX]; /* caster j is a mesh (its test walks the mesh's tree) */
     int meshes;               /* mesh casters that block */
     bool on_meshes;           /* the scene has meshes: a point on one starts its segments off it */
+    bool split;               /* the meshes fill two mesh textures */
     caster_names names[GPU_BATCH_MAX];
     macs_uniform_desc uniforms[GPU_BATCH_MAX * C_COUNT + LIGHT_UNIFORM_COUNT + 1];
     int uniform_count;
@@ -213,8 +214,8 @@ static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const sha
     bool ok = bgi_gpu_text_snippet(t, "bg_hit_code.glsl", seen, &n, 32) && bgi_gpu_text_snippet(t, "bg_light.glsl", seen, &n, 32) &&
               bgi_gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
     if (ok && sp->meshes > 0) {
-        ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 32) && bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, &n, 32) &&
-             bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, &n, 32);
+        ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 32) &&
+             bgi_gpu_mesh_library(t, sp->split, seen, &n, 32);
         if (ok)
             bgi_gpu_mesh_pass_walks(sp->meshes * sp->lights, t);
     }
@@ -259,6 +260,7 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     sp.lights = group_size(state, group);
     sp.meshes = 0;
     sp.on_meshes = r->features.mesh;
+    sp.split = r->meshes && r->meshes->split;
     for (int j = 0; j < count; j++) {
         sp.mesh[j] = state->objects[casters[j]].shape == BGI_SHAPE_MESH;
         sp.meshes += sp.mesh[j] && blocks[j] ? 1 : 0;

@@ -111,3 +111,11 @@ void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t)
     bgi_gpu_walk_globals(t);
     bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), t);
 }
+
+bool bgi_gpu_mesh_library(gpu_text *t, bool split, const char **seen, int *seen_count, int seen_cap)
+{
+    if (split)
+        bgi_gpu_text_append(t, "#define BG_MESH_SPLIT 1\n");
+    return bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, seen_count, seen_cap) &&
+           bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, seen_count, seen_cap);
+}
