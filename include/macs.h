@@ -168,7 +168,8 @@ typedef struct macs_limits {
     int max_draw_buffers;      /* GL_MAX_DRAW_BUFFERS */
     int max_color_attachments; /* GL_MAX_COLOR_ATTACHMENTS */
     int max_texture_units;     /* GL_MAX_TEXTURE_IMAGE_UNITS: inputs of one pass */
-    int max_texture_size;      /* GL_MAX_TEXTURE_SIZE (and GL_MAX_RENDERBUFFER_SIZE) */
+    int max_texture_size;      /* GL_MAX_TEXTURE_SIZE (and GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS):
+                                  the largest texture a pass can draw whole */
     int max_uniform_components; /* GL_MAX_FRAGMENT_UNIFORM_COMPONENTS: floats of uniforms one fragment
                                    shader may declare (at least 64, as GL 2.0 promises) */
 } macs_limits;

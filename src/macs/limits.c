@@ -25,6 +25,13 @@ void macsi_limits_query(macs_context *ctx)
     ctx->gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
     if (rb > 0 && rb < r->max_texture_size)
         r->max_texture_size = rb;
+    /* A pass draws its outputs whole, so an output larger than the viewport could be cannot be
+     * drawn either: the viewport's limit joins the two (GL 2.1 guarantees at least the window's). */
+    GLint vp[2] = {0, 0};
+    ctx->gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    int viewport = vp[0] < vp[1] ? vp[0] : vp[1];
+    if (viewport > 0 && viewport < r->max_texture_size)
+        r->max_texture_size = viewport;
     /* GL 2.1 guarantees at least one of each; a driver reporting less would make every pass fail. */
     if (r->max_draw_buffers < 1) r->max_draw_buffers = 1;
     if (r->max_color_attachments < 1) r->max_color_attachments = 1;
