@@ -111,13 +111,29 @@ static bg_status render_once(const cli_options *o, gpu *g, bg_scene *scene, cons
     return st;
 }
 
-static bool loaded(const char *path, bg_status st, const char *message)
+/* The scene or model file into a new scene (*out, committed); the exit code on failure, with the
+ * message printed: 2 for a bad or missing file, 1 when out of memory. */
+static int load_scene(const char *path, bool *quiet_logs, bg_scene **out, bg_scenefile_result *file)
 {
-    if (st == BG_OK)
-        return true;
-    fprintf(stderr, "betelgeuse: %s\n", message[0] ? message : bg_status_string(st));
-    (void)path;
-    return false;
+    *out = NULL;
+    bg_scene *scene = NULL;
+    if (bg_scene_create(NULL, &scene) != BG_OK) {
+        fprintf(stderr, "betelgeuse: out of memory creating the scene\n");
+        return CLI_EXIT_FAILED;
+    }
+    bg_scenefile_desc fd;
+    memset(&fd, 0, sizeof fd);
+    fd.logger.func = on_log;
+    fd.logger.user = quiet_logs;
+    char why[1024] = "";
+    bg_status st = bg_scenefile_load_any(path, &fd, scene, file, why, sizeof why);
+    if (st != BG_OK) {
+        fprintf(stderr, "betelgeuse: %s\n", why[0] ? why : bg_status_string(st));
+        bg_scene_destroy(scene);
+        return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
+    }
+    *out = scene;
+    return CLI_EXIT_OK;
 }
 
 int cli_render(int argc, char **argv)
@@ -129,24 +145,12 @@ int cli_render(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     bool quiet_logs = o.quiet || !isatty(2);
-    bg_scene_desc sd;
-    memset(&sd, 0, sizeof sd);
     bg_scene *scene = NULL;
-    if (bg_scene_create(&sd, &scene) != BG_OK) {
-        fprintf(stderr, "betelgeuse: out of memory creating the scene\n");
-        return CLI_EXIT_FAILED;
-    }
-    bg_scenefile_desc fd;
-    memset(&fd, 0, sizeof fd);
-    fd.logger.func = on_log;
-    fd.logger.user = &quiet_logs;
     bg_scenefile_result file;
-    why[0] = '\0';
-    bg_status st = bg_scenefile_load_any(o.scene, &fd, scene, &file, why, sizeof why);
-    if (!loaded(o.scene, st, why)) {
-        bg_scene_destroy(scene);
-        return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
-    }
+    int loaded = load_scene(o.scene, &quiet_logs, &scene, &file);
+    if (loaded != CLI_EXIT_OK)
+        return loaded;
+    bg_status st;
     int frame_w = o.width ? o.width : file.image.width, frame_h = o.height ? o.height : file.image.height;
     int x, y, w, h;
     if (!cli_options_window(&o, frame_w, frame_h, &x, &y, &w, &h, why, sizeof why)) {
@@ -246,19 +250,10 @@ int cli_info(int argc, char **argv)
     }
     bool quiet_logs = !isatty(2);
     bg_scene *scene = NULL;
-    if (bg_scene_create(NULL, &scene) != BG_OK)
-        return CLI_EXIT_FAILED;
-    bg_scenefile_desc fd;
-    memset(&fd, 0, sizeof fd);
-    fd.logger.func = on_log;
-    fd.logger.user = &quiet_logs;
     bg_scenefile_result file;
-    why[0] = '\0';
-    bg_status st = bg_scenefile_load_any(o.scene, &fd, scene, &file, why, sizeof why);
-    if (!loaded(o.scene, st, why)) {
-        bg_scene_destroy(scene);
-        return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
-    }
+    int loaded = load_scene(o.scene, &quiet_logs, &scene, &file);
+    if (loaded != CLI_EXIT_OK)
+        return loaded;
     const bg_scenefile_summary *s = &file.summary;
     printf("scene      %s\n", o.scene);
     printf("image      %dx%d, %d sample%s per pixel\n", file.image.width, file.image.height, file.image.samples,
@@ -286,7 +281,7 @@ int cli_info(int argc, char **argv)
             bg_render_settings set = file.settings;
             set.frame_width = file.image.width;
             set.frame_height = file.image.height;
-            st = bg_render_gpu(g.renderer, scene, &set, &one);
+            bg_status st = bg_render_gpu(g.renderer, scene, &set, &one);
             bg_render_stats stats;
             bg_renderer_get_stats(g.renderer, &stats);
             if (st == BG_OK)

@@ -31,6 +31,19 @@ static bg_status bad_call(char *message, size_t size, const char *call, const ch
     return BG_ERR_INVALID_ARGUMENT;
 }
 
+/* The arguments every entry point takes: its input (named first_name), the scene and the result. */
+static bg_status check_call(char *message, size_t size, const char *call, const char *first_name, const void *first,
+                            const bg_scene *scene, const bg_scenefile_result *out)
+{
+    if (!first)
+        return bad_call(message, size, call, first_name);
+    if (!scene)
+        return bad_call(message, size, call, "scene");
+    if (!out)
+        return bad_call(message, size, call, "out");
+    return BG_OK;
+}
+
 /* The camera and ambient light go to the scene last, then the commit. */
 static bg_status finish(bgi_sf_ctx *ctx)
 {
@@ -157,12 +170,9 @@ bg_status bg_scenefile_load(const char *path, const bg_scenefile_desc *desc, bg_
                             bg_scenefile_result *out, char *message, size_t message_size)
 {
     static const char call[] = "bg_scenefile_load";
-    if (!path)
-        return bad_call(message, message_size, call, "path");
-    if (!scene)
-        return bad_call(message, message_size, call, "scene");
-    if (!out)
-        return bad_call(message, message_size, call, "out");
+    bg_status checked = check_call(message, message_size, call, "path", path, scene, out);
+    if (checked != BG_OK)
+        return checked;
     result_init(out);
     bgi_sf_ctx ctx;
     bgi_sf_ctx_init(&ctx, path, desc, scene, out, message, message_size);
@@ -180,12 +190,9 @@ bg_status bg_scenefile_load_string(const char *text, const bg_scenefile_desc *de
                                    bg_scenefile_result *out, char *message, size_t message_size)
 {
     static const char call[] = "bg_scenefile_load_string";
-    if (!text)
-        return bad_call(message, message_size, call, "text");
-    if (!scene)
-        return bad_call(message, message_size, call, "scene");
-    if (!out)
-        return bad_call(message, message_size, call, "out");
+    bg_status checked = check_call(message, message_size, call, "text", text, scene, out);
+    if (checked != BG_OK)
+        return checked;
     result_init(out);
     bgi_sf_ctx ctx;
     bgi_sf_ctx_init(&ctx, desc && desc->name ? desc->name : "<string>", desc, scene, out, message, message_size);
@@ -232,12 +239,9 @@ bg_status bg_scenefile_load_model(const char *path, const bg_scenefile_desc *des
                                   bg_scenefile_result *out, char *message, size_t message_size)
 {
     static const char call[] = "bg_scenefile_load_model";
-    if (!path)
-        return bad_call(message, message_size, call, "path");
-    if (!scene)
-        return bad_call(message, message_size, call, "scene");
-    if (!out)
-        return bad_call(message, message_size, call, "out");
+    bg_status checked = check_call(message, message_size, call, "path", path, scene, out);
+    if (checked != BG_OK)
+        return checked;
     result_init(out);
     bgi_sf_ctx ctx;
     bgi_sf_ctx_init(&ctx, path, desc, scene, out, message, message_size);
