@@ -45,21 +45,6 @@ static const bench_case cases[] = {
 enum { PEER, GPU, MULTIPASS, CPU, CONTESTANTS };
 static const char *const contestant_names[CONTESTANTS] = {"Embree", "GPU", "multipass", "CPU reference"};
 
-/* The peer as a contestant (peer_frame's user). */
-typedef struct peer_job {
-    embree_peer *peer;
-    bg_render_settings settings;
-} peer_job;
-
-static bool peer_frame(void *job, bg_image *image)
-{
-    peer_job *p = job;
-    char message[512];
-    bool ok = embree_peer_render(p->peer, &p->settings, image, message, sizeof message);
-    if (!ok)
-        fprintf(stderr, "%s\n", message);
-    return ok;
-}
 
 /* The two GPU renderers: one per plan. */
 typedef struct gpu_pair {
@@ -70,7 +55,7 @@ typedef struct gpu_pair {
 typedef struct case_run {
     bench_contestant c[CONTESTANTS];
     bg_image images[CONTESTANTS]; /* images[CPU] is the reference */
-    peer_job peer;
+    embree_peer_job peer;
     bench_gpu_job gpu, multipass;
     bench_cpu_job cpu;
     double build_ms;
@@ -82,14 +67,14 @@ static bool case_setup(case_run *run, embree_peer *peer, const gpu_pair *gpu, bg
 {
     memset(run, 0, sizeof *run);
     bg_render_settings settings = bg_render_settings_init();
-    run->peer = (peer_job){peer, settings};
+    run->peer = (embree_peer_job){peer, settings};
     run->gpu.renderer = gpu->automatic;
     run->multipass.renderer = gpu->multipass;
     run->gpu.scene = run->multipass.scene = scene;
     run->gpu.settings = run->multipass.settings = settings;
     run->multipass.settings.gpu_plan = BG_PLAN_MULTIPASS;
     run->cpu = (bench_cpu_job){scene, settings};
-    const bench_frame_fn frames[CONTESTANTS] = {peer_frame, bench_gpu_frame, bench_gpu_frame, bench_cpu_frame};
+    const bench_frame_fn frames[CONTESTANTS] = {embree_peer_frame, bench_gpu_frame, bench_gpu_frame, bench_cpu_frame};
     void *const jobs[CONTESTANTS] = {&run->peer, &run->gpu, &run->multipass, &run->cpu};
     bool ok = true;
     for (int i = 0; i < CONTESTANTS; i++) {

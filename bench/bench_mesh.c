@@ -78,26 +78,6 @@ static bg_status build(bg_scene *scene, const mesh *terrain)
     return st;
 }
 
-/* ---- the contestants ---- */
-
-#ifdef BENCH_EMBREE
-/* The peer as a contestant (peer_frame's user). */
-typedef struct peer_job {
-    embree_peer *peer;
-    bg_render_settings settings;
-} peer_job;
-
-static bool peer_frame(void *job, bg_image *image)
-{
-    peer_job *p = job;
-    char message[512];
-    bool ok = embree_peer_render(p->peer, &p->settings, image, message, sizeof message);
-    if (!ok)
-        fprintf(stderr, "%s\n", message);
-    return ok;
-}
-#endif
-
 /* One point: its scene and renderers, its contestants (in the series' list), what was measured. */
 typedef struct point {
     int n;
@@ -114,7 +94,7 @@ typedef struct point {
     bench_gpu_job gpu, paper;
     bench_cpu_job cpu;
 #ifdef BENCH_EMBREE
-    peer_job peer_frame;
+    embree_peer_job peer_frame;
 #endif
     bench_error error[CONTESTANTS]; /* error[CPU] unused */
     char note[200];                 /* why a contestant did not run */
@@ -237,8 +217,8 @@ static bool prepare(point *p, bench_gpu *gpu, int side, double *slowest)
 #ifdef BENCH_EMBREE
     if (!build_peer(p))
         return false;
-    p->peer_frame = (peer_job){p->peer, set};
-    frames[PEER] = peer_frame;
+    p->peer_frame = (embree_peer_job){p->peer, set};
+    frames[PEER] = embree_peer_frame;
     jobs[PEER] = &p->peer_frame;
 #endif
     for (int i = 0; i < CONTESTANTS; i++) {

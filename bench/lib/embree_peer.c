@@ -706,3 +706,13 @@ unsigned embree_peer_instanced_objects(const embree_peer *peer)
 {
     return peer ? peer->instanced_objects : 0;
 }
+
+bool embree_peer_frame(void *job, bg_image *image)
+{
+    embree_peer_job *p = job;
+    char message[512];
+    bool ok = embree_peer_render(p->peer, &p->settings, image, message, sizeof message);
+    if (!ok)
+        fprintf(stderr, "%s\n", message);
+    return ok;
+}

@@ -86,4 +86,13 @@ unsigned embree_peer_instanced_objects(const embree_peer *peer);
 bool embree_peer_render(embree_peer *peer, const bg_render_settings *settings, bg_image *image, char *message,
                         size_t message_size);
 
+/* The peer as a contestant of bench_measure.h's rounds: embree_peer_frame's job. */
+typedef struct embree_peer_job {
+    embree_peer *peer;
+    bg_render_settings settings;
+} embree_peer_job;
+
+/* A bench_frame_fn: one frame of the job's peer into image; prints the reason on failure. */
+bool embree_peer_frame(void *job, bg_image *image);
+
 #endif
