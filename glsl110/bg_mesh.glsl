@@ -4,41 +4,36 @@
 // 2.10): reading the mesh texture and a hit's attributes. The walks of a mesh's own tree are
 // generated with the object tree's (gpu/fused_source.c), since they share its step count.
 //
-// The mesh texture is one RGBA32F row-major array of texels addressed by a texel index, a whole
-// float below 2^24; its width is a power of two, so the division that finds a texel's row is exact
-// in float: dims = (texels per row, its inverse, 1 / width, 1 / height). Each mesh holds its tree's
-// nodes, two texels each as in the object tree ({min.xyz, triangle or -1}, {max.xyz, miss}, miss the
-// texel index of the node after the subtree), then six texels per triangle: {v0, u0}, {v1, u1},
-// {v2, u2}, {n0, v0}, {n1, v1}, {n2, v2}: the object-space positions and normals of its corners
-// (normals 0 where the mesh has none) with the corners' texture coordinates in the w lanes.
+// The mesh data are two RGBA32F row-major arrays of texels, each addressed by a texel index, a whole
+// float below 2^23, in rows of the same power-of-two width, so that the division that finds a
+// texel's row is exact in float: dims = (texels per row, its inverse, 1 / the triangle texture's
+// height, 1 / the node texture's height). The node texture holds every mesh's tree, two texels per
+// node as in the object tree ({min.xyz, triangle or -1}, {max.xyz, miss}, miss the node texture's
+// index of the node after the subtree); the triangle texture six texels per triangle: {v0, u0},
+// {v1, u1}, {v2, u2}, {n0, v0}, {n1, v1}, {n2, v2}: the object-space positions and normals of its
+// corners (normals 0 where the mesh has none) with the corners' texture coordinates in the w lanes.
+// Two textures rather than one: llvmpipe (Mesa 22.3) samples the texels of one RGBA32F texture
+// past the first 2^23 wrongly (gpu/fused_tree.c), and a walk that chose between two halves of one
+// index range made the whole frame about 1.7 times as slow; nodes and triangles each have their
+// own texture, so every fetch knows which it reads.
 
-// The texel at index k. With BG_MESH_SPLIT defined (the generator does, for mesh data past 2^23
-// texels) it is in s below 2^23 and in hi from there on (llvmpipe reads the texels of one texture
-// past 2^23 wrongly: gpu/fused_tree.c), both textures with the rows 1 / dims.w; without, every
-// texel is in s. The choice made the whole frame about 1.7 times as slow on llvmpipe (measured:
-// `betelgeuse render` of the bunny at 1024x1024, compile included, median 2.6 s against 1.5 s), so
-// scenes that fit one texture do not pay for it.
-vec4 bg_mesh_fetch(sampler2D s, sampler2D hi, vec4 dims, float k)
+vec4 bg_mesh_texel(sampler2D s, vec4 dims, float inv_rows, float k)
 {
-#ifdef BG_MESH_SPLIT
-    bool upper = k >= 8388608.0;
-    float j = upper ? k - 8388608.0 : k;
-#else
-    float j = k;
-#endif
-    float row = floor(j * dims.y);
-    float column = j - row * dims.x;
-    vec2 at = vec2((column + 0.5) * dims.z, (row + 0.5) * dims.w);
-#ifdef BG_MESH_SPLIT
-    vec4 texel;
-    if (upper)
-        texel = texture2D(hi, at);
-    else
-        texel = texture2D(s, at);
-    return texel;
-#else
-    return texture2D(s, at);
-#endif
+    float row = floor(k * dims.y);
+    float column = k - row * dims.x;
+    return texture2D(s, vec2((column + 0.5) * dims.y, (row + 0.5) * inv_rows));
+}
+
+// Texel k of the node texture.
+vec4 bg_mesh_node(sampler2D nodes, vec4 dims, float k)
+{
+    return bg_mesh_texel(nodes, dims, dims.w, k);
+}
+
+// Texel k of the triangle texture.
+vec4 bg_mesh_tri(sampler2D tris, vec4 dims, float k)
+{
+    return bg_mesh_texel(tris, dims, dims.z, k);
 }
 
 // The world attributes of a hit on triangle texels `at` with barycentric weights bary (of v0, v1,
@@ -47,16 +42,16 @@ vec4 bg_mesh_fetch(sampler2D s, sampler2D hi, vec4 dims, float k)
 // side of g the ray sees), the interpolated uv, dP/du in object space (0 without a uv direction),
 // and the offset a ray leaving the point starts at along g: `ulps` float ulps of the magnitude of
 // the point's terms (the camera-relative point, and the transformed vertex coordinates).
-void bg_mesh_attributes(sampler2D s, sampler2D hi, vec4 dims, float at, vec3 bary, bool front, mat3 normal_to_world,
+void bg_mesh_attributes(sampler2D tris, vec4 dims, float at, vec3 bary, bool front, mat3 normal_to_world,
                         mat3 to_world3, vec3 p, vec3 d, float ulps, out vec3 g, out vec3 n, out vec2 uv,
                         out vec3 dpdu, out float offset)
 {
-    vec4 a0 = bg_mesh_fetch(s, hi, dims, at);
-    vec4 a1 = bg_mesh_fetch(s, hi, dims, at + 1.0);
-    vec4 a2 = bg_mesh_fetch(s, hi, dims, at + 2.0);
-    vec4 b0 = bg_mesh_fetch(s, hi, dims, at + 3.0);
-    vec4 b1 = bg_mesh_fetch(s, hi, dims, at + 4.0);
-    vec4 b2 = bg_mesh_fetch(s, hi, dims, at + 5.0);
+    vec4 a0 = bg_mesh_tri(tris, dims, at);
+    vec4 a1 = bg_mesh_tri(tris, dims, at + 1.0);
+    vec4 a2 = bg_mesh_tri(tris, dims, at + 2.0);
+    vec4 b0 = bg_mesh_tri(tris, dims, at + 3.0);
+    vec4 b1 = bg_mesh_tri(tris, dims, at + 4.0);
+    vec4 b2 = bg_mesh_tri(tris, dims, at + 5.0);
     vec3 e1 = a1.xyz - a0.xyz;
     vec3 e2 = a2.xyz - a0.xyz;
     g = bg_normalize_or(normal_to_world * cross(e1, e2), -d);

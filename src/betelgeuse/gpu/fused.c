@@ -281,8 +281,8 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
         inputs[l->sampler_count + 1].name = "bg_objects";
     }
     if (l->mesh) {
-        inputs[mesh_input(l)].name = "bg_meshes";
-        inputs[mesh_input(l) + 1].name = "bg_meshes_hi";
+        inputs[mesh_input(l)].name = "bg_mesh_nodes";
+        inputs[mesh_input(l) + 1].name = "bg_mesh_tris";
     }
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
@@ -384,9 +384,9 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     if (!ms && walks)
         ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
     if (!ms && l->mesh)
-        ms = macs_pass_set_input(f->pass, mesh_input(l), f->tree.meshes.texture);
+        ms = macs_pass_set_input(f->pass, mesh_input(l), f->tree.mesh_nodes.texture);
     if (!ms && l->mesh)
-        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, f->tree.meshes_hi.texture);
+        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, f->tree.mesh_tris.texture);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)

@@ -243,10 +243,6 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
     l.loop_rays = full < most ? (int)full : most;
     l.rays_needed = rays_bound(l.max_depth, l.transparent, settings->min_weight);
     l.walk_budget = tree || l.mesh ? walk_budget(&l) : 0;
-    if (l.mesh && !bgi_gpu_meshes_split(a, state, &l.mesh_split)) {
-        bgi_gpu_fused_layout_free(a, &l);
-        return false;
-    }
     *out = l;
     return true;
 }

@@ -95,7 +95,7 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     if (ok && (l->tree || l->mesh))
         ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
     if (ok && l->mesh)
-        ok = bgi_gpu_mesh_library(t, l->mesh_split, seen, &n, SEEN_CAP);
+        ok = bgi_gpu_mesh_library(t, seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)
@@ -360,7 +360,7 @@ typedef struct mesh_values {
 
 static void emit_mesh_attributes(gpu_text *t, const mesh_values *v)
 {
-    bgi_gpu_text_printf(t, "        bg_mesh_attributes(bg_meshes, bg_meshes_hi, bg_mesh_dims, %s + 6.0 * bg_win_tri, bg_win_bary, first_root, "
+    bgi_gpu_text_printf(t, "        bg_mesh_attributes(bg_mesh_tris, bg_mesh_dims, %s + 6.0 * bg_win_tri, bg_win_bary, first_root, "
                            "%s, %s, bg_hit_p, d, %.1f, bg_hit_ng, n, uv, dpdu, bg_hit_off);\n"
                            "        entering = first_root;\n        code = bg_hit_code(%s, false, entering);\n"
                            "        mat = %s;\n",

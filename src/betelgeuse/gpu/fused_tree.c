@@ -9,9 +9,9 @@
  * on the host and uploaded only where they differ from what the textures hold, so a commit that
  * changes nothing the tree holds (a material value, a light) uploads nothing but uniforms.
  *
- * A scene with meshes has a third texture on the same rule: every distinct mesh's own tree and
- * triangles, addressed by texel index (bg_mesh.glsl gives the layout), which each mesh object's
- * texel 4 points into; mesh_source.c walks it.
+ * A scene with meshes has two more textures on the same rule: every distinct mesh's own tree in
+ * one, its triangles in the other, each addressed by texel index (bg_mesh.glsl gives the layout),
+ * which each mesh object's texel 4 points into; mesh_source.c walks them.
  *
  * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
  * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
@@ -26,12 +26,11 @@
 #include "gpu_internal.h"
 
 enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096, MESH_TRIANGLE_TEXELS = 6 };
-/* Texel indices of the mesh texture travel as floats: every one must be a whole float. */
-#define MESH_MAX_TEXELS (1ull << 24)
-/* llvmpipe (Mesa 22.3) reads texels past the first 2^23 of one RGBA32F texture wrongly, though they
- * upload and read back intact (measured: a terrain of 845,000 triangles, 8.45 million texels, lost
- * its nearest rows; 720,000 rendered right): the texels from 2^23 on go to a second texture of the
- * same size (bg_mesh.glsl). */
+/* The most texels of each mesh texture. llvmpipe (Mesa 22.3) reads texels past the first 2^23 of
+ * one RGBA32F texture wrongly, though they upload and read back intact (measured: a terrain of
+ * 845,000 triangles, 8.45 million texels in one texture, lost its nearest rows; 720,000 rendered
+ * right). Nodes and triangles therefore have a texture each (bg_mesh.glsl), which also keeps every
+ * texel index a whole float. */
 #define MESH_TEXTURE_TEXELS (1ull << 23)
 
 /* Items per row (a power of two), width and height of a texture of `items` items of `per` texels
@@ -168,11 +167,11 @@ static void set_dims(float dims[4], int per_row, int width, int height)
 
 /* ---- the meshes' texture ---- */
 
-/* Texels a mesh takes: two per node of its tree, then MESH_TRIANGLE_TEXELS per triangle. */
-static uint64_t mesh_texels(const bg_mesh_data *m)
-{
-    return (uint64_t)NODE_TEXELS * m->tree.node_count + (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
-}
+/* The texels the distinct meshes take in each mesh texture. */
+typedef struct mesh_texels {
+    uint64_t nodes; /* two per node of each tree */
+    uint64_t tris;  /* MESH_TRIANGLE_TEXELS per triangle */
+} mesh_texels;
 
 /* For every object, the first object that shows the same mesh (itself when it is the first; the
  * texture holds each mesh once, in the order of the objects that first show them), found through a
@@ -209,10 +208,10 @@ static uint32_t *mesh_firsts(const bg_allocator *a, const bg_scene_state *state)
 }
 
 /* The texels every distinct mesh takes; also the texel bases of each mesh object into base when it
- * is not NULL (its mesh's root node, its first triangle). */
-static uint64_t mesh_layout(const bg_scene_state *state, const uint32_t *first, float *base)
+ * is not NULL (its mesh's root node in the node texture, its first triangle in the triangle texture). */
+static mesh_texels mesh_layout(const bg_scene_state *state, const uint32_t *first, float *base)
 {
-    uint64_t at = 0;
+    mesh_texels at = {0, 0};
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_mesh_data *m = state->objects[i].mesh;
         if (!m)
@@ -225,10 +224,11 @@ static uint64_t mesh_layout(const bg_scene_state *state, const uint32_t *first, 
             continue;
         }
         if (base) {
-            base[2 * (size_t)i] = (float)at;
-            base[2 * (size_t)i + 1] = (float)(at + (uint64_t)NODE_TEXELS * m->tree.node_count);
+            base[2 * (size_t)i] = (float)at.nodes;
+            base[2 * (size_t)i + 1] = (float)at.tris;
         }
-        at += mesh_texels(m);
+        at.nodes += (uint64_t)NODE_TEXELS * m->tree.node_count;
+        at.tris += (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
     }
     return at;
 }
@@ -251,50 +251,43 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
         snprintf(why, size, "out of memory ordering the %u mesh objects", state->mesh_object_count);
         return false;
     }
-    uint64_t texels = mesh_layout(state, first, NULL);
+    mesh_texels texels = mesh_layout(state, first, NULL);
     bgi_free(&r->allocator, first);
     int w = mesh_width(r->limits.max_texture_size);
-    uint64_t rows = (texels + (uint64_t)w - 1) / (uint64_t)w;
-    if (rows > MESH_TEXTURE_TEXELS / (uint64_t)w)
-        rows = MESH_TEXTURE_TEXELS / (uint64_t)w; /* each of the two textures */
-    if (texels > MESH_MAX_TEXELS || rows > (uint64_t)r->limits.max_texture_size) {
-        snprintf(why, size, "the meshes' nodes and triangles need %llu texels, more than the %llu a float index or "
-                 "%d rows of a %d-texel texture hold", (unsigned long long)texels,
-                 (unsigned long long)MESH_MAX_TEXELS, r->limits.max_texture_size, w);
+    uint64_t most = MESH_TEXTURE_TEXELS / (uint64_t)w;
+    if (most > (uint64_t)r->limits.max_texture_size)
+        most = (uint64_t)r->limits.max_texture_size;
+    most *= (uint64_t)w;
+    const char *what = texels.nodes > most ? "nodes of their trees" : "triangles";
+    uint64_t need = texels.nodes > most ? texels.nodes : texels.tris;
+    if (need > most) {
+        snprintf(why, size, "the meshes' %s need %llu texels, more than the %llu of a mesh texture (at most %llu "
+                 "texels, %d rows of %d)", what, (unsigned long long)need, (unsigned long long)most,
+                 (unsigned long long)MESH_TEXTURE_TEXELS, r->limits.max_texture_size, w);
         return false;
     }
     return true;
 }
 
-bool bgi_gpu_meshes_split(const bg_allocator *a, const bg_scene_state *state, bool *split)
-{
-    *split = false;
-    if (state->mesh_object_count == 0)
-        return true;
-    uint32_t *first = mesh_firsts(a, state);
-    if (!first)
-        return false;
-    *split = mesh_layout(state, first, NULL) > MESH_TEXTURE_TEXELS;
-    bgi_free(a, first);
-    return true;
-}
-
-/* Every distinct mesh once: its nodes as common/bvh.h lays them out, the miss links turned into
- * texel indices of the whole texture, then its triangles (docs/gpu_pipeline.md, "Meshes"). */
-static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_fused_tree *t, float *out)
+/* Every distinct mesh once: its nodes as common/bvh.h lays them out into nodes, the miss links
+ * turned into texel indices of the node texture, and its triangles into tris (docs/gpu_pipeline.md,
+ * "Meshes"). */
+static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_fused_tree *t, float *nodes,
+                        float *tris)
 {
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_mesh_data *m = state->objects[i].mesh;
         if (!m || first[i] != i)
             continue;
         float root = t->mesh_base[2 * (size_t)i];
-        float *o = out + (size_t)root * 4;
+        float *o = nodes + (size_t)root * 4;
         for (uint32_t k = 0; k < m->tree.node_count; k++) {
             const float *node = m->tree.nodes + (size_t)k * BG_BVH_NODE_FLOATS;
             memcpy(o, node, BG_BVH_NODE_FLOATS * sizeof *o);
             o[BG_BVH_NODE_MISS] = root + (float)NODE_TEXELS * node[BG_BVH_NODE_MISS];
             o += BG_BVH_NODE_FLOATS;
         }
+        o = tris + (size_t)t->mesh_base[2 * (size_t)i + 1] * 4;
         for (uint32_t k = 0; k < m->triangle_count; k++) {
             for (int c = 0; c < 3; c++) {
                 uint32_t v = m->indices[3 * (size_t)k + (size_t)c];
@@ -322,7 +315,7 @@ static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state 
     uint32_t n = 0;
     for (uint32_t i = 0; i < state->object_count; i++)
         n += state->objects[i].mesh && first[i] == i ? 1 : 0;
-    bool same = t->meshes.texture && t->mesh_keys && n == t->mesh_key_count;
+    bool same = t->mesh_nodes.texture && t->mesh_keys && n == t->mesh_key_count;
     for (uint32_t i = 0, k = 0; i < state->object_count && same; i++)
         if (state->objects[i].mesh && first[i] == i)
             same = t->mesh_keys[k++] == state->objects[i].mesh->serial;
@@ -361,39 +354,35 @@ static bg_status mesh_texture_upload(bg_renderer *r, gpu_fused_tree_texture *t, 
     return ms ? bgi_gpu_fail_macs(r, ms, "mesh texture") : BG_OK;
 }
 
-/* Every distinct mesh into the mesh texture (and, past MESH_TEXTURE_TEXELS, the second one; a 1x1
- * stand-in otherwise, so that the program binds the same samplers whatever the size), first[] the
- * objects' first-of-mesh indices. The host copy lives only while it goes up: the textures' keys
- * say what they hold. */
+/* Every distinct mesh into the mesh textures, first[] the objects' first-of-mesh indices. The host
+ * copy lives only while it goes up: the textures' keys say what they hold. */
 static bg_status meshes_upload(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, const uint32_t *first)
 {
-    uint64_t texels = mesh_layout(state, first, t->mesh_base);
+    mesh_texels texels = mesh_layout(state, first, t->mesh_base);
     int w = mesh_width(r->limits.max_texture_size);
-    bool split = texels > MESH_TEXTURE_TEXELS;
-    t->split = split;
-    int h = split ? (int)(MESH_TEXTURE_TEXELS / (uint64_t)w) : (int)((texels + (uint64_t)w - 1) / (uint64_t)w);
+    int h_nodes = (int)((texels.nodes + (uint64_t)w - 1) / (uint64_t)w);
+    int h_tris = (int)((texels.tris + (uint64_t)w - 1) / (uint64_t)w);
     t->dims.meshes[0] = (float)w;
     t->dims.meshes[1] = 1.0f / (float)w;
-    t->dims.meshes[2] = 1.0f / (float)w;
-    t->dims.meshes[3] = 1.0f / (float)h; /* both textures' rows when split */
+    t->dims.meshes[2] = 1.0f / (float)h_tris;
+    t->dims.meshes[3] = 1.0f / (float)h_nodes;
     bool held = false;
     if (!meshes_held(r, t, state, first, &held))
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's keys");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh textures' keys");
     if (held)
         return BG_OK;
-    size_t one = (size_t)w * (size_t)h * 4, floats = split ? 2 * one : one;
+    size_t node_floats = (size_t)w * (size_t)h_nodes * 4, floats = node_floats + (size_t)w * (size_t)h_tris * 4;
     float *data = bgi_alloc(&r->allocator, floats * sizeof *data);
     if (!data) {
         t->mesh_key_count = 0;
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture (%zu floats)",
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh textures (%zu floats)",
                             floats);
     }
     memset(data, 0, floats * sizeof *data);
-    fill_meshes(state, first, t, data);
-    static const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    bg_status st = mesh_texture_upload(r, &t->meshes, w, h, data);
+    fill_meshes(state, first, t, data, data + node_floats);
+    bg_status st = mesh_texture_upload(r, &t->mesh_nodes, w, h_nodes, data);
     if (st == BG_OK)
-        st = split ? mesh_texture_upload(r, &t->meshes_hi, w, h, data + one) : mesh_texture_upload(r, &t->meshes_hi, 1, 1, none);
+        st = mesh_texture_upload(r, &t->mesh_tris, w, h_tris, data + node_floats);
     bgi_free(&r->allocator, data);
     if (st != BG_OK)
         t->mesh_key_count = 0; /* they may hold anything now */
@@ -404,8 +393,8 @@ static bg_status meshes_upload(bg_renderer *r, gpu_fused_tree *t, const bg_scene
 static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
 {
     if (state->mesh_object_count == 0) {
-        texture_release(&r->allocator, &t->meshes);
-        texture_release(&r->allocator, &t->meshes_hi);
+        texture_release(&r->allocator, &t->mesh_nodes);
+        texture_release(&r->allocator, &t->mesh_tris);
         t->mesh_key_count = 0;
         memset(t->dims.meshes, 0, sizeof t->dims.meshes);
         return BG_OK;
@@ -468,8 +457,8 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
 {
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
-    texture_release(a, &t->meshes);
-    texture_release(a, &t->meshes_hi);
+    texture_release(a, &t->mesh_nodes);
+    texture_release(a, &t->mesh_tris);
     bgi_free(a, t->mesh_base);
     t->mesh_base = NULL;
     t->mesh_base_count = 0;

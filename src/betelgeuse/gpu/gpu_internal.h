@@ -532,7 +532,6 @@ typedef struct gpu_fused_layout {
     uint32_t tree_count; /* objects in the tree (not part of the program) */
     gpu_fused_tree_kinds kinds;
     bool mesh;           /* some object is a mesh, in the tree or unrolled: the mesh texture is bound */
-    bool mesh_split;     /* the meshes' texels fill two mesh textures (bgi_gpu_meshes_split) */
     uint32_t unrolled_meshes; /* mesh objects outside the tree, each walked with its own uniforms */
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
 } gpu_fused_layout;
@@ -584,9 +583,8 @@ typedef struct gpu_fused_tree_texture {
 
 typedef struct gpu_fused_tree {
     gpu_fused_tree_texture nodes, objects;
-    gpu_fused_tree_texture meshes; /* every mesh's nodes and triangles (fused_tree.c); none without meshes */
-    gpu_fused_tree_texture meshes_hi; /* the mesh texels from 2^23 on (1x1 when there are fewer) */
-    bool split;                    /* the meshes' texels are past 2^23: both textures hold them */
+    gpu_fused_tree_texture mesh_nodes; /* every distinct mesh's tree (fused_tree.c); none without meshes */
+    gpu_fused_tree_texture mesh_tris;  /* and its triangles */
     float *mesh_base;              /* per object: 2 floats, its mesh's root node and first triangle texel */
     uint32_t mesh_base_count;      /* objects mesh_base has room for */
     uint64_t *mesh_keys;           /* the serials of the distinct meshes the mesh texture holds, in order */
@@ -600,10 +598,7 @@ typedef struct gpu_fused_tree {
 
 /* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
 bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
-/* Whether the scene's meshes take more texels than one mesh texture holds (the programs then read
- * two: bg_mesh.glsl's BG_MESH_SPLIT); false when out of memory. */
-bool bgi_gpu_meshes_split(const bg_allocator *a, const bg_scene_state *state, bool *split);
-/* False, with the reason, when the scene's meshes do not fit the mesh texture (part of _fits). */
+/* False, with the reason, when the scene's meshes do not fit the mesh textures (part of _fits). */
 bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
 /* Makes the textures hold the committed scene's tree and objects, as seen from its camera (with
  * walks: the layout walks the tree), and the meshes' nodes and triangles where it has meshes. */
@@ -641,8 +636,8 @@ int bgi_gpu_mesh_pass_budget(int walks);
 void bgi_gpu_walk_globals(gpu_text *t);
 /* The walk globals and the mesh walks of a multipass pass with `walks` mesh walks per pixel. */
 void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t);
-/* bg_triangle.glsl and bg_mesh.glsl (split: reading two mesh textures) into t. */
-bool bgi_gpu_mesh_library(gpu_text *t, bool split, const char **seen, int *seen_count, int seen_cap);
+/* bg_triangle.glsl and bg_mesh.glsl into t. */
+bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap);
 
 /* ---- fused_layout.c ---- */
 /* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),

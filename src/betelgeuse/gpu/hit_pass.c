@@ -175,8 +175,7 @@ int bgi_gpu_hit_shared_components(void)
 
 /* The functions of the pass: each distinct shape's root and each distinct UV mapping, renamed by
  * suffix so that they coexist in one program. */
-static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member *m, int count, bool need_tangent,
-                          bool split)
+static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member *m, int count, bool need_tangent)
 {
     const char *seen[48];
     int n = 0;
@@ -188,7 +187,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
         meshes += m[j].mesh ? 1 : 0;
     if (meshes > 0) {
         ok = ok && bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 48) &&
-             bgi_gpu_mesh_library(t, split, seen, &n, 48);
+             bgi_gpu_mesh_library(t, seen, &n, 48);
         if (ok)
             bgi_gpu_mesh_pass_walks(meshes, t);
     }
@@ -284,7 +283,7 @@ static macs_status set_material_uniforms(macs_pass *pass, const bg_scene_state *
 static void emit_mesh_geometry(gpu_text *t, const member *mb, int j, bool need_tangent)
 {
     bgi_gpu_text_printf(t, "    vec2 bg_uv;\n    vec3 bg_dpdu, bg_g;\n    float bg_off;\n"
-                           "    bg_mesh_attributes(bg_meshes, bg_meshes_hi, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "
+                           "    bg_mesh_attributes(bg_mesh_tris, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "
                            "bg_normal_to_world_%d, bg_to_world3_%d, bg_p, bg_rd.xyz, %.1f, bg_g, bg_n, bg_uv, bg_dpdu, bg_off);\n"
                            "    bg_entering = bg_first;\n    bg_code = bg_hit_code(bg_index_%d, false, bg_entering);\n"
                            "    bg_mesh_ov = bg_g * bg_off;\n",
@@ -408,10 +407,10 @@ static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
         hp->input_tex[hp->input_count++] = texture ? r->textures[texture - 1] : r->white;
     }
     if (hp->meshes > 0) {
-        hp->inputs[hp->input_count].name = "bg_meshes";
-        hp->input_tex[hp->input_count++] = r->meshes->meshes.texture;
-        hp->inputs[hp->input_count].name = "bg_meshes_hi";
-        hp->input_tex[hp->input_count++] = r->meshes->meshes_hi.texture;
+        hp->inputs[hp->input_count].name = "bg_mesh_nodes";
+        hp->input_tex[hp->input_count++] = r->meshes->mesh_nodes.texture;
+        hp->inputs[hp->input_count].name = "bg_mesh_tris";
+        hp->input_tex[hp->input_count++] = r->meshes->mesh_tris.texture;
     }
 }
 
@@ -571,7 +570,7 @@ static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pa
     bgi_gpu_text_init(&functions, &r->allocator);
     emit_nearest_root(r, state, hp, &main);
     emit_winner_surface(r, state, hp, &main);
-    bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent, r->meshes && r->meshes->split);
+    bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent);
 
     macs_pass_desc desc;
     bgi_gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,

@@ -130,7 +130,6 @@ typedef struct shadow_pass_parts {
     bool mesh[GPU_BATCH_MAX]; /* caster j is a mesh (its test walks the mesh's tree) */
     int meshes;               /* mesh casters that block */
     bool on_meshes;           /* the scene has meshes: a point on one starts its segments off it */
-    bool split;               /* the meshes fill two mesh textures */
     caster_names names[GPU_BATCH_MAX];
     macs_uniform_desc uniforms[GPU_BATCH_MAX * C_COUNT + LIGHT_UNIFORM_COUNT + 1];
     int uniform_count;
@@ -215,7 +214,7 @@ static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const sha
               bgi_gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
     if (ok && sp->meshes > 0) {
         ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 32) &&
-             bgi_gpu_mesh_library(t, sp->split, seen, &n, 32);
+             bgi_gpu_mesh_library(t, seen, &n, 32);
         if (ok)
             bgi_gpu_mesh_pass_walks(sp->meshes * sp->lights, t);
     }
@@ -260,7 +259,6 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     sp.lights = group_size(state, group);
     sp.meshes = 0;
     sp.on_meshes = r->features.mesh;
-    sp.split = r->meshes && r->meshes->split;
     for (int j = 0; j < count; j++) {
         sp.mesh[j] = state->objects[casters[j]].shape == BGI_SHAPE_MESH;
         sp.meshes += sp.mesh[j] && blocks[j] ? 1 : 0;
@@ -273,10 +271,10 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     emit_shadow_main(r, state, &sp, &main);
     bool have = shadow_functions(&functions, state, &sp);
 
-    macs_input_desc inputs[5] = {{"bg_g_hit"}, {"bg_g_normal"}, {"bg_g_mesh"}, {"bg_meshes"}, {"bg_meshes_hi"}};
+    macs_input_desc inputs[5] = {{"bg_g_hit"}, {"bg_g_normal"}, {"bg_g_mesh"}, {"bg_mesh_nodes"}, {"bg_mesh_tris"}};
     macs_texture *input_tex[5] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL], r->gbuffer[GPU_SLOT_MESH],
-                                  r->meshes ? r->meshes->meshes.texture : NULL,
-                                  r->meshes ? r->meshes->meshes_hi.texture : NULL};
+                                  r->meshes ? r->meshes->mesh_nodes.texture : NULL,
+                                  r->meshes ? r->meshes->mesh_tris.texture : NULL};
     int input_count = sp.meshes > 0 ? 5 : sp.on_meshes ? 3 : 2;
     macs_output_desc output = {"visibility", "bg_vis"};
     macs_texture *output_tex[1] = {r->vis};

@@ -1,6 +1,6 @@
 /* The mesh code of the fused plans (docs/gpu_pipeline.md, "Meshes"): when the object tree's walk
  * reaches a mesh object's leaf, or the unrolled code a mesh object, the ray goes into the object's
- * space and walks the mesh's own tree, stackless and in the object tree's node format, from the mesh texture (fused_tree.c),
+ * space and walks the mesh's own tree, stackless and in the object tree's node format, from the mesh textures (fused_tree.c),
  * meeting triangles through bg_triangle.glsl. Every node step of both levels spends one of the
  * pixel's walk steps (bg_tree_left); a mesh walk that runs out marks the pixel (bg_tree_short) for
  * the CPU reference, as the object tree's walk does.
@@ -25,14 +25,14 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
     bgi_gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
                         outer > 0 ? outer : 1, INNER);
     bgi_gpu_text_printf(t, "            if (%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop);
-    bgi_gpu_text_append(t, "            vec4 lo = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, node);\n"
-                           "            vec4 hi = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, node + 1.0);\n");
+    bgi_gpu_text_append(t, "            vec4 lo = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node);\n"
+                           "            vec4 hi = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 1.0);\n");
     bgi_gpu_text_printf(t, "            bool entered = bg_tree_box(o, inv, %s, lo.xyz, hi.xyz);\n", t_max);
     bgi_gpu_text_append(t, "            if (entered && lo.w >= 0.0 && lo.w != skip) {\n"
                            "                float at = tris + 6.0 * lo.w;\n"
-                           "                vec3 v0 = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, at).xyz;\n"
-                           "                vec3 v1 = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, at + 1.0).xyz;\n"
-                           "                vec3 v2 = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, at + 2.0).xyz;\n"
+                           "                vec3 v0 = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, at).xyz;\n"
+                           "                vec3 v1 = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, at + 1.0).xyz;\n"
+                           "                vec3 v2 = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, at + 2.0).xyz;\n"
                            "                float tt;\n                vec3 b;\n                bool f;\n");
     bgi_gpu_text_append(t, body);
     bgi_gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 2.0 : hi.w;\n        }\n");
@@ -44,7 +44,7 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
  * own uniform when unrolled). */
 static const char *const mesh_setup =
     "    float node = base.x;\n    float tris = base.y;\n"
-    "    float end = bg_mesh_fetch(bg_meshes, bg_meshes_hi, bg_mesh_dims, node + 1.0).w;\n"
+    "    float end = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 1.0).w;\n"
     "    mat3 perm;\n    vec3 shear;\n"
     "    if (!bg_triangle_setup(d, perm, shear))\n        return false;\n"
     "    vec3 inv = bg_tree_inverse(d);\n"
@@ -112,10 +112,8 @@ void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t)
     bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), t);
 }
 
-bool bgi_gpu_mesh_library(gpu_text *t, bool split, const char **seen, int *seen_count, int seen_cap)
+bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap)
 {
-    if (split)
-        bgi_gpu_text_append(t, "#define BG_MESH_SPLIT 1\n");
     return bgi_gpu_text_snippet(t, "bg_triangle.glsl", seen, seen_count, seen_cap) &&
            bgi_gpu_text_snippet(t, "bg_mesh.glsl", seen, seen_count, seen_cap);
 }
