@@ -1,7 +1,7 @@
 #version 110
 // requires: bg_common.glsl
 // Mesh objects in the fused plan's tree variant (docs/gpu_pipeline.md, "Meshes"; docs/shading.md
-// 2.10): reading the mesh texture and a hit's attributes. The walks of a mesh's own tree are
+// 2.10): reading the mesh textures and a hit's attributes. The walks of a mesh's own tree are
 // generated with the object tree's (gpu/fused_source.c), since they share its step count.
 //
 // The mesh data are two RGBA32F row-major arrays of texels, each addressed by a texel index, a whole
@@ -14,8 +14,9 @@
 // corners (normals 0 where the mesh has none) with the corners' texture coordinates in the w lanes.
 // Two textures rather than one: llvmpipe (Mesa 22.3) samples the texels of one RGBA32F texture
 // past the first 2^23 wrongly (gpu/fused_tree.c), and a walk that chose between two halves of one
-// index range made the whole frame about 1.7 times as slow; nodes and triangles each have their
-// own texture, so every fetch knows which it reads.
+// index range made a frame of a million-triangle terrain 1.6-1.7 times as slow (docs/benchmarks.md,
+// "Triangle meshes"); nodes and triangles each have their own texture, so every fetch knows which
+// it reads.
 
 vec4 bg_mesh_texel(sampler2D s, vec4 dims, float inv_rows, float k)
 {

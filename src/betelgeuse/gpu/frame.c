@@ -394,7 +394,7 @@ static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
            a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
 }
 
-/* The mesh texture of the passes (fused_tree.c: the same layout and upload rule as the fused plans'). */
+/* The mesh textures of the passes (fused_tree.c: the same layout and upload rule as the fused plans'). */
 static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
 {
     if (!r->meshes) {

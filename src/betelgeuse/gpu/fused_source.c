@@ -73,7 +73,7 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     for (uint32_t j = 0; j < l->object_count && ok; j++) {
         const gpu_fused_object *o = &l->objects[j];
         if (o->shape == BGI_SHAPE_MESH)
-            continue; /* walked from the mesh texture, with bg_triangle.glsl and bg_mesh.glsl */
+            continue; /* walked from the mesh textures, with bg_triangle.glsl and bg_mesh.glsl */
         if (!shape_done[o->shape]) {
             shape_done[o->shape] = true;
             ok = bgi_gpu_text_snippet_renamed(t, shape_file[o->shape], span, bgi_gpu_shape_suffix(o->shape), seen, &n, SEEN_CAP) &&

@@ -34,7 +34,7 @@ typedef struct gpu_features {
     bool coat;        /* some material has a coat: COAT slot */
     bool bounce;      /* some material may reflect or refract: spawn passes */
     bool generic;     /* specialisation off: every slot, every texture lane */
-    bool mesh;        /* some object is a mesh: MESH slot, the mesh texture, the marks of short walks */
+    bool mesh;        /* some object is a mesh: MESH slot, the mesh textures, the marks of short walks */
     bool slot[GPU_SLOT_COUNT];
     int slot_count;
 } gpu_features;
@@ -134,7 +134,7 @@ struct bg_renderer {
     gpu_passes passes;
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
     struct gpu_fused *fused; /* the fused plan's cached program and targets (fused.c); NULL until used */
-    struct gpu_fused_tree *meshes; /* the multipass's mesh texture and marks (fused_tree.c); NULL until used */
+    struct gpu_fused_tree *meshes; /* the multipass's mesh textures and marks (fused_tree.c); NULL until used */
     gpu_view view;           /* of the pass being rendered (frame.c sets it) */
 };
 
@@ -531,7 +531,7 @@ typedef struct gpu_fused_layout {
     uint32_t unrolled_count;
     uint32_t tree_count; /* objects in the tree (not part of the program) */
     gpu_fused_tree_kinds kinds;
-    bool mesh;           /* some object is a mesh, in the tree or unrolled: the mesh texture is bound */
+    bool mesh;           /* some object is a mesh, in the tree or unrolled: the mesh textures are bound */
     uint32_t unrolled_meshes; /* mesh objects outside the tree, each walked with its own uniforms */
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
 } gpu_fused_layout;
@@ -550,7 +550,7 @@ typedef struct gpu_fused_layout {
 typedef struct gpu_fused_tree_dims {
     float nodes[4], objects[4];
     float node_count;
-    float meshes[4]; /* the mesh texture's (texels per row, its inverse, 1 / width, 1 / height) */
+    float meshes[4]; /* the mesh textures' (texels per row, its inverse, 1 / triangle rows, 1 / node rows) */
 } gpu_fused_tree_dims;
 
 /* The values of one render, for the uniforms. */
@@ -587,7 +587,7 @@ typedef struct gpu_fused_tree {
     gpu_fused_tree_texture mesh_tris;  /* and its triangles */
     float *mesh_base;              /* per object: 2 floats, its mesh's root node and first triangle texel */
     uint32_t mesh_base_count;      /* objects mesh_base has room for */
-    uint64_t *mesh_keys;           /* the serials of the distinct meshes the mesh texture holds, in order */
+    uint64_t *mesh_keys;           /* the serials of the distinct meshes the mesh textures hold, in order */
     uint32_t mesh_key_count, mesh_key_room;
     gpu_fused_tree_dims dims; /* of the prepared textures */
     uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */

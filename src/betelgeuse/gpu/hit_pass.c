@@ -76,7 +76,7 @@ typedef enum object_uniform {
     U_TO_WORLD3,       /* the linear part, for tangents (only with the TANGENT slot) and a mesh's offset */
     U_UV_SCALE,        /* only for an object that samples a texture */
     U_IOR,             /* only with transparency */
-    U_MESH_BASE,       /* a mesh's root node and first triangle texels in the mesh texture */
+    U_MESH_BASE,       /* a mesh's root node and first triangle texels in the mesh textures */
     U_COUNT
 } object_uniform;
 
@@ -94,7 +94,7 @@ static const struct {
 };
 
 /* The uniforms of every intersection pass whatever its objects (set per level: bgi_gpu_hit_pass_set_dmax),
- * then the one of a pass with a mesh: the mesh texture's geometry. */
+ * then the one of a pass with a mesh: the mesh textures' geometry. */
 static const macs_uniform_desc shared_uniforms[] = {{"bg_dmax", MACS_UNIFORM_FLOAT, 0},
                                                     {"bg_mesh_dims", MACS_UNIFORM_VEC4, 0}};
 #define SHARED_UNIFORM_COUNT ((int)(sizeof shared_uniforms / sizeof shared_uniforms[0]))

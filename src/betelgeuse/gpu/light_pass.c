@@ -135,7 +135,7 @@ typedef struct shadow_pass_parts {
     int uniform_count;
 } shadow_pass_parts;
 
-/* Every caster's uniforms, then the group's light arrays, then the mesh texture's geometry. */
+/* Every caster's uniforms, then the group's light arrays, then the mesh textures' geometry. */
 static void add_shadow_uniforms(shadow_pass_parts *sp)
 {
     sp->uniform_count = 0;
