@@ -7,9 +7,10 @@
 // The mesh data are two RGBA32F row-major arrays of texels, each addressed by a texel index, a whole
 // float below 2^23, in rows of the same power-of-two width, so that the division that finds a
 // texel's row is exact in float: dims = (texels per row, its inverse, 1 / the triangle texture's
-// height, 1 / the node texture's height). The node texture holds every mesh's tree, two texels per
-// node as in the object tree ({min.xyz, triangle or -1}, {max.xyz, miss}, miss the node texture's
-// index of the node after the subtree); the triangle texture six texels per triangle: {v0, u0},
+// height, 1 / the node texture's height). The node texture holds every mesh's tree in pre-order: an
+// interior node as two texels like the object tree's ({min.xyz, -1}, {max.xyz, miss}, miss the node
+// texture's index of the node after the subtree), a leaf as three, its triangle's corners in place of
+// a box ({v0, triangle}, {v1, miss}, {v2, 0}); the triangle texture six texels per triangle: {v0, u0},
 // {v1, u1}, {v2, u2}, {n0, v0}, {n1, v1}, {n2, v2}: the object-space positions and normals of its
 // corners (normals 0 where the mesh has none) with the corners' texture coordinates in the w lanes.
 // Two textures rather than one: llvmpipe (Mesa 22.3) samples the texels of one RGBA32F texture

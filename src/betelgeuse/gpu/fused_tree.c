@@ -26,6 +26,9 @@
 #include "gpu_internal.h"
 
 enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096, MESH_TRIANGLE_TEXELS = 6 };
+/* A mesh tree's leaf holds its triangle's corners, one texel each, in place of its box (bg_mesh.glsl):
+ * the walk reads three texels at a leaf instead of the box's two and the triangle's three. */
+enum { MESH_LEAF_TEXELS = 3 };
 /* The most texels of each mesh texture. llvmpipe (Mesa 22.3) reads texels past the first 2^23 of
  * one RGBA32F texture wrongly, though they upload and read back intact (measured: a terrain of
  * 845,000 triangles, 8.45 million texels in one texture, lost its nearest rows; 720,000 rendered
@@ -169,7 +172,7 @@ static void set_dims(float dims[4], int per_row, int width, int height)
 
 /* The texels the distinct meshes take in each mesh texture. */
 typedef struct mesh_texels {
-    uint64_t nodes; /* two per node of each tree */
+    uint64_t nodes; /* mesh_tree_texels of each tree */
     uint64_t tris;  /* MESH_TRIANGLE_TEXELS per triangle */
 } mesh_texels;
 
@@ -207,6 +210,13 @@ static uint32_t *mesh_firsts(const bg_allocator *a, const bg_scene_state *state)
     return first;
 }
 
+/* The texels of a mesh tree over `triangles` (> 0) triangles, one per leaf: NODE_TEXELS per interior
+ * node, MESH_LEAF_TEXELS per leaf. Also the span of a subtree over that many triangles. */
+static uint64_t mesh_tree_texels(uint64_t triangles)
+{
+    return (uint64_t)NODE_TEXELS * (triangles - 1) + (uint64_t)MESH_LEAF_TEXELS * triangles;
+}
+
 /* The texels every distinct mesh takes; also the texel bases of each mesh object into base when it
  * is not NULL (its mesh's root node in the node texture, its first triangle in the triangle texture). */
 static mesh_texels mesh_layout(const bg_scene_state *state, const uint32_t *first, float *base)
@@ -227,7 +237,7 @@ static mesh_texels mesh_layout(const bg_scene_state *state, const uint32_t *firs
             base[2 * (size_t)i] = (float)at.nodes;
             base[2 * (size_t)i + 1] = (float)at.tris;
         }
-        at.nodes += (uint64_t)NODE_TEXELS * m->tree.node_count;
+        at.nodes += mesh_tree_texels(m->triangle_count);
         at.tris += (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
     }
     return at;
@@ -269,9 +279,11 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
     return true;
 }
 
-/* Every distinct mesh once: its nodes as common/bvh.h lays them out into nodes, the miss links
- * turned into texel indices of the node texture, and its triangles into tris (docs/gpu_pipeline.md,
- * "Meshes"). */
+/* Every distinct mesh once: its tree in common/bvh.h's pre-order into nodes, interior nodes as
+ * their two texels with the miss links turned into texel indices of the node texture, each leaf as
+ * its triangle's corners {v0, triangle}, {v1, miss}, {v2, 0}; and its triangles' attributes into tris
+ * (docs/gpu_pipeline.md, "Meshes"). A subtree over k triangles has 2k - 1 nodes and takes
+ * mesh_tree_texels(k) texels, which turns a miss link's node span into a texel span. */
 static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_fused_tree *t, float *nodes,
                         float *tris)
 {
@@ -279,15 +291,28 @@ static void fill_meshes(const bg_scene_state *state, const uint32_t *first, cons
         const bg_mesh_data *m = state->objects[i].mesh;
         if (!m || first[i] != i)
             continue;
-        float root = t->mesh_base[2 * (size_t)i];
-        float *o = nodes + (size_t)root * 4;
+        uint64_t at = (uint64_t)t->mesh_base[2 * (size_t)i];
         for (uint32_t k = 0; k < m->tree.node_count; k++) {
             const float *node = m->tree.nodes + (size_t)k * BG_BVH_NODE_FLOATS;
-            memcpy(o, node, BG_BVH_NODE_FLOATS * sizeof *o);
-            o[BG_BVH_NODE_MISS] = root + (float)NODE_TEXELS * node[BG_BVH_NODE_MISS];
-            o += BG_BVH_NODE_FLOATS;
+            float *o = nodes + (size_t)at * 4;
+            uint64_t span = (uint64_t)node[BG_BVH_NODE_MISS] - k; /* nodes in the subtree */
+            uint64_t miss = at + mesh_tree_texels((span + 1) / 2);
+            float prim = node[BG_BVH_NODE_PRIM];
+            if (prim < 0.0f) {
+                memcpy(o, node, BG_BVH_NODE_FLOATS * sizeof *o);
+                o[BG_BVH_NODE_MISS] = (float)miss;
+                at += NODE_TEXELS;
+                continue;
+            }
+            const uint32_t *corner = m->indices + 3 * (size_t)prim;
+            for (int c = 0; c < 3; c++)
+                memcpy(o + 4 * c, &m->positions[3 * (size_t)corner[c]], 3 * sizeof *o);
+            o[3] = prim;
+            o[7] = (float)miss;
+            o[11] = 0.0f;
+            at += MESH_LEAF_TEXELS;
         }
-        o = tris + (size_t)t->mesh_base[2 * (size_t)i + 1] * 4;
+        float *o = tris + (size_t)t->mesh_base[2 * (size_t)i + 1] * 4;
         for (uint32_t k = 0; k < m->triangle_count; k++) {
             for (int c = 0; c < 3; c++) {
                 uint32_t v = m->indices[3 * (size_t)k + (size_t)c];

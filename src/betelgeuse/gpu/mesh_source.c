@@ -1,7 +1,8 @@
 /* The mesh code of the fused plans (docs/gpu_pipeline.md, "Meshes"): when the object tree's walk
  * reaches a mesh object's leaf, or the unrolled code a mesh object, the ray goes into the object's
- * space and walks the mesh's own tree, stackless and in the object tree's node format, from the mesh textures (fused_tree.c),
- * meeting triangles through bg_triangle.glsl. Every node step of both levels spends one of the
+ * space and walks the mesh's own tree, stackless, from the mesh textures (fused_tree.c): interior
+ * nodes in the object tree's format, leaves holding their triangle's corners, which go through
+ * bg_triangle.glsl. Every node step of both levels spends one of the
  * pixel's walk steps (bg_tree_left); a mesh walk that runs out marks the pixel (bg_tree_short) for
  * the CPU reference, as the object tree's walk does.
  *
@@ -25,17 +26,20 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
     bgi_gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
                         outer > 0 ? outer : 1, INNER);
     bgi_gpu_text_printf(t, "            if (%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop);
+    /* lo and hi are an interior node's box, or a leaf's first two corners (lo.w its triangle); either
+     * way hi.w is the miss link, which a leaf's is too, since nothing follows a leaf but its miss. */
     bgi_gpu_text_append(t, "            vec4 lo = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node);\n"
-                           "            vec4 hi = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 1.0);\n");
-    bgi_gpu_text_printf(t, "            bool entered = bg_tree_box(o, inv, %s, lo.xyz, hi.xyz);\n", t_max);
-    bgi_gpu_text_append(t, "            if (entered && lo.w >= 0.0 && lo.w != skip) {\n"
-                           "                float at = tris + 6.0 * lo.w;\n"
-                           "                vec3 v0 = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, at).xyz;\n"
-                           "                vec3 v1 = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, at + 1.0).xyz;\n"
-                           "                vec3 v2 = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, at + 2.0).xyz;\n"
+                           "            vec4 hi = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 1.0);\n"
+                           "            float next = hi.w;\n"
+                           "            if (lo.w < 0.0) {\n");
+    bgi_gpu_text_printf(t, "                if (bg_tree_box(o, inv, %s, lo.xyz, hi.xyz))\n"
+                           "                    next = node + 2.0;\n"
+                           "            } else if (lo.w != skip) {\n", t_max);
+    bgi_gpu_text_append(t, "                vec3 v0 = lo.xyz;\n                vec3 v1 = hi.xyz;\n"
+                           "                vec3 v2 = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 2.0).xyz;\n"
                            "                float tt;\n                vec3 b;\n                bool f;\n");
     bgi_gpu_text_append(t, body);
-    bgi_gpu_text_append(t, "            }\n            node = entered && lo.w < 0.0 ? node + 2.0 : hi.w;\n        }\n");
+    bgi_gpu_text_append(t, "            }\n            node = next;\n        }\n");
     bgi_gpu_text_printf(t, "        if (%s)\n            break;\n    }\n", stop);
 }
 
@@ -43,7 +47,7 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
  * mesh's root node and that of its first triangle (from the object's texel 4 in the tree, from its
  * own uniform when unrolled). */
 static const char *const mesh_setup =
-    "    float node = base.x;\n    float tris = base.y;\n"
+    "    float node = base.x;\n"
     "    float end = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 1.0).w;\n"
     "    mat3 perm;\n    vec3 shear;\n"
     "    if (!bg_triangle_setup(d, perm, shear))\n        return false;\n"
