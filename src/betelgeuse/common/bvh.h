@@ -71,7 +71,7 @@ bg_status bgi_bvh_check_boxes(const bg_bvh_box *boxes, uint32_t count, uint32_t 
 
 /* Builds a tree over boxes[0 .. count - 1] into *out through allocator (NULL: the C library's).
  * count 0 gives the empty tree; count > BG_BVH_MAX_PRIMS is BG_ERR_LIMIT. Besides the 32 bytes per
- * node it keeps, the build borrows 112 bytes per primitive while it runs, and takes one pass over
+ * node it keeps, the build borrows 56 bytes per primitive while it runs, and takes one pass over
  * the primitives per tree level. On any failure *out is the empty tree and nothing stays
  * allocated; *out is overwritten, so destroy a previous tree first. */
 bg_status bgi_bvh_build(const bg_allocator *allocator, const bg_bvh_box *boxes, uint32_t count, bg_bvh *out);

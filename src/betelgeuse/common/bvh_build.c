@@ -86,41 +86,76 @@ static void write_box(float *node, const bg_bvh_box *box)
     }
 }
 
-/* ---- boxes in double ----------------------------------------------------------------------- */
+/* ---- boxes -------------------------------------------------------------------------------- */
 
-static const bg_bvh_box EMPTY_BOX = {{DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
+/* A primitive's box as the build works with it: its double box rounded outward to the floats the
+ * node will hold. The union of rounded boxes is the rounded union (float_down), so nodes come out
+ * as from the doubles, and half the bytes of a double box go through every level's passes. Boxes
+ * of float vertices (every mesh) are floats already and lose nothing. */
+typedef struct fbox {
+    float min[3], max[3];
+} fbox;
 
-static void grow_box(bg_bvh_box *box, const bg_bvh_box *by)
+static const fbox EMPTY_BOX = {{FLT_MAX, FLT_MAX, FLT_MAX}, {-FLT_MAX, -FLT_MAX, -FLT_MAX}};
+static const bg_bvh_box EMPTY_CENTROIDS = {{DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
+
+static fbox round_box(const bg_bvh_box *box)
 {
+    fbox f;
     for (int a = 0; a < 3; a++) {
-        if (by->min[a] < box->min[a])
-            box->min[a] = by->min[a];
-        if (by->max[a] > box->max[a])
-            box->max[a] = by->max[a];
+        f.min[a] = float_down(box->min[a]);
+        f.max[a] = float_up(box->max[a]);
     }
+    return f;
+}
+
+static inline float min_f(float a, float b)
+{
+    return a < b ? a : b;
+}
+
+static inline float max_f(float a, float b)
+{
+    return a > b ? a : b;
+}
+
+/* Written out rather than looped over the axes: the build's inner loops run this for every
+ * primitive at every level, and the compiler kept the loop. */
+static inline void grow_box(fbox *box, const fbox *by)
+{
+    box->min[0] = min_f(by->min[0], box->min[0]);
+    box->min[1] = min_f(by->min[1], box->min[1]);
+    box->min[2] = min_f(by->min[2], box->min[2]);
+    box->max[0] = max_f(by->max[0], box->max[0]);
+    box->max[1] = max_f(by->max[1], box->max[1]);
+    box->max[2] = max_f(by->max[2], box->max[2]);
 }
 
 /* The one centroid formula: binning and partitioning must agree on every primitive's bin. */
-static double centroid(const bg_bvh_box *box, int axis)
+static inline double centroid(const fbox *box, int axis)
 {
-    return 0.5 * (box->min[axis] + box->max[axis]);
+    return 0.5 * ((double)box->min[axis] + (double)box->max[axis]);
 }
 
-static void grow_centroids(bg_bvh_box *bounds, const bg_bvh_box *box)
+static inline void grow_centroid(bg_bvh_box *bounds, const fbox *box, int axis)
 {
-    for (int a = 0; a < 3; a++) {
-        double c = centroid(box, a);
-        if (c < bounds->min[a])
-            bounds->min[a] = c;
-        if (c > bounds->max[a])
-            bounds->max[a] = c;
-    }
+    double c = centroid(box, axis);
+    bounds->min[axis] = c < bounds->min[axis] ? c : bounds->min[axis];
+    bounds->max[axis] = c > bounds->max[axis] ? c : bounds->max[axis];
+}
+
+static inline void grow_centroids(bg_bvh_box *bounds, const fbox *box)
+{
+    grow_centroid(bounds, box, 0);
+    grow_centroid(bounds, box, 1);
+    grow_centroid(bounds, box, 2);
 }
 
 /* Half the surface area; the factor 2 drops out of every comparison. */
-static double half_area(const bg_bvh_box *box)
+static inline double half_area(const fbox *box)
 {
-    double dx = box->max[0] - box->min[0], dy = box->max[1] - box->min[1], dz = box->max[2] - box->min[2];
+    double dx = (double)box->max[0] - box->min[0], dy = (double)box->max[1] - box->min[1],
+           dz = (double)box->max[2] - box->min[2];
     return dx * dy + dy * dz + dz * dx;
 }
 
@@ -129,13 +164,13 @@ static double half_area(const bg_bvh_box *box)
 /* A range items[begin .. begin + count - 1] that becomes node `node` at depth `depth` (root 1). */
 typedef struct range {
     uint32_t begin, count, node, depth;
-    bg_bvh_box bounds;    /* union of the range's boxes */
+    fbox bounds;          /* union of the range's boxes */
     bg_bvh_box centroids; /* bounds of their centroids */
 } range;
 
 /* A primitive in the build's working copy. */
 typedef struct item {
-    bg_bvh_box box;
+    fbox box;
     uint32_t prim;
 } item;
 
@@ -153,7 +188,7 @@ typedef struct split {
 } split;
 
 /* Maps a centroid to its bin; the scale is BINS / extent of the range's centroids on that axis. */
-static int bin_of(double c, double lo, double scale)
+static inline int bin_of(double c, double lo, double scale)
 {
     int b = (int)((c - lo) * scale);
     return b < BINS ? b : BINS - 1;
@@ -167,25 +202,28 @@ static double bin_scale(const range *r, int axis)
 
 typedef struct bins {
     uint32_t count[BINS];
-    bg_bvh_box box[BINS];
+    fbox box[BINS]; /* meaningful where count > 0 */
 } bins;
 
+static inline void add_to_bin(bins *bn, int k, const fbox *box)
+{
+    if (bn->count[k]++ == 0)
+        bn->box[k] = *box;
+    else
+        grow_box(&bn->box[k], box);
+}
+
+/* A bin's box is set by its first primitive rather than cleared first: most ranges are small and
+ * leave most of their 3 BINS bins empty, so only the counts are cleared. */
 static void fill_bins(const builder *b, const range *r, const double scale[3], bins per_axis[3])
 {
     for (int a = 0; a < 3; a++)
-        for (int k = 0; k < BINS; k++) {
-            per_axis[a].count[k] = 0;
-            per_axis[a].box[k] = EMPTY_BOX;
-        }
+        memset(per_axis[a].count, 0, sizeof per_axis[a].count);
     for (uint32_t i = r->begin; i < r->begin + r->count; i++) {
-        const bg_bvh_box *box = &b->items[i].box;
-        for (int a = 0; a < 3; a++) {
-            if (scale[a] == 0.0)
-                continue;
-            int k = bin_of(centroid(box, a), r->centroids.min[a], scale[a]);
-            per_axis[a].count[k]++;
-            grow_box(&per_axis[a].box[k], box);
-        }
+        const fbox *box = &b->items[i].box;
+        for (int a = 0; a < 3; a++)
+            if (scale[a] != 0.0)
+                add_to_bin(&per_axis[a], bin_of(centroid(box, a), r->centroids.min[a], scale[a]), box);
     }
 }
 
@@ -193,26 +231,35 @@ static void fill_bins(const builder *b, const range *r, const double scale[3], b
  * the parent's area. Every split of a range has the same traversal term and the same parent (a
  * leaf holds one primitive, so "no split" is never an option), which leaves the area-weighted
  * counts to compare. Planes are tried left to right and only a strictly lower cost replaces the
- * best, so ties go to the lowest plane. */
+ * best, so ties go to the lowest plane.
+ *
+ * Only planes just above a non-empty bin are costed: a plane above an empty bin has the same two
+ * sides as the plane below it, hence the same cost, and loses the tie to it. */
 static void best_plane(const bins *bn, int axis, split *best, double *best_cost)
 {
     double right_area[BINS];
     uint32_t right_count[BINS];
-    bg_bvh_box acc = EMPTY_BOX;
+    fbox acc = EMPTY_BOX;
     uint32_t n = 0;
+    double area = 0.0;
     for (int k = BINS - 1; k > 0; k--) {
-        grow_box(&acc, &bn->box[k]);
-        n += bn->count[k];
-        right_area[k] = n ? half_area(&acc) : 0.0;
+        if (bn->count[k] > 0) {
+            grow_box(&acc, &bn->box[k]);
+            n += bn->count[k];
+            area = half_area(&acc);
+        }
+        right_area[k] = area;
         right_count[k] = n;
     }
     acc = EMPTY_BOX;
     n = 0;
     for (int k = 1; k < BINS; k++) {
+        if (bn->count[k - 1] == 0)
+            continue;
         grow_box(&acc, &bn->box[k - 1]);
         n += bn->count[k - 1];
-        if (n == 0 || right_count[k] == 0)
-            continue;
+        if (right_count[k] == 0)
+            break;
         double cost = half_area(&acc) * n + right_area[k] * right_count[k];
         if (best->axis < 0 || cost < *best_cost) {
             best->axis = axis;
@@ -255,17 +302,17 @@ static void start_range(range *child, uint32_t begin, uint32_t node, uint32_t de
     child->node = node;
     child->depth = depth;
     child->bounds = EMPTY_BOX;
-    child->centroids = EMPTY_BOX;
+    child->centroids = EMPTY_CENTROIDS;
 }
 
-static void add_to_range(range *child, const bg_bvh_box *box)
+static inline void add_to_range(range *child, const fbox *box)
 {
     child->count++;
     grow_box(&child->bounds, box);
     grow_centroids(&child->centroids, box);
 }
 
-/* Stable partition of the range into its two children, which get their exact double bounds on
+/* Stable partition of the range into its two children, which get their exact bounds on
  * the way. Left primitives are compacted in place (the write position never passes the read
  * position), right ones wait in scratch and are copied in behind. */
 static void partition(builder *b, const range *r, const split *s, const double scale[3], range *left,
@@ -292,7 +339,10 @@ static void partition(builder *b, const range *r, const split *s, const double s
 static void write_node(builder *b, const range *r)
 {
     float *node = b->nodes + (size_t)r->node * BG_BVH_NODE_FLOATS;
-    write_box(node, &r->bounds);
+    for (int a = 0; a < 3; a++) {
+        node[BG_BVH_NODE_MIN + a] = r->bounds.min[a];
+        node[BG_BVH_NODE_MAX + a] = r->bounds.max[a];
+    }
     node[BG_BVH_NODE_PRIM] = r->count == 1 ? (float)b->items[r->begin].prim : -1.0f;
     node[BG_BVH_NODE_MISS] = (float)(r->node + 2 * r->count - 1);
     if (r->count == 1 && r->depth > b->depth)
@@ -303,9 +353,9 @@ static void root_range(builder *b, const bg_bvh_box *boxes, uint32_t count, rang
 {
     start_range(root, 0, 0, 1);
     for (uint32_t i = 0; i < count; i++) {
-        b->items[i].box = boxes[i];
+        b->items[i].box = round_box(&boxes[i]);
         b->items[i].prim = i;
-        add_to_range(root, &boxes[i]);
+        add_to_range(root, &b->items[i].box);
     }
 }
 
@@ -437,7 +487,7 @@ bg_status bgi_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count)
 
 static double node_half_area(const float *node)
 {
-    bg_bvh_box box;
+    fbox box;
     for (int a = 0; a < 3; a++) {
         box.min[a] = node[BG_BVH_NODE_MIN + a];
         box.max[a] = node[BG_BVH_NODE_MAX + a];
