@@ -16,6 +16,7 @@
 #include "betelgeuse.h"
 #include "scenes/meshes.h"
 #include "scenes/ply_mesh.h"
+#include "util_gl.h"
 #include "util_gpu.h"
 
 enum { W = 96, H = 96 };
@@ -633,6 +634,72 @@ static void mesh_walks_that_run_out_go_to_the_cpu(void **state)
     bg_scene_destroy(s);
 }
 
+/* A terrain of 2 n^2 triangles and its copy or its instance beside it, committed. */
+static bg_scene *two_terrains(int n, bool instance)
+{
+    bg_scene *s = new_scene();
+    mesh m;
+    memset(&m, 0, sizeof m);
+    mesh_heightfield_desc hd = {n, 0.25, false, false};
+    char why[256];
+    if (mesh_heightfield(&hd, &m, why, sizeof why) != BG_OK)
+        fail_msg("terrain: %s", why);
+    uint32_t mat = material(s, 0.6, 0.7, 0.5, 0.0);
+    bg_mat4 left = bg_mat4_translate(-1.0, 0.0, 0.0), right = bg_mat4_translate(1.0, 0.0, 0.0);
+    uint32_t first = add_mesh(s, &m, mat, left), second = 0;
+    if (instance)
+        assert_int_equal(bg_scene_add_mesh_instance(s, first, &right, mat, true, &second), BG_OK);
+    else
+        add_mesh(s, &m, mat, right);
+    mesh_free(&m);
+    commit(s);
+    return s;
+}
+
+/* With GL_MAX_TEXTURE_SIZE capped at 64 a mesh texture holds 64 rows of 64 texels, 4096: a terrain
+ * of 648 triangles (3888 texels of attributes, 3238 of tree) fits, and so does an instance of it,
+ * which shares them; two copies (7776 and 6476) do not. Every plan then refuses the frame with a
+ * message that names the plan (or that none can), the texels and the cap, leaves the caller's image
+ * as it was, and renders the next frame. */
+static void meshes_beyond_the_texture_cap(void **state)
+{
+    (void)state;
+    macs_limits caps = {0};
+    caps.max_texture_size = 64;
+    macs_context *ctx = util_context(util_fx.headless, &caps);
+    bg_renderer *r = util_renderer(ctx);
+    bg_scene *fits = two_terrains(18, true), *over = two_terrains(18, false);
+    static const bg_gpu_plan plans[] = {BG_PLAN_AUTO, BG_PLAN_FUSED_TREE, BG_PLAN_FUSED, BG_PLAN_MULTIPASS};
+    unsigned char px[48 * 36 * 4];
+    bg_image img = {48, 36, BG_PIXEL_RGBA8, 0, px};
+    for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++) {
+        bg_render_settings set = bg_render_settings_init();
+        set.gpu_plan = plans[k];
+        memset(px, 0x5a, sizeof px);
+        bg_status st = bg_render_gpu(r, over, &set, &img);
+        const char *msg = bg_renderer_error_message(r);
+        const char *plan = plans[k] == BG_PLAN_FUSED_TREE ? "BG_PLAN_FUSED_TREE"
+                           : plans[k] == BG_PLAN_FUSED    ? "BG_PLAN_FUSED"
+                                                          : "no plan";
+        if (st != BG_ERR_LIMIT || !strstr(msg, plan) || !strstr(msg, "the 4096 of a mesh texture") ||
+            (!strstr(msg, "nodes of their trees need 6476") && !strstr(msg, "triangles need 7776")))
+            fail_msg("plan %d, two copies: status %s, message \"%s\"", (int)plans[k], bg_status_string(st), msg);
+        for (size_t i = 0; i < sizeof px; i++)
+            if (px[i] != 0x5a)
+                fail_msg("plan %d: a refused frame wrote byte %zu of the image", (int)plans[k], i);
+        bg_renderer_clear_error(r);
+        util_render_gpu(r, ctx, fits, &set, &img, "a terrain and its instance after the refusal");
+        size_t unchanged = 0;
+        for (size_t i = 0; i < sizeof px; i++)
+            unchanged += px[i] == 0x5a;
+        assert_true(unchanged < sizeof px / 2);
+    }
+    bg_scene_destroy(over);
+    bg_scene_destroy(fits);
+    bg_renderer_destroy(r);
+    macs_context_destroy(ctx);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -648,6 +715,7 @@ int main(void)
         cmocka_unit_test(anisotropic_mesh_matches_cpu),
         cmocka_unit_test(mesh_walks_that_run_out_go_to_the_cpu),
         cmocka_unit_test(mesh_past_one_texture_matches_cpu),
+        cmocka_unit_test(meshes_beyond_the_texture_cap),
     };
     return cmocka_run_group_tests_name("bg_gpu_mesh", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

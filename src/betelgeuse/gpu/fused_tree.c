@@ -448,7 +448,9 @@ bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg
     char why[160];
     if (!walks) {
         if (!bgi_gpu_fused_tree_meshes_fit(r, state, why, sizeof why))
-            return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED: %s", why);
+            /* The unrolled plan checked this before it took the frame, so only the multipass, the
+             * last plan, gets here. */
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: no plan can render these meshes: %s", why);
         bg_status st = meshes_prepare(r, t, state);
         if (st == BG_OK) {
             t->serial = state->serial;
