@@ -90,6 +90,17 @@ static mesh icosphere(int level, bool normals)
     return m;
 }
 
+static mesh terrain(int n, double amplitude, bool normals)
+{
+    mesh m;
+    memset(&m, 0, sizeof m);
+    mesh_heightfield_desc d = {n, amplitude, normals, false};
+    char why[256];
+    if (mesh_heightfield(&d, &m, why, sizeof why) != BG_OK)
+        fail_msg("terrain: %s", why);
+    return m;
+}
+
 static void commit(bg_scene *scene)
 {
     if (bg_scene_commit(scene) != BG_OK)
@@ -364,12 +375,7 @@ static void leaving_rays_miss_the_neighbours(void **state)
 {
     (void)state;
     enum { N = 24 };
-    mesh m;
-    memset(&m, 0, sizeof m);
-    mesh_heightfield_desc hd = {64, 0.05, true, false}; /* smooth: a pixel off is a shadow, not the other facet */
-    char why[256];
-    if (mesh_heightfield(&hd, &m, why, sizeof why) != BG_OK)
-        fail_msg("%s", why);
+    mesh m = terrain(64, 0.05, true); /* smooth: a pixel off is a shadow, not the other facet */
     const double scales[3] = {1.0, 1e-3, 1e4};
     const double shifts[2] = {0.0, 1e3};
     bg_renderer *r = util_renderer(util_fx.ctx);
@@ -584,12 +590,7 @@ static void mesh_past_one_texture_matches_cpu(void **state)
 {
     (void)state;
     bg_scene *s = new_scene();
-    mesh m;
-    memset(&m, 0, sizeof m);
-    mesh_heightfield_desc hd = {650, 0.25, false, false};
-    char why[256];
-    if (mesh_heightfield(&hd, &m, why, sizeof why) != BG_OK)
-        fail_msg("terrain: %s", why);
+    mesh m = terrain(650, 0.25, false);
     add_mesh(s, &m, material(s, 0.6, 0.7, 0.5, 0.0), bg_mat4_identity());
     mesh_free(&m);
     bg_camera c = bg_camera_init();
@@ -638,12 +639,7 @@ static void mesh_walks_that_run_out_go_to_the_cpu(void **state)
 static bg_scene *two_terrains(int n, bool instance)
 {
     bg_scene *s = new_scene();
-    mesh m;
-    memset(&m, 0, sizeof m);
-    mesh_heightfield_desc hd = {n, 0.25, false, false};
-    char why[256];
-    if (mesh_heightfield(&hd, &m, why, sizeof why) != BG_OK)
-        fail_msg("terrain: %s", why);
+    mesh m = terrain(n, 0.25, false);
     uint32_t mat = material(s, 0.6, 0.7, 0.5, 0.0);
     bg_mat4 left = bg_mat4_translate(-1.0, 0.0, 0.0), right = bg_mat4_translate(1.0, 0.0, 0.0);
     uint32_t first = add_mesh(s, &m, mat, left), second = 0;
