@@ -29,7 +29,7 @@ endif
 ALL_CFLAGS := $(WARN) $(DEFS) $(OPT) $(SANFLAGS) -fPIC -Iinclude -Isrc -Iexamples -I$(BUILD)/gen $(CFLAGS)
 ALL_LDFLAGS := $(SANFLAGS) $(LDFLAGS)
 
-MACS_LIBS := $(shell pkg-config --libs osmesa egl 2>/dev/null || echo -lOSMesa -lEGL) -lm
+MACS_LIBS := -ldl -lm
 BG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng16) -lpthread -lm
 TEST_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null || echo -lcmocka)
 

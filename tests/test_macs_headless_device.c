@@ -37,15 +37,23 @@ static bool has_token(const char *list, const char *token)
 static device_probe probe_devices(void)
 {
     device_probe probe = {NULL, 0, -1};
-    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    /* The suite links no EGL (as MACS does not): the two core functions it needs, by name. */
+    PFNEGLQUERYSTRINGPROC query_client = (PFNEGLQUERYSTRINGPROC)util_library_function("libEGL.so.1", "eglQueryString");
+    PFNEGLGETPROCADDRESSPROC get_proc =
+        (PFNEGLGETPROCADDRESSPROC)util_library_function("libEGL.so.1", "eglGetProcAddress");
+    if (!query_client || !get_proc) {
+        probe.absent = "libEGL.so.1 cannot be loaded";
+        return probe;
+    }
+    const char *client = query_client(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     bool enumeration = has_token(client, "EGL_EXT_device_enumeration") || has_token(client, "EGL_EXT_device_base");
     if (!has_token(client, "EGL_EXT_platform_device") || !enumeration) {
         probe.absent = "EGL lacks EGL_EXT_platform_device or EGL_EXT_device_enumeration";
         return probe;
     }
-    PFNEGLQUERYDEVICESEXTPROC query_devices = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    PFNEGLQUERYDEVICESEXTPROC query_devices = (PFNEGLQUERYDEVICESEXTPROC)get_proc("eglQueryDevicesEXT");
     PFNEGLQUERYDEVICESTRINGEXTPROC query_string =
-        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+        (PFNEGLQUERYDEVICESTRINGEXTPROC)get_proc("eglQueryDeviceStringEXT");
     EGLDeviceEXT devices[64];
     if (!query_devices || !query_devices(64, devices, &probe.count) || probe.count < 1) {
         probe.absent = "eglQueryDevicesEXT lists no device";

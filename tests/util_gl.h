@@ -10,7 +10,15 @@
 /* True when MACS_TEST_QUICK is set (valgrind): loops shrink but still assert. */
 bool util_quick(void);
 
-/* Creates the headless context the environment asks for; fails the test if it cannot. */
+/* A function of a window-system library loaded by soname (and kept loaded), or NULL where the library
+ * or the function is missing: the tests link no such library, just as the libraries do not. */
+macs_gl_proc util_library_function(const char *soname, const char *name);
+
+/* Whether libOSMesa can be loaded here (Mesa 25.1 and later ship none). */
+bool util_osmesa_present(void);
+
+/* Creates the headless context the environment asks for; skips the test, saying so, where OSMesa is
+ * asked for and not installed; fails the test if it cannot otherwise. */
 macs_headless *util_headless(void);
 
 /* Creates a MACS context on the current headless context with optional caps; fails the test on error. */

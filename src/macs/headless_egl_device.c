@@ -22,27 +22,27 @@ typedef struct device_list {
 } device_list;
 
 /* EGL_EXT_device_base is the older name of enumeration and query together. */
-static bool client_has_device(const char *extension)
+static bool client_has_device(const macsi_egl_api *egl, const char *extension)
 {
-    return macsi_egl_client_has(extension) || macsi_egl_client_has("EGL_EXT_device_base");
+    return macsi_egl_client_has(egl, extension) || macsi_egl_client_has(egl, "EGL_EXT_device_base");
 }
 
-static macs_status load_api(device_api *api, char *message, size_t size)
+static macs_status load_api(const macsi_egl_api *egl, device_api *api, char *message, size_t size)
 {
     memset(api, 0, sizeof *api);
-    if (!macsi_egl_client_has("EGL_EXT_platform_device") || !client_has_device("EGL_EXT_device_enumeration")) {
+    if (!macsi_egl_client_has(egl, "EGL_EXT_platform_device") ||
+        !client_has_device(egl, "EGL_EXT_device_enumeration")) {
         snprintf(message, size, "EGL_EXT_platform_device or EGL_EXT_device_enumeration is missing from the client "
                  "extensions");
         return MACS_ERR_CONTEXT;
     }
-    api->query_devices = (PFNEGLQUERYDEVICESEXTPROC)macsi_egl_proc("eglQueryDevicesEXT");
+    api->query_devices = (PFNEGLQUERYDEVICESEXTPROC)egl->GetProcAddress("eglQueryDevicesEXT");
     if (!api->query_devices) {
         snprintf(message, size, "eglQueryDevicesEXT not found");
         return MACS_ERR_CONTEXT;
     }
-    if (client_has_device("EGL_EXT_device_query")) {
-        api->query_string = (PFNEGLQUERYDEVICESTRINGEXTPROC)macsi_egl_proc("eglQueryDeviceStringEXT");
-    }
+    if (client_has_device(egl, "EGL_EXT_device_query"))
+        api->query_string = (PFNEGLQUERYDEVICESTRINGEXTPROC)egl->GetProcAddress("eglQueryDeviceStringEXT");
     return MACS_OK;
 }
 
@@ -104,12 +104,13 @@ static macs_status record_device(macs_headless *h, const device_api *api, const 
     return h->device_name && h->device_extensions ? MACS_OK : MACS_ERR_OUT_OF_MEMORY;
 }
 
-static macs_status create_on_device(macs_headless *h, EGLDeviceEXT device, char *message, size_t size)
+static macs_status create_on_device(macs_headless *h, const macsi_egl_api *egl, EGLDeviceEXT device, char *message,
+                                    size_t size)
 {
     EGLDisplay display;
-    macs_status st = macsi_egl_platform_display(EGL_PLATFORM_DEVICE_EXT, device, &display, message, size);
+    macs_status st = macsi_egl_platform_display(egl, EGL_PLATFORM_DEVICE_EXT, device, &display, message, size);
     if (st == MACS_OK)
-        st = macsi_egl_create_on(h, display, message, size);
+        st = macsi_egl_create_on(h, egl, display, message, size);
     return st;
 }
 
@@ -123,8 +124,8 @@ static void note_failure(char *message, size_t size, int index, const char *name
 }
 
 /* index < 0: every device in turn until one gives a context; else that device only. */
-static macs_status create_on_list(macs_headless *h, const device_api *api, const device_list *list, int index,
-                                  char *message, size_t size)
+static macs_status create_on_list(macs_headless *h, const macsi_egl_api *egl, const device_api *api,
+                                  const device_list *list, int index, char *message, size_t size)
 {
     if (index >= list->count) {
         /* A device the caller named that is not there is the caller's to fix, unless there is none. */
@@ -140,7 +141,7 @@ static macs_status create_on_list(macs_headless *h, const device_api *api, const
     message[0] = '\0';
     for (int i = first; i <= last; i++) {
         char why[512] = "";
-        macs_status st = create_on_device(h, list->devices[i], why, sizeof why);
+        macs_status st = create_on_device(h, egl, list->devices[i], why, sizeof why);
         if (st == MACS_OK) {
             st = record_device(h, api, list, i);
             if (st != MACS_OK) {
@@ -156,16 +157,27 @@ static macs_status create_on_list(macs_headless *h, const device_api *api, const
     return MACS_ERR_CONTEXT;
 }
 
-macs_status macsi_egl_device_create(macs_headless *h, int index, char *message, size_t size)
+static macs_status create_with(macs_headless *h, const macsi_egl_api *egl, int index, char *message, size_t size)
 {
     device_api api;
     device_list list;
-    macs_status st = load_api(&api, message, size);
+    macs_status st = load_api(egl, &api, message, size);
     if (st == MACS_OK)
         st = list_devices(&h->allocator, &api, &list, message, size);
     if (st != MACS_OK)
         return st;
-    st = create_on_list(h, &api, &list, index, message, size);
+    st = create_on_list(h, egl, &api, &list, index, message, size);
     macsi_free(&h->allocator, list.devices);
+    return st;
+}
+
+macs_status macsi_egl_device_create(macs_headless *h, int index, char *message, size_t size)
+{
+    macsi_egl_api egl;
+    macs_status st = macsi_egl_api_load(&egl, message, size);
+    if (st != MACS_OK)
+        return st;
+    st = create_with(h, &egl, index, message, size);
+    macsi_egl_api_unload(&egl);
     return st;
 }
