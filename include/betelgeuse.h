@@ -458,8 +458,9 @@ typedef enum bg_gpu_plan {
 /* Told how much of a render is done: fraction in [0, 1], never decreasing from call to call, first
  * 0 before any work and last exactly 1 once the image is complete (that last call's return value
  * is ignored). Return false to cancel: the render stops at the next row (CPU) or sample pass (GPU)
- * and returns BG_ERR_CANCELLED. Called from the thread that called the render, at least once per
- * finished row on the CPU and once per sample pass and tile on the GPU (docs/shading.md 1.2). */
+ * and returns BG_ERR_CANCELLED. Called from the thread that called the render, once per finished
+ * row on the CPU (whichever thread rendered it) and once per sample pass and tile on the GPU
+ * (docs/shading.md 1.2). */
 typedef bool (*bg_progress_fn)(double fraction, void *user);
 
 #define BG_MAX_SAMPLES 256

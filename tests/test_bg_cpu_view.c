@@ -222,11 +222,11 @@ static void progress_runs_from_zero_to_one(void **state)
         assert_false(log.decreased);
         assert_true(log.values[0] == 0.0);
         assert_true(log.values[log.count - 1] == 1.0);
-        /* Every row of the caller's thread reports: with one thread, all but the last, plus 0 and 1. */
-        if (threads == 1)
-            assert_int_equal(log.count, H + 1);
-        else
-            assert_true(log.count >= 3);
+        /* Every row but the last is told once, whichever thread rendered it, plus 0 and 1: the count
+         * does not depend on the threads or on the machine's load. */
+        assert_int_equal(log.count, H + 1);
+        for (int i = 0; i < log.count; i++)
+            assert_true(log.values[i] == (i == H ? 1.0 : (double)i / H));
         free(img.pixels);
     }
     bg_scene_destroy(s);
@@ -261,11 +261,13 @@ static void check_cancel(bg_scene *s, int threads, int cancel_at)
             fail_msg("threads %d, cancelled at call %d: row %d is neither complete nor untouched", threads,
                      cancel_at, y);
     }
-    /* Cancelled before any row: nothing; after the caller's k-th row: at least k rows, not all. */
+    /* Cancelled before any row: nothing; after the k-th row told: at least k rows, and with one thread
+     * not all. With more, the other threads may have finished every row before the caller's thread
+     * got to tell the k-th (a busy machine does that), so "not all" is no promise there. */
     if (cancel_at == 0)
         assert_int_equal(complete, 0);
     else
-        assert_true(complete >= cancel_at && complete < H);
+        assert_true(complete >= cancel_at && (threads > 1 || complete < H));
     free(f);
     free(p);
 }

@@ -30,9 +30,11 @@ typedef struct job {
     const bg_image *image;
     size_t stride;
     pthread_mutex_t lock;
+    pthread_cond_t row_finished; /* signalled after each row, for the caller's thread */
     int next_row;
     int rows_done;
-    bool cancelled; /* set under lock by the caller's thread when progress asks to stop */
+    int rows_reported; /* rows told to progress so far, by the caller's thread */
+    bool cancelled;    /* set under lock by the caller's thread when progress asks to stop */
 } job;
 
 void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings *settings,
@@ -79,9 +81,26 @@ static void render_row(const job *jb, int y)
         bgi_cpu_render_pixel(jb->state, jb->settings, jb->view, jb->image, jb->stride, x, y);
 }
 
+/* Tells progress of every row finished since the last report, one call per row, so that what
+ * progress hears does not depend on which thread rendered which row; the last row is told as the
+ * final 1 after every thread has finished. Only the caller's thread calls it, with the lock held,
+ * which it releases around the callback. */
+static void report_finished_rows(job *jb)
+{
+    while (!jb->cancelled && jb->rows_reported < jb->rows_done && jb->rows_reported + 1 < jb->image->height) {
+        int row = ++jb->rows_reported;
+        pthread_mutex_unlock(&jb->lock);
+        bool go_on = bgi_render_progress(jb->settings, (double)row / jb->image->height);
+        pthread_mutex_lock(&jb->lock);
+        if (!go_on)
+            jb->cancelled = true;
+    }
+}
+
 /* Takes rows from the shared counter until none is left or the render is cancelled (C99 has no
- * atomics, hence the mutex). The caller's thread (reporter) tells progress after each of its rows;
- * rows_done only grows, so the fractions it reports never decrease. */
+ * atomics, hence the mutex). The caller's thread (reporter) tells progress after each of its rows,
+ * then waits for the rows the other threads still render and tells those too; rows_done only grows,
+ * so the fractions it reports never decrease. */
 static void work(job *jb, bool reporter)
 {
     for (;;) {
@@ -95,16 +114,22 @@ static void work(job *jb, bool reporter)
             break;
         render_row(jb, y);
         pthread_mutex_lock(&jb->lock);
-        int done = ++jb->rows_done;
+        jb->rows_done++;
+        pthread_cond_signal(&jb->row_finished);
+        if (reporter)
+            report_finished_rows(jb);
         pthread_mutex_unlock(&jb->lock);
-        /* The final 1 is reported once, after every thread has finished. */
-        if (reporter && done < jb->image->height &&
-            !bgi_render_progress(jb->settings, (double)done / jb->image->height)) {
-            pthread_mutex_lock(&jb->lock);
-            jb->cancelled = true;
-            pthread_mutex_unlock(&jb->lock);
-        }
     }
+    if (!reporter)
+        return;
+    pthread_mutex_lock(&jb->lock);
+    for (;;) {
+        report_finished_rows(jb);
+        if (jb->cancelled || jb->rows_done == jb->next_row)
+            break;
+        pthread_cond_wait(&jb->row_finished, &jb->lock);
+    }
+    pthread_mutex_unlock(&jb->lock);
 }
 
 static void *worker(void *arg)
@@ -146,9 +171,14 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
     jb.stride = stride;
     jb.next_row = 0;
     jb.rows_done = 0;
+    jb.rows_reported = 0;
     jb.cancelled = false;
     if (pthread_mutex_init(&jb.lock, NULL) != 0)
         return bgi_scene_fail(scene, BG_ERR_THREAD, "bg_render_cpu: pthread_mutex_init failed");
+    if (pthread_cond_init(&jb.row_finished, NULL) != 0) {
+        pthread_mutex_destroy(&jb.lock);
+        return bgi_scene_fail(scene, BG_ERR_THREAD, "bg_render_cpu: pthread_cond_init failed");
+    }
 
     /* The calling thread is worker 0; if a thread cannot be started the others (at least the caller)
      * take its rows, so the image is always complete. */
@@ -162,6 +192,7 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
     work(&jb, true);
     for (int i = 0; i < started; i++)
         pthread_join(pool[i], NULL);
+    pthread_cond_destroy(&jb.row_finished);
     pthread_mutex_destroy(&jb.lock);
     if (jb.cancelled)
         return bgi_scene_fail(scene, BG_ERR_CANCELLED, "bg_render_cpu: cancelled by settings.progress after %d of "
