@@ -250,8 +250,11 @@ check-command: all
 check-cluster: all
 	@env $(TEST_ENV) bash tests/check_cluster.sh $(CLI_BIN)
 
-check: all glsl-check check-symbols check-examples check-command $(TEST_BIN)
-	@TEST_ENV="$(TEST_ENV)" sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
+# The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
+# run's duration so that the next check, of any build, starts the longest first.
+check: all glsl-check check-symbols check-examples check-command $(TEST_BIN) $(BUILD)/tests/probe_headless
+	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless TIMES=build/suite-times \
+	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
 # valgrind over the MACS suites and the GPU renderer's error and smoke suites (renderer create/destroy
 # cycles, failure paths, the paper scenes), leaks as errors; tests/valgrind.supp holds only

@@ -48,4 +48,16 @@ check() {
 check macs include/macs.h MACS_API macs_ macsi_
 check betelgeuse include/betelgeuse.h BG_API bg_ bgi_
 check betelgeuse_scenefile include/betelgeuse_scenefile.h BG_API bg_scenefile_ bgi_sf_
+
+# GL, EGL and OSMesa are loaded at run time (docs/architecture.md, "Headless contexts"), so that the
+# libraries and the command start where Mesa ships no OSMesa: none of them may name one as needed.
+for f in "$build/libmacs.so" "$build/libbetelgeuse.so" "$build/libbetelgeuse_scenefile.so" "$build/betelgeuse"; do
+	gl=$(readelf -d "$f" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | grep -E '^lib(GL|GLX|EGL|OpenGL|OSMesa)[.-]')
+	if [ -n "$gl" ]; then
+		echo "FAIL $(basename "$f") links to $(echo $gl): the window-system libraries are loaded at run time"
+		failed=1
+	else
+		echo "$(basename "$f"): links no GL, EGL or OSMesa library"
+	fi
+done
 exit $failed
