@@ -176,7 +176,8 @@ $(BUILD)/%.pc: FORCE
 # The scene-file suites also link the scene-file library and its dependencies.
 $(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) $(TEST_LIBS)
+	$(CC) $(ALL_CFLAGS) $(SF_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) \
+	  $(TEST_LIBS)
 
 $(CLI_OBJ): ALL_CFLAGS += -DBG_CLI_VERSION='"$(VERSION)"'
 $(CLI_BIN): $(CLI_OBJ) $(SF_A) $(BG_A) $(MACS_A)

@@ -16,6 +16,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "scenefile/scenefile_internal.h"
 
 enum { W = 64, H = 48 };
 
@@ -131,6 +132,25 @@ static void a_gltf_brings_its_camera_and_light(void **state)
     assert_int_equal(r.summary.meshes, 2);
     assert_true(fabs(r.summary.bounds_max.x - 2.5) < 1e-6);
     bg_scene_destroy(s);
+}
+
+/* tests/data/tetra_pair.gltf's camera (yfov 0.7, aspect 1.5) as each assimp hands it over: 5.2.5
+ * (Debian 12) gives mHorizontalFOV 1.05 = yfov * aspect; 5.3 and later (6.0.5 on Debian unstable)
+ * 2 atan(1.5 tan 0.35), the full horizontal angle, which read by 5.2's rule gave 38.27 degrees
+ * instead of 40.11. Both must give back the file's 0.7 rad, whichever assimp runs the suite. */
+static void gltf_field_of_view_on_every_assimp(void **state)
+{
+    (void)state;
+    const double yfov = 0.7, aspect = 1.5;
+    const float assimp_5_2 = (float)(yfov * aspect);
+    const float assimp_6 = (float)(2.0 * atan(aspect * tan(yfov / 2.0)));
+    assert_true(fabs(bgi_sf_gltf_fov_y(assimp_5_2, aspect, 5, 2) - yfov) < 1e-6);
+    assert_true(fabs(bgi_sf_gltf_fov_y(assimp_6, aspect, 6, 0) - yfov) < 1e-6);
+    assert_true(fabs(bgi_sf_gltf_fov_y(assimp_6, aspect, 5, 3) - yfov) < 1e-6);
+    /* The old rule on the new value is the fault that was seen. */
+    assert_true(fabs(bgi_sf_gltf_fov_y(assimp_6, aspect, 5, 2) * 180 / 3.14159265358979 - 38.27) < 0.005);
+    /* Without an aspect ratio every version passes yfov through. */
+    assert_true(bgi_sf_gltf_fov_y(0.7, 0.0, 5, 2) == 0.7 && bgi_sf_gltf_fov_y(0.7, 0.0, 6, 0) == 0.7);
 }
 
 static void a_scene_file_places_a_model(void **state)
@@ -266,6 +286,7 @@ int main(void)
         cmocka_unit_test(every_model_loads_with_its_counts_and_renders),
         cmocka_unit_test(a_model_without_camera_or_light_gets_defaults),
         cmocka_unit_test(a_gltf_brings_its_camera_and_light),
+        cmocka_unit_test(gltf_field_of_view_on_every_assimp),
         cmocka_unit_test(a_scene_file_places_a_model),
         cmocka_unit_test(a_broken_model_is_refused),
         cmocka_unit_test(model_materials_say_what_they_leave_out),

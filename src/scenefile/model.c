@@ -7,6 +7,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/version.h>
 
 #include <errno.h>
 #include <math.h>
@@ -339,10 +340,11 @@ static bool is_gltf(const char *path)
     return (n >= 5 && strcasecmp(path + n - 5, ".gltf") == 0) || (n >= 4 && strcasecmp(path + n - 4, ".glb") == 0);
 }
 
-/* The file's first camera, placed by its node. Two quirks of assimp 5's glTF 2.0 reader are undone
- * here (docs/scene_format.md, "Model files"): it gives the camera's position already in world space
- * (the node's translation baked in), and as mHorizontalFOV the vertical field of view times the
- * aspect ratio rather than half the horizontal angle that other readers give. */
+/* The file's first camera, placed by its node. Two quirks of assimp's glTF 2.0 reader are undone
+ * here (docs/scene_format.md, "Model files"): before 5.3 it gives the camera's position already in
+ * world space (the node's translation baked in), so the position is taken from the node alone; and
+ * its mHorizontalFOV is not the half horizontal angle that other readers give, but a formula that
+ * depends on the version (bgi_sf_gltf_fov_y). */
 static void read_camera(model *md)
 {
     const struct aiCamera *c = md->sc->mCameras[0];
@@ -363,7 +365,9 @@ static void read_camera(model *md)
     }
     double fov = 0.0;
     if (c->mHorizontalFOV > 0 && isfinite(c->mHorizontalFOV))
-        fov = gltf ? c->mHorizontalFOV / (has_aspect ? aspect : 1.0) : 2.0 * atan(tan(c->mHorizontalFOV) / aspect);
+        fov = gltf ? bgi_sf_gltf_fov_y(c->mHorizontalFOV, has_aspect ? aspect : 0.0, aiGetVersionMajor(),
+                                       aiGetVersionMinor())
+                   : 2.0 * atan(tan(c->mHorizontalFOV) / aspect);
     fov *= 180.0 / 3.14159265358979323846;
     if (fov > 0 && fov < 180)
         out->camera.fov_y_degrees = fov;

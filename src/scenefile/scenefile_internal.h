@@ -149,4 +149,8 @@ bg_mat4 bgi_sf_plane_frame(bg_vec3 n);
 /* n / |n|, computed as the scene library does, so that shorthand planes keep its bits. */
 bg_vec3 bgi_sf_normalize(bg_vec3 v);
 
+/* A glTF camera's vertical field of view (radians) from assimp's mHorizontalFOV and mAspect (0: none),
+ * by the formula of that assimp version (camera_fov.c). */
+double bgi_sf_gltf_fov_y(double horizontal_fov, double aspect, unsigned assimp_major, unsigned assimp_minor);
+
 #endif
