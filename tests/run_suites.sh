@@ -5,7 +5,8 @@
 # Usage: run_suites.sh "suite binaries" "smoke suite binaries"
 # Environment: TEST_ENV (the Mesa settings of every run), PROBE (the backend probe program),
 # CHECK_JOBS (suites run at once; default: the number of processors), TIMES (a file that keeps each
-# run's duration, so that the next run starts the longest first; default: none).
+# run's duration, so that the next run starts the longest first; default: none), RUN_WITH (a command
+# that runs each suite, such as valgrind with its options; default: none).
 #
 # Where OSMesa is installed (Mesa 25.0 and older) every suite runs on it and the smoke suites also
 # on EGL surfaceless; where it is not (Mesa 25.1 and later) every suite runs on EGL surfaceless, and
@@ -31,7 +32,7 @@ EOF
 	cache="$work_dir/$id.cache"
 	start=$(date +%s.%N)
 	# shellcheck disable=SC2086 # TEST_ENV and settings are lists of NAME=value words
-	if env $TEST_ENV MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR="$cache" $settings "$binary" \
+	if env $TEST_ENV MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR="$cache" $settings $RUN_WITH "$binary" \
 		>"$work_dir/$id.log" 2>&1; then status=0; else status=$?; fi
 	end=$(date +%s.%N)
 	rm -rf "$cache"
@@ -126,7 +127,7 @@ else
 fi
 
 echo "== $n suite runs, $jobs at a time"
-tr '\n' '\0' <"$work/order" | work_dir="$work" TEST_ENV="$TEST_ENV" \
+tr '\n' '\0' <"$work/order" | work_dir="$work" TEST_ENV="$TEST_ENV" RUN_WITH="$RUN_WITH" \
 	xargs -0 -P "$jobs" -n 1 sh "$0" --one
 
 # The logs in the list's order, then the counts.
