@@ -105,7 +105,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples check-command check-cluster examples bench bench-programs stress install uninstall clean glsl-check valgrind
+.PHONY: FORCE all check check-symbols check-examples check-command check-cluster check-no-osmesa examples bench bench-programs stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -250,6 +250,13 @@ check-command: all
 # the slurm-wlm and munge packages).
 check-cluster: all
 	@env $(TEST_ENV) bash tests/check_cluster.sh $(CLI_BIN)
+
+# The project where Mesa has no OSMesa: every libOSMesa file hidden in a private mount namespace (needs
+# root and unshare), the smoke suites and a GPU scene suite on EGL surfaceless, and the command
+# (tests/check_no_osmesa.sh).
+NO_OSMESA_TESTS := $(SMOKE_TESTS) $(BUILD)/tests/test_bg_gpu_scenes
+check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
+	@TEST_ENV="$(TEST_ENV)" sh tests/check_no_osmesa.sh $(BUILD) "$(NO_OSMESA_TESTS)" "$(SMOKE_TESTS)"
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.
