@@ -115,7 +115,9 @@ typedef enum macs_headless_backend {
  * (MACS_ERR_INVALID_ARGUMENT, naming the index and the count), never replaced by another device or
  * backend; where EGL has no device platform or lists no device, DEFAULT moves on. OSMesa and EGL
  * surfaceless take only 0. The logger gets one info line saying what the context runs on.
- * The library never reads environment variables to choose the backend or the device. */
+ * The library never reads environment variables to choose the backend or the device. The backends'
+ * libraries (libEGL.so.1, libOSMesa.so.8 or .so.6) are loaded at run time, when first asked for: one
+ * that cannot be loaded is reported with the names tried (MACS_ERR_CONTEXT), and DEFAULT moves on. */
 typedef struct macs_headless_desc {
     macs_headless_backend backend;
     macs_allocator allocator;
@@ -154,7 +156,9 @@ MACS_API macs_headless_backend macs_headless_backend_used(const macs_headless *h
 /* Copies what the headless context runs on: backend, EGL device and GL renderer (NULL: DEFAULT, -1, ""). */
 MACS_API void macs_headless_get_info(const macs_headless *headless, macs_headless_info *info);
 
-/* Returns the get_proc_address matching this backend (OSMesaGetProcAddress or eglGetProcAddress). */
+/* Returns the get_proc_address matching this backend (OSMesaGetProcAddress or eglGetProcAddress of the
+ * library the context loaded); it needs macs_headless_proc_user as its user pointer, and returns NULL
+ * for every name without it. */
 MACS_API macs_get_proc_address_fn macs_headless_get_proc_address(const macs_headless *headless);
 
 /* Returns the user pointer to pass along with macs_headless_get_proc_address(). */
