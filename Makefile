@@ -105,7 +105,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples check-command check-cluster check-no-osmesa examples bench bench-programs stress install uninstall clean glsl-check valgrind
+.PHONY: FORCE all check check-symbols check-examples check-command check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -257,6 +257,9 @@ check-cluster: all
 NO_OSMESA_TESTS := $(SMOKE_TESTS) $(BUILD)/tests/test_bg_gpu_scenes
 check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" sh tests/check_no_osmesa.sh $(BUILD) "$(NO_OSMESA_TESTS)" "$(SMOKE_TESTS)"
+
+# The test programs built but not run, so that a parallel make can build them before make check.
+test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.
