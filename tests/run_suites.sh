@@ -6,7 +6,8 @@
 # Environment: TEST_ENV (the Mesa settings of every run), PROBE (the backend probe program),
 # CHECK_JOBS (suites run at once; default: the number of processors), TIMES (a file that keeps each
 # run's duration, so that the next run starts the longest first; default: none), RUN_WITH (a command
-# that runs each suite, such as valgrind with its options; default: none).
+# that runs each suite, such as valgrind with its options; default: none), SHADER_CACHE (no: every
+# run without Mesa's shader cache, as under valgrind, where Mesa's own cache writes raise reports).
 #
 # Where OSMesa is installed (Mesa 25.0 and older) every suite runs on it and the smoke suites also
 # on EGL surfaceless; where it is not (Mesa 25.1 and later) every suite runs on EGL surfaceless, and
@@ -31,8 +32,10 @@ $2
 EOF
 	cache="$work_dir/$id.cache"
 	start=$(date +%s.%N)
-	# shellcheck disable=SC2086 # TEST_ENV and settings are lists of NAME=value words
-	if env $TEST_ENV MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR="$cache" $settings $RUN_WITH "$binary" \
+	cache_env="MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR=$cache"
+	[ "$SHADER_CACHE" = no ] && cache_env="MESA_SHADER_CACHE_DISABLE=true"
+	# shellcheck disable=SC2086 # TEST_ENV, cache_env and settings are lists of NAME=value words
+	if env $TEST_ENV $cache_env $settings $RUN_WITH "$binary" \
 		>"$work_dir/$id.log" 2>&1; then status=0; else status=$?; fi
 	end=$(date +%s.%N)
 	rm -rf "$cache"
@@ -127,7 +130,7 @@ else
 fi
 
 echo "== $n suite runs, $jobs at a time"
-tr '\n' '\0' <"$work/order" | work_dir="$work" TEST_ENV="$TEST_ENV" RUN_WITH="$RUN_WITH" \
+tr '\n' '\0' <"$work/order" | work_dir="$work" TEST_ENV="$TEST_ENV" RUN_WITH="$RUN_WITH" SHADER_CACHE="$SHADER_CACHE" \
 	xargs -0 -P "$jobs" -n 1 sh "$0" --one
 
 # The logs in the list's order, then the counts.
