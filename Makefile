@@ -72,12 +72,21 @@ EXAMPLE_BIN := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/examples/%)
 
 # Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export), and
 # they also link the counting allocator of the tests (tests/util_alloc.c).
-# The Embree peer (bench/lib/embree_*.c) is built only where Embree 3 is installed (Debian's
-# libembree-dev has no pkg-config file, hence the header test): bench_embree needs it, bench_mesh
-# links it (with BENCH_EMBREE defined) where it is and runs without its column elsewhere.
-EMBREE_LIBS := $(shell pkg-config --libs embree3 2>/dev/null || \
-                 { test -f /usr/include/embree3/rtcore.h && echo -lembree3; })
-EMBREE_CFLAGS := $(if $(EMBREE_LIBS),$(shell pkg-config --cflags embree3 2>/dev/null))
+# The Embree peer (bench/lib/embree_*.c) is built only where Embree 4 or 3 is installed, 4 first:
+# pkg-config embree4 or embree3, else the headers under /usr/include (Debian's libembree-dev: Embree 3
+# in Debian 12, without a pkg-config file, Embree 4 in testing). EMBREE_VERSION (4, 3, or empty for
+# none) reaches the code as BENCH_EMBREE_VERSION, which picks the header (bench/lib/embree_internal.h);
+# pkg-config's -I become -isystem, as Embree 4's headers are not -Wpedantic clean (an enumerator past
+# INT_MAX). bench_embree needs the peer, bench_mesh links it (with BENCH_EMBREE defined) where it is
+# and runs without its column elsewhere.
+EMBREE_VERSION := $(shell if pkg-config --exists embree4 2>/dev/null; then echo 4; \
+                    elif pkg-config --exists embree3 2>/dev/null; then echo 3; \
+                    elif test -f /usr/include/embree4/rtcore.h; then echo 4; \
+                    elif test -f /usr/include/embree3/rtcore.h; then echo 3; fi)
+EMBREE_LIBS := $(if $(EMBREE_VERSION),$(shell pkg-config --libs embree$(EMBREE_VERSION) 2>/dev/null || \
+                 echo -lembree$(EMBREE_VERSION)))
+EMBREE_CFLAGS := $(if $(EMBREE_VERSION),-DBENCH_EMBREE_VERSION=$(EMBREE_VERSION) \
+                   $(patsubst -I%,-isystem %,$(shell pkg-config --cflags embree$(EMBREE_VERSION) 2>/dev/null)))
 EMBREE_PEER_SRC := $(sort $(wildcard bench/lib/embree_*.c))
 EMBREE_PEER_OBJ := $(EMBREE_PEER_SRC:%.c=$(BUILD)/%.o)
 EMBREE_SRC := bench/bench_embree.c $(EMBREE_PEER_SRC)
@@ -290,7 +299,7 @@ bench-programs: all $(BENCH_BIN)
 
 bench: all $(BENCH_BIN)
 	@mkdir -p $(BENCH_OUT)
-	@$(if $(EMBREE_LIBS),:,echo "Embree 3 (libembree-dev) is not installed: no bench_embree")
+	@$(if $(EMBREE_LIBS),:,echo "Embree (4 or 3, libembree-dev) is not installed: no bench_embree")
 	@for b in $(BENCH_PROGRAMS); do \
 	  { env $(BENCH_ENV) $(BUILD)/bench/$$b $(BENCH_OUT); echo $$? > $(BENCH_OUT)/$$b.status; } | tee $(BENCH_OUT)/$$b.txt; \
 	  [ "$$(cat $(BENCH_OUT)/$$b.status)" = 0 ] || exit 1; echo; done

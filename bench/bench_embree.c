@@ -1,5 +1,6 @@
-/* The GPU path against an Embree 3 peer (bench/lib/embree_peer.h), its own multipass plan and the CPU
- * reference: the same scenes, camera, lights and BRDF, so the table says where the GPU path stands.
+/* The GPU path against an Embree peer (bench/lib/embree_peer.h; Embree 3 or 4), its own multipass plan
+ * and the CPU reference: the same scenes, camera, lights and BRDF, so the table says where the GPU path
+ * stands.
  *
  * Usage: bench_embree [out_dir]   (default bench/out; QUICK=1 for fewer runs)
  * Per case: the CPU reference renders first (the image every other is compared with); the peer builds
@@ -11,11 +12,11 @@
  * BENCH_SLOW_RUNS, over VERY_SLOW_MS one (every contestant); the multipass follows its own rules
  * (MULTIPASS_MAX_OBJECTS, MULTIPASS_SLOW_MS). Writes out_dir/embree.csv.
  * Built only where Embree is installed (Makefile, bench section). */
-#include <embree3/rtcore.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lib/bench_measure.h"
+#include "lib/embree_internal.h" /* the peer's Embree header (3 or 4), for RTC_VERSION_* */
 #include "lib/embree_peer.h"
 #include "scenes/scenes.h"
 

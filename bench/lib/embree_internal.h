@@ -3,12 +3,78 @@
 #ifndef EMBREE_INTERNAL_H
 #define EMBREE_INTERNAL_H
 
+/* Embree 4 where the Makefile found it (BENCH_EMBREE_VERSION=4), else Embree 3. */
+#if defined(BENCH_EMBREE_VERSION) && BENCH_EMBREE_VERSION >= 4
+#include <embree4/rtcore.h>
+#else
 #include <embree3/rtcore.h>
+#endif
 #include <pthread.h>
 
 #include "embree_peer.h"
 #include "betelgeuse/common/render_settings.h"
 #include "betelgeuse/cpu/cpu_internal.h"
+
+/* ---- where Embree 3 and 4 differ (everything else is written once, for both) ------------------
+ * A query's state, which Embree hands to the callbacks as a pointer to its first member, context:
+ * - Embree 3: the context (struct RTCIntersectContext) holds the coherence flag and the filter, and
+ *   rtcIntersect1/4/8/16 and rtcOccluded1/4/8/16 take (scene, context, rays);
+ * - Embree 4: the context (struct RTCRayQueryContext) holds only the instance stack; flag, filter and
+ *   a pointer to the context go in per-call arguments (struct RTCIntersectArguments for
+ *   rtcIntersect*, struct RTCOccludedArguments for rtcOccluded*), taken as (scene, rays, arguments).
+ *   The arguments' filter runs only in scenes flagged RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS
+ *   (the instanced ones too), only with RTC_FEATURE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS in the feature
+ *   mask (rtcInit*Arguments sets every feature), and only on geometries that enable it
+ *   (rtcSetGeometryEnableFilterFunctionFromArguments) unless the query sets
+ *   RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER, as peer_query_init does.
+ * In both, the filter runs on the triangles' hits: a user geometry reports its hits without one
+ * (it would call rtcFilterIntersection in Embree 3, rtcInvokeIntersectFilterFromGeometry in 4). */
+#if RTC_VERSION_MAJOR >= 4
+typedef struct peer_query {
+    struct RTCRayQueryContext context;
+    struct RTCIntersectArguments intersect;
+    struct RTCOccludedArguments occluded;
+} peer_query;
+
+#define PEER_SCENE_FLAG_FILTER RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS
+
+/* Initialises q for a query whose triangle hits go through filter (NULL: no filter). */
+static inline void peer_query_init(peer_query *q, bool coherent, RTCFilterFunctionN filter)
+{
+    rtcInitRayQueryContext(&q->context);
+    rtcInitIntersectArguments(&q->intersect);
+    rtcInitOccludedArguments(&q->occluded);
+    enum RTCRayQueryFlags flags = coherent ? RTC_RAY_QUERY_FLAG_COHERENT : RTC_RAY_QUERY_FLAG_INCOHERENT;
+    if (filter)
+        flags = (enum RTCRayQueryFlags)(flags | RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER);
+    q->intersect.flags = q->occluded.flags = flags;
+    q->intersect.context = q->occluded.context = &q->context;
+    q->intersect.filter = q->occluded.filter = filter;
+}
+
+#define PEER_INTERSECT1(scene, q, rayhit) rtcIntersect1(scene, rayhit, &(q)->intersect)
+#define PEER_INTERSECT(n, valid, scene, q, rayhit) rtcIntersect##n(valid, scene, rayhit, &(q)->intersect)
+#define PEER_OCCLUDED1(scene, q, ray) rtcOccluded1(scene, ray, &(q)->occluded)
+#define PEER_OCCLUDED(n, valid, scene, q, ray) rtcOccluded##n(valid, scene, ray, &(q)->occluded)
+#else
+typedef struct peer_query {
+    struct RTCIntersectContext context;
+} peer_query;
+
+#define PEER_SCENE_FLAG_FILTER RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION
+
+static inline void peer_query_init(peer_query *q, bool coherent, RTCFilterFunctionN filter)
+{
+    rtcInitIntersectContext(&q->context);
+    q->context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    q->context.filter = filter;
+}
+
+#define PEER_INTERSECT1(scene, q, rayhit) rtcIntersect1(scene, &(q)->context, rayhit)
+#define PEER_INTERSECT(n, valid, scene, q, rayhit) rtcIntersect##n(valid, scene, &(q)->context, rayhit)
+#define PEER_OCCLUDED1(scene, q, ray) rtcOccluded1(scene, &(q)->context, ray)
+#define PEER_OCCLUDED(n, valid, scene, q, ray) rtcOccluded##n(valid, scene, &(q)->context, ray)
+#endif
 
 #define EMBREE_WAVE_MAX 64 /* rays traced together at one level; more are traced in further waves */
 #define EMBREE_MAX_THREADS BG_MAX_THREADS

@@ -36,7 +36,7 @@ typedef struct shadow_packet {
 
 /* What Embree hands back to the callbacks: the context comes first so a pointer to it is one to this. */
 typedef struct query_context {
-    struct RTCIntersectContext base;
+    peer_query base; /* its context first (embree_internal.h) */
     const embree_peer *peer;
     const peer_ray *rays;       /* nearest-hit queries, indexed by the Embree ray's id */
     peer_hit *hits;
@@ -201,7 +201,7 @@ static uint32_t mesh_object_of(const embree_peer *peer, unsigned geom, unsigned 
     return top < peer->geom_count ? peer->geom_object[top] : BG_CPU_NONE;
 }
 
-/* The context filter of queries whose rays may start on a mesh: drops the triangle a ray leaves
+/* The filter of queries whose rays may start on a mesh: drops the triangle a ray leaves
  * and, on shadow rays, the meshes that cast no shadow (Embree calls it for triangle hits only: the
  * user geometry reports its hits without it). */
 static void mesh_filter(const struct RTCFilterFunctionNArguments *args)
@@ -384,7 +384,7 @@ static void set_flags(RTCScene scene, enum RTCSceneFlags flags)
  * other through one scene per mesh and an instance per object. Returns the meshes' commit time. */
 static double build_meshes(embree_peer *peer, const bg_scene_state *state)
 {
-    const enum RTCSceneFlags flags = RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
+    const enum RTCSceneFlags flags = RTC_SCENE_FLAG_ROBUST | PEER_SCENE_FLAG_FILTER;
     double commit_ms = 0.0;
     for (uint32_t j = 0; j < state->object_count; j++) {
         const bg_object_data *object = &state->objects[j];
@@ -446,9 +446,9 @@ static bool build_bvh(embree_peer *peer, const bg_scene_state *state, char *mess
     peer->commit_ms = 0.0;
     if (peer->bvh) {
         /* Robust: Embree's float traversal must not lose a box a grazing double ray meets, nor a
-         * triangle at an edge; the context filter is the triangle skip of rays leaving a mesh. */
+         * triangle at an edge; the query's filter is the triangle skip of rays leaving a mesh. */
         set_flags(peer->bvh, RTC_SCENE_FLAG_ROBUST |
-                                 (state->mesh_object_count > 0 ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0));
+                                 (state->mesh_object_count > 0 ? PEER_SCENE_FLAG_FILTER : 0));
         peer->commit_ms = build_meshes(peer, state);
     }
     if (peer->bvh && peer->prim_count > 0) {
@@ -484,29 +484,27 @@ static bool build_bvh(embree_peer *peer, const bg_scene_state *state, char *mess
 static void init_context(query_context *q, const embree_peer *peer, bool coherent, bool filtered)
 {
     memset(q, 0, sizeof *q);
-    rtcInitIntersectContext(&q->base);
-    q->base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    q->base.filter = filtered ? mesh_filter : NULL;
+    peer_query_init(&q->base, coherent, filtered ? mesh_filter : NULL);
     q->peer = peer;
 }
 
 static void intersect_packet(const embree_peer *peer, query_context *q, hit_packet *p)
 {
     switch (peer->packet_width) {
-    case 1: rtcIntersect1(peer->bvh, &q->base, (struct RTCRayHit *)&p->rays); break;
-    case 4: rtcIntersect4(p->valid, peer->bvh, &q->base, (struct RTCRayHit4 *)&p->rays); break;
-    case 8: rtcIntersect8(p->valid, peer->bvh, &q->base, (struct RTCRayHit8 *)&p->rays); break;
-    default: rtcIntersect16(p->valid, peer->bvh, &q->base, &p->rays); break;
+    case 1: PEER_INTERSECT1(peer->bvh, &q->base, (struct RTCRayHit *)&p->rays); break;
+    case 4: PEER_INTERSECT(4, p->valid, peer->bvh, &q->base, (struct RTCRayHit4 *)&p->rays); break;
+    case 8: PEER_INTERSECT(8, p->valid, peer->bvh, &q->base, (struct RTCRayHit8 *)&p->rays); break;
+    default: PEER_INTERSECT(16, p->valid, peer->bvh, &q->base, &p->rays); break;
     }
 }
 
 static void occluded_packet(const embree_peer *peer, query_context *q, shadow_packet *p)
 {
     switch (peer->packet_width) {
-    case 1: rtcOccluded1(peer->bvh, &q->base, (struct RTCRay *)&p->rays); break;
-    case 4: rtcOccluded4(p->valid, peer->bvh, &q->base, (struct RTCRay4 *)&p->rays); break;
-    case 8: rtcOccluded8(p->valid, peer->bvh, &q->base, (struct RTCRay8 *)&p->rays); break;
-    default: rtcOccluded16(p->valid, peer->bvh, &q->base, &p->rays); break;
+    case 1: PEER_OCCLUDED1(peer->bvh, &q->base, (struct RTCRay *)&p->rays); break;
+    case 4: PEER_OCCLUDED(4, p->valid, peer->bvh, &q->base, (struct RTCRay4 *)&p->rays); break;
+    case 8: PEER_OCCLUDED(8, p->valid, peer->bvh, &q->base, (struct RTCRay8 *)&p->rays); break;
+    default: PEER_OCCLUDED(16, p->valid, peer->bvh, &q->base, &p->rays); break;
     }
 }
 

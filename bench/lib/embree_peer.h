@@ -1,5 +1,6 @@
-/* A benchmark peer: the same Whitted ray tracer as the CPU reference (docs/shading.md) with Embree 3
- * doing every ray traversal, so the GPU path can be timed against the CPU kernel people pick today.
+/* A benchmark peer: the same Whitted ray tracer as the CPU reference (docs/shading.md) with Embree
+ * (3 or 4: embree_internal.h) doing every ray traversal, so the GPU path can be timed against the CPU
+ * kernel people pick today.
  * It is no part of the libraries and is built only where Embree is installed (Makefile, bench section).
  *
  * What Embree does and what the reference does:
@@ -24,16 +25,17 @@
  *   hit's attributes are the reference's, in double, from Embree's triangle and barycentric weights
  *   (bgi_cpu_mesh_attributes: interpolated normals kept on the seen side, face normals otherwise, uv,
  *   tangent); which side is met (front: entering) is decided in double as the reference does. A ray
- *   leaving a mesh skips its triangle (a context filter) and starts off the surface along the
+ *   leaving a mesh skips its triangle (the query's filter) and starts off the surface along the
  *   geometric normal by docs/shading.md 2.10's rule taken in float units, 4 * 2^-23 of the point's
  *   magnitude (the reference's 256 double ulps would vanish when Embree rounds the origin to float;
  *   embree_trace.c gives the measurements behind 4); mesh objects that cast no shadow are dropped by
  *   the same filter on shadow rays.
  * - Build: every scene ROBUST (no accuracy-reducing optimisations: no triangle or box lost to float
  *   rounding at edges; the user geometry needs it for the padded boxes), RTC_BUILD_QUALITY_MEDIUM (Embree's default, binned SAH like the
- *   reference's mesh trees; HIGH adds spatial splits), CONTEXT_FILTER_FUNCTION where there are meshes
- *   (the triangle skip). Timed: the whole build (embree_peer_build_ms) and its rtcCommitScene calls
- *   alone (embree_peer_commit_ms); Embree's memory through its device memory monitor.
+ *   reference's mesh trees; HIGH adds spatial splits), the filter flag where there are
+ *   meshes (the triangle skip: CONTEXT_FILTER_FUNCTION in Embree 3, FILTER_FUNCTION_IN_ARGUMENTS in
+ *   4). Timed: the whole build (embree_peer_build_ms) and its rtcCommitScene calls alone
+ *   (embree_peer_commit_ms); Embree's memory through its device memory monitor.
  * - Shading is the reference's per-hit code (bgi_cpu_hit_attributes, bgi_cpu_surface_eval, bgi_cpu_brdf,
  *   bgi_cpu_mirror_weight, bgi_cpu_fresnel, bgi_cpu_encode_channel), chosen over a float rewrite so that
  *   "the same BRDF" holds to the last bit: only the order of each pixel's sum differs (level by level
