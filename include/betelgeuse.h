@@ -464,6 +464,11 @@ typedef enum bg_gpu_plan {
 typedef bool (*bg_progress_fn)(double fraction, void *user);
 
 #define BG_MAX_SAMPLES 256
+/* The largest side of any image, texture or frame, in pixels: keeps width * height * 16 bytes well
+ * inside size_t and within what GL 2.1 hardware can hold. */
+#define BG_MAX_IMAGE_SIDE 16384
+/* The most bounce levels a render follows (bg_render_settings.max_depth). */
+#define BG_MAX_DEPTH 64
 
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
  * min_weight 1/512, sRGB encoding, threads 0 (the online cores), dmax 0 (automatic), no phase
@@ -471,7 +476,7 @@ typedef bool (*bg_progress_fn)(double fraction, void *user);
  * image, no progress callback. */
 typedef struct bg_render_settings {
     double background[3];
-    int max_depth;      /* bounce levels after the primary hit, 0 .. 64 */
+    int max_depth;      /* bounce levels after the primary hit, 0 .. BG_MAX_DEPTH */
     double min_weight;  /* a ray whose path weight is below this in every channel is not followed */
     bg_output_encoding encoding;
     int threads;        /* CPU renderer only; 0 = online cores, at most 256 */
@@ -486,7 +491,7 @@ typedef struct bg_render_settings {
                            centre. More are placed on a fixed stratified pattern (docs/shading.md 1.1),
                            the same in both renderers, and averaged with equal weights (a box filter) */
     int frame_width, frame_height; /* the full frame the image is a window of (a crop window, a tile):
-                           0 = the image's size; at most 16384 per side */
+                           0 = the image's size; at most BG_MAX_IMAGE_SIDE per side */
     int window_x, window_y; /* the image's top-left pixel in the frame (x right, y down); the image must
                            lie inside the frame. Every pixel is the frame's pixel at that place */
     bg_progress_fn progress; /* NULL: no progress calls, no cancelling */

@@ -28,12 +28,24 @@
 extern "C" {
 #endif
 
-/* Defaults: no logger; base_dir NULL (the current folder); name NULL ("<string>"). */
+/* Told of each file a load reads, before it is read: the scene or model file itself, the textures,
+ * and the files a model names (an OBJ's MTL, a glTF's buffers and images). A command uses it to
+ * refuse an output path that would overwrite one of its inputs. path lives for the call only. */
+typedef void (*bg_scenefile_input_fn)(const char *path, void *user);
+
+typedef struct bg_scenefile_inputs {
+    bg_scenefile_input_fn func;
+    void *user;
+} bg_scenefile_inputs;
+
+/* Defaults: no logger; base_dir NULL (the current folder); name NULL ("<string>"); no input
+ * callback. */
 typedef struct bg_scenefile_desc {
     bg_logger logger;     /* errors (BG_LOG_ERROR) and what a model's materials lose (BG_LOG_WARNING) */
     const char *base_dir; /* bg_scenefile_load_string only: the folder relative paths resolve
                              against (file loads use the scene file's own folder) */
     const char *name;     /* bg_scenefile_load_string only: the text's name in messages */
+    bg_scenefile_inputs inputs; /* each file read, as it is opened */
 } bg_scenefile_desc;
 
 /* The image a scene asks for. Defaults: 640 x 480, 1 sample per pixel. samples is the scene's wish:

@@ -165,7 +165,7 @@ static void a_scene_file_places_a_model(void **state)
         " \"lights\": [{\"position\": [11, 5, 5]}]}";
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    bg_scenefile_desc d = {{NULL, NULL}, "tests/data", "placed.json"};
+    bg_scenefile_desc d = {.base_dir = "tests/data", .name = "placed.json"};
     bg_scenefile_result r;
     char message[1024];
     if (bg_scenefile_load_string(json, &d, s, &r, message, sizeof message) != BG_OK)
@@ -216,7 +216,7 @@ static void a_broken_model_is_refused(void **state)
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
     bg_scenefile_result r;
     assert_int_equal(bg_scenefile_load_model("tests/data/none.obj", NULL, s, &r, message, sizeof message), BG_ERR_IO);
-    assert_non_null(strstr(message, "tests/data/none.obj: cannot open model file"));
+    assert_non_null(strstr(message, "tests/data/none.obj: model file \"tests/data/none.obj\": cannot open: "));
     bg_scene_destroy(s);
 }
 
@@ -258,7 +258,7 @@ static void model_materials_say_what_they_leave_out(void **state)
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
     warnings w = {0, ""};
-    bg_scenefile_desc d = {{collect, &w}, NULL, NULL};
+    bg_scenefile_desc d = {.logger = {collect, &w}};
     bg_scenefile_result r;
     char message[1024];
     bg_status st = bg_scenefile_load_model(obj, &d, s, &r, message, sizeof message);

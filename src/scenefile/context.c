@@ -12,8 +12,10 @@ void bgi_sf_ctx_init(bgi_sf_ctx *ctx, const char *file, const bg_scenefile_desc 
 {
     memset(ctx, 0, sizeof *ctx);
     ctx->file = file;
-    if (desc)
+    if (desc) {
         ctx->logger = desc->logger;
+        ctx->inputs = desc->inputs;
+    }
     ctx->scene = scene;
     ctx->out = out;
     ctx->message = message;

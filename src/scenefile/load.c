@@ -63,20 +63,6 @@ static bg_status finish(bgi_sf_ctx *ctx)
     return BG_OK;
 }
 
-static void line_column(const char *text, const char *at, int *line, int *column)
-{
-    *line = 1;
-    *column = 1;
-    for (const char *p = text; p < at && *p; p++) {
-        if (*p == '\n') {
-            ++*line;
-            *column = 1;
-        } else {
-            ++*column;
-        }
-    }
-}
-
 static bg_status section(bgi_sf_ctx *ctx, const cJSON *root, const char *key,
                          bg_status (*read)(bgi_sf_ctx *, const cJSON *))
 {
@@ -93,11 +79,12 @@ static bg_status load_text(bgi_sf_ctx *ctx, const char *text)
 {
     static const char *const keys[] = {"camera", "image", "settings", "textures", "materials", "objects",
                                        "lights", NULL};
+    BGI_SF_TRY(bgi_sf_json_scan(ctx, text));
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
     if (!root) {
         int line, column;
-        line_column(text, end ? end : text, &line, &column);
+        bgi_sf_line_column(text, end ? end : text, &line, &column);
         char near[24] = "";
         if (end && *end) {
             size_t n = 0;
@@ -130,9 +117,8 @@ static bg_status load_text(bgi_sf_ctx *ctx, const char *text)
 
 static bg_status read_file(bgi_sf_ctx *ctx, const char *path, char **out)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return bgi_sf_fail(ctx, BG_ERR_IO, "cannot open: %s", strerror(errno));
+    FILE *f = NULL;
+    BGI_SF_TRY(bgi_sf_open_input(ctx, path, NULL, &f));
     long size = -1;
     if (fseek(f, 0, SEEK_END) == 0)
         size = ftell(f);

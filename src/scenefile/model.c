@@ -1,7 +1,7 @@
 /* Model files through assimp's C API: every triangle mesh of the file's node tree becomes a mesh
  * object (a mesh that several nodes show is added once and instanced), placed by the node's world
  * transform after the caller's; materials are mapped as docs/scene_format.md ("Model files") says. */
-#include "scenefile_internal.h"
+#include "model_internal.h"
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -16,9 +16,12 @@
 #include <string.h>
 #include <strings.h>
 
-/* Triangulate polygons; join identical vertices (formats such as STL and assimp's OBJ reader give
- * three per face); sort by primitive type so that point and line meshes stand apart and are skipped. */
-#define MODEL_FLAGS (aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType)
+/* Applied after the file is read and its indices checked (check_indices): assimp's own validation
+ * first, as a last guard before steps that trust the data; then triangulate polygons, join identical
+ * vertices (formats such as STL and assimp's OBJ reader give three per face), and sort by primitive
+ * type so that point and line meshes stand apart and are skipped. */
+#define MODEL_FLAGS \
+    (aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType)
 
 /* Node trees deeper than this are refused rather than risking the stack. */
 #define MODEL_MAX_DEPTH 256
@@ -100,6 +103,9 @@ static bg_status color_texture(model *md, const struct aiMaterial *am, const cha
     if (!found)
         return BG_OK;
     const char *file = s.data;
+    if (strlen(file) != s.length)
+        return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": material \"%s\": the texture "
+                           "file name holds a NUL character", md->desc->path, mname);
     if (file[0] == '*') {
         bgi_sf_warn(md->ctx, "material \"%s\": its embedded texture %s is left out (only PNG files are read)", mname,
                     file);
@@ -114,6 +120,7 @@ static bg_status color_texture(model *md, const struct aiMaterial *am, const cha
     int n = snprintf(path, sizeof path, "%s%s", file[0] == '/' ? "" : md->dir, file);
     if (n < 0 || n >= (int)sizeof path)
         return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "material \"%s\": texture path too long", mname);
+    bgi_sf_note_input(md->ctx, path);
     bg_status st = bg_scene_load_texture_png(md->ctx->scene, path, NULL, out);
     if (st != BG_OK)
         return bgi_sf_fail(md->ctx, st, "material \"%s\" of %s: %s", mname, md->desc->path,
@@ -413,19 +420,62 @@ static bg_status read_lights(model *md)
     return BG_OK;
 }
 
+/* Every face's vertex indices within its mesh, checked before any post-processing step reads
+ * them: assimp's importers pass a file's indices on as they are (a PLY face "3 0 1 7" over 3
+ * vertices), and the steps index arrays with them unchecked. */
+static bg_status check_indices(bgi_sf_ctx *ctx, const char *path, const struct aiScene *sc)
+{
+    for (unsigned m = 0; m < sc->mNumMeshes; m++) {
+        const struct aiMesh *am = sc->mMeshes[m];
+        for (unsigned f = 0; f < am->mNumFaces; f++)
+            for (unsigned k = 0; k < am->mFaces[f].mNumIndices; k++)
+                if (am->mFaces[f].mIndices[k] >= am->mNumVertices)
+                    return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": mesh %u (\"%s\"), face "
+                                       "%u: vertex index %u is out of range (the mesh has %u vertices)", path, m,
+                                       am->mName.data, f, am->mFaces[f].mIndices[k], am->mNumVertices);
+    }
+    return BG_OK;
+}
+
+/* The file opened as a regular file and its counts checked against its size, then read through
+ * the same checked file access, its indices checked, then post-processed. */
+static const struct aiScene *import(bgi_sf_ctx *ctx, const char *path, bg_status *st)
+{
+    char what[BGI_SF_PATH_MAX + 32];
+    snprintf(what, sizeof what, "model file \"%s\"", path);
+    FILE *f = NULL;
+    if ((*st = bgi_sf_open_input(ctx, path, what, &f)) != BG_OK)
+        return NULL;
+    *st = bgi_sf_check_ply_counts(ctx, path, f);
+    fclose(f);
+    if (*st != BG_OK)
+        return NULL;
+    bgi_sf_model_io io;
+    bgi_sf_model_io_init(&io, ctx);
+    const struct aiScene *sc = aiImportFileEx(path, 0, &io.io);
+    if (io.refused[0]) {
+        *st = bgi_sf_fail(ctx, BG_ERR_IO, "%s: %s", what, io.refused);
+    } else if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
+        *st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "cannot read %s: %s", what,
+                          sc ? "the file holds no complete scene" : aiGetErrorString());
+    } else if ((*st = check_indices(ctx, path, sc)) == BG_OK) {
+        /* On failure assimp has released the scene; the C API keeps no reason for a post-process. */
+        sc = aiApplyPostProcessing(sc, MODEL_FLAGS);
+        if (!sc)
+            *st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "cannot read %s: assimp's validation refused what "
+                              "its importer made of the file", what);
+        return sc;
+    }
+    aiReleaseImport(sc);
+    return NULL;
+}
+
 bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
 {
-    FILE *f = fopen(desc->path, "rb");
-    if (!f)
-        return bgi_sf_fail(ctx, BG_ERR_IO, "cannot open model file \"%s\": %s", desc->path, strerror(errno));
-    fclose(f);
-    const struct aiScene *sc = aiImportFile(desc->path, MODEL_FLAGS);
-    if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
-        bg_status st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "cannot read model file \"%s\": %s", desc->path,
-                                   sc ? "the file holds no complete scene" : aiGetErrorString());
-        aiReleaseImport(sc);
+    bg_status st = BG_OK;
+    const struct aiScene *sc = import(ctx, desc->path, &st);
+    if (!sc)
         return st;
-    }
     model md = {ctx, desc, sc, "", NULL, NULL, 0};
     const char *slash = strrchr(desc->path, '/');
     size_t dl = slash ? (size_t)(slash - desc->path) + 1 : 0;
@@ -433,7 +483,6 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
     md.dir[dl] = '\0';
     md.materials = calloc(sc->mNumMaterials + 1, sizeof *md.materials);
     md.first = calloc(sc->mNumMeshes + 1, sizeof *md.first);
-    bg_status st = BG_OK;
     if (!md.materials || !md.first)
         st = bgi_sf_fail(ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", desc->path);
     if (st == BG_OK)

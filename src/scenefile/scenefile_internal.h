@@ -9,6 +9,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include <cJSON.h>
 
@@ -32,6 +33,7 @@ typedef struct bgi_sf_ctx {
     const char *file;            /* the file's name in messages */
     char dir[BGI_SF_PATH_MAX];   /* folder relative paths resolve against; "" = the current one */
     bg_logger logger;
+    bg_scenefile_inputs inputs;  /* told of each file before it is read */
     bg_scene *scene;
     bg_scenefile_result *out;
     char *message;
@@ -72,6 +74,24 @@ bg_status bgi_sf_names_add(bgi_sf_ctx *ctx, bgi_sf_names *names, const char *nam
 uint32_t bgi_sf_names_find(const bgi_sf_names *names, const char *name);
 /* The default material, added at first use. */
 bg_status bgi_sf_default_material(bgi_sf_ctx *ctx, uint32_t *out);
+
+/* ---- input.c: every file a load reads ---- */
+
+/* Tells the caller's input callback that path is about to be read. */
+void bgi_sf_note_input(bgi_sf_ctx *ctx, const char *path);
+/* path opened for reading when it is a regular file (and noted), else BG_ERR_IO with the reason
+ * after "what: " (e.g. "model file \"x.ply\": is a directory"); what NULL names nothing (the file is
+ * the one the message starts with). */
+bg_status bgi_sf_open_input(bgi_sf_ctx *ctx, const char *path, const char *what, FILE **out);
+
+/* ---- json_scan.c: what cJSON cannot report ---- */
+
+/* The line and column (from 1) of at in text. */
+void bgi_sf_line_column(const char *text, const char *at, int *line, int *column);
+/* Refuses, by line and column, a text nested deeper than the JSON reader's limit (it would say only
+ * "not valid JSON") and a string with an escaped NUL (\u0000), which would cut a name or a path
+ * short without a word. */
+bg_status bgi_sf_json_scan(bgi_sf_ctx *ctx, const char *text);
 
 /* ---- json_value.c: typed readers of the value at the current path ---- */
 

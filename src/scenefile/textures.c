@@ -26,6 +26,7 @@ static bg_status read_texture(bgi_sf_ctx *ctx, const cJSON *v, const char *name)
     uint32_t handle = 0;
     if (st == BG_OK) {
         bg_texture_desc d = {(bg_texture_wrap)wrap, (bg_texture_encoding)enc, (bg_texture_filter)filter};
+        bgi_sf_note_input(ctx, path);
         st = bg_scene_load_texture_png(ctx->scene, path, &d, &handle);
         if (st != BG_OK)
             st = bgi_sf_fail(ctx, st, "%s", bg_scene_error_message(ctx->scene));

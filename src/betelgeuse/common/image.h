@@ -4,10 +4,6 @@
 
 #include "betelgeuse.h"
 
-/* Largest side of any image or texture: keeps width * height * 16 bytes well inside size_t and
- * within what GL 2.1 hardware can hold. */
-#define BG_MAX_IMAGE_SIDE 16384
-
 /* Bytes per pixel of a format (0 for unknown formats). */
 size_t bgi_image_pixel_size(bg_pixel_format format);
 /* Checks size (1 .. 16384 per side), format, pixels and stride; writes the row stride in bytes.

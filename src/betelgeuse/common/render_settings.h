@@ -4,7 +4,6 @@
 
 #include "betelgeuse.h"
 
-#define BG_MAX_DEPTH 64
 #define BG_MAX_THREADS 256
 
 /* BG_OK, or BG_ERR_INVALID_ARGUMENT with a message "<where>: settings.<field> ..." in message. */

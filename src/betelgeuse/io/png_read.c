@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "../common/image.h"
+#include "open_input.h"
 #include "png_read.h"
 
 static void keep_reason(bg_png_reader *r, const char *text)
@@ -140,10 +141,11 @@ bg_status bgi_png_reader_open(bg_png_reader *r, const char *path, char *message,
 {
     memset(r, 0, sizeof *r);
     r->path = path;
-    r->file = fopen(path, "rb");
+    char why[sizeof r->reason];
+    r->file = bgi_open_input(path, why, sizeof why);
     if (!r->file) {
-        keep_reason(r, strerror(errno));
-        return reader_fail(r, BG_ERR_IO, "cannot open", message, size);
+        write_message(message, size, "%s: %s", path, why);
+        return BG_ERR_IO;
     }
     if (!read_signature(r))
         return reader_fail(r, BG_ERR_IO, "cannot read PNG header", message, size);
