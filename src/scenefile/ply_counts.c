@@ -102,11 +102,14 @@ static bg_status read_header(bgi_sf_ctx *ctx, const char *path, FILE *f, ply_hea
 {
     memset(h, 0, sizeof *h);
     char line[512];
+    /* The magic first, so that other formats (a glTF on one long line) are left alone. */
+    if (fread(line, 1, 4, f) != 4 || memcmp(line, "ply", 3) != 0 || (line[3] != '\n' && line[3] != '\r'))
+        return BG_OK;
+    rewind(f);
     for (int number = 1;; number++) {
         if (!fgets(line, sizeof line, f))
-            return number == 1 ? BG_OK
-                               : bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": the PLY header has "
-                                             "no end_header line", path);
+            return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": the PLY header has no end_header "
+                               "line", path);
         size_t len = strlen(line);
         h->length += (long)len;
         if (len + 1 == sizeof line || h->length > PLY_HEADER_MAX)
@@ -114,10 +117,6 @@ static bg_status read_header(bgi_sf_ctx *ctx, const char *path, FILE *f, ply_hea
                                "than %zu bytes or is longer than %d bytes", path, sizeof line - 2, PLY_HEADER_MAX);
         while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
             line[--len] = '\0';
-        if (number == 1 && strcmp(line, "ply") != 0) {
-            h->length = 0;
-            return BG_OK;
-        }
         if (strcmp(line, "end_header") == 0)
             return BG_OK;
         BGI_SF_TRY(header_line(ctx, path, number, line, h));
