@@ -257,7 +257,7 @@ static void out_of_range_indices_are_named(void **state)
                               "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
                               "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 7\n";
     loaded l = load_ply("index.ply", ply, sizeof ply - 1);
-    expect(&l, BG_ERR_INVALID_ARGUMENT, "face 1: vertex index 7 is out of range (the mesh has 3 vertices)");
+    expect(&l, BG_ERR_INVALID_ARGUMENT, "aiMesh::mFaces[1]::mIndices[2] is out of range");
     expect(&l, BG_ERR_INVALID_ARGUMENT, "index.ply");
 }
 

@@ -211,6 +211,9 @@ static void a_broken_model_is_refused(void **state)
     assert_int_equal(load_text_as(".ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n0\n1\n2\n",
                                   message, sizeof message),
                      BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(message, "contains no faces"));
+    assert_int_equal(load_text_as(".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n", message, sizeof message),
+                     BG_ERR_INVALID_ARGUMENT);
     assert_non_null(strstr(message, "holds no triangles"));
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);

@@ -16,10 +16,10 @@
 #include <string.h>
 #include <strings.h>
 
-/* Applied after the file is read and its indices checked (check_indices): assimp's own validation
- * first, as a last guard before steps that trust the data; then triangulate polygons, join identical
- * vertices (formats such as STL and assimp's OBJ reader give three per face), and sort by primitive
- * type so that point and line meshes stand apart and are skipped. */
+/* assimp's validation first: its importers pass a file's face indices on unchecked (a PLY face
+ * "3 0 1 7" over 3 vertices), and the steps after it index arrays with them. Then triangulate
+ * polygons, join identical vertices (formats such as STL and assimp's OBJ reader give three per
+ * face), and sort by primitive type so that point and line meshes stand apart and are skipped. */
 #define MODEL_FLAGS \
     (aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType)
 
@@ -420,25 +420,9 @@ static bg_status read_lights(model *md)
     return BG_OK;
 }
 
-/* Every face's vertex indices within its mesh, checked before any post-processing step reads
- * them: assimp's importers pass a file's indices on as they are (a PLY face "3 0 1 7" over 3
- * vertices), and the steps index arrays with them unchecked. */
-static bg_status check_indices(bgi_sf_ctx *ctx, const char *path, const struct aiScene *sc)
-{
-    for (unsigned m = 0; m < sc->mNumMeshes; m++) {
-        const struct aiMesh *am = sc->mMeshes[m];
-        for (unsigned f = 0; f < am->mNumFaces; f++)
-            for (unsigned k = 0; k < am->mFaces[f].mNumIndices; k++)
-                if (am->mFaces[f].mIndices[k] >= am->mNumVertices)
-                    return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": mesh %u (\"%s\"), face "
-                                       "%u: vertex index %u is out of range (the mesh has %u vertices)", path, m,
-                                       am->mName.data, f, am->mFaces[f].mIndices[k], am->mNumVertices);
-    }
-    return BG_OK;
-}
-
-/* The file opened as a regular file and its counts checked against its size, then read through
- * the same checked file access, its indices checked, then post-processed. */
+/* The file opened as a regular file and its counts checked against its size, then read through the
+ * same checked file access, with assimp's validation as the first step. It must run inside the
+ * import: assimp 5.2's aiApplyPostProcessing releases a scene that fails validation twice. */
 static const struct aiScene *import(bgi_sf_ctx *ctx, const char *path, bg_status *st)
 {
     char what[BGI_SF_PATH_MAX + 32];
@@ -452,20 +436,14 @@ static const struct aiScene *import(bgi_sf_ctx *ctx, const char *path, bg_status
         return NULL;
     bgi_sf_model_io io;
     bgi_sf_model_io_init(&io, ctx);
-    const struct aiScene *sc = aiImportFileEx(path, 0, &io.io);
-    if (io.refused[0]) {
+    const struct aiScene *sc = aiImportFileEx(path, MODEL_FLAGS, &io.io);
+    if (io.refused[0])
         *st = bgi_sf_fail(ctx, BG_ERR_IO, "%s: %s", what, io.refused);
-    } else if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
+    else if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
         *st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "cannot read %s: %s", what,
                           sc ? "the file holds no complete scene" : aiGetErrorString());
-    } else if ((*st = check_indices(ctx, path, sc)) == BG_OK) {
-        /* On failure assimp has released the scene; the C API keeps no reason for a post-process. */
-        sc = aiApplyPostProcessing(sc, MODEL_FLAGS);
-        if (!sc)
-            *st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "cannot read %s: assimp's validation refused what "
-                              "its importer made of the file", what);
+    else
         return sc;
-    }
     aiReleaseImport(sc);
     return NULL;
 }
