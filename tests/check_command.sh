@@ -4,6 +4,8 @@
 #   usage: tests/check_command.sh BUILD/betelgeuse
 set -u
 cli=$1
+# Absolute, so that checks may run it from another folder.
+case $cli in /*) ;; *) cli=$PWD/$cli ;; esac
 root=$(cd "$(dirname "$0")/.." && pwd)
 json=$root/examples/scenes/json
 out=$(mktemp -d /tmp/betelgeuse-command.XXXXXX)
@@ -35,6 +37,8 @@ said() {
 }
 
 echo "== check-command: $cli"
+# A scene that reads no other file, for checks that copy it around.
+printf '{"objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}}]}' >"$out/sphere.json"
 expect 0 "--help" "$cli" --help
 for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet assemble info; do
 	grep -qF -- "$option" "$out/stdout" || fail "--help does not mention $option"
@@ -112,11 +116,168 @@ said "camera.fov" "unknown key"
 expect 1 "unwritable output" "$cli" render "$json/glass.json" --size 8x8 --renderer cpu -o "$out/no/such/dir/x.png"
 said "no/such/dir/x.png" "unwritable output"
 
+# Limits are the library's (BG_MAX_IMAGE_SIDE, BG_MAX_SAMPLES, BG_MAX_DEPTH in betelgeuse.h), and every
+# number is parsed with overflow checks: a value the parser takes is one the renderer takes.
+for bad in "--size 20000x20000" "--size 16385x1" "--samples 257" "--max-depth 65" "--tile 1/4294967297"; do
+	option=${bad%% *}
+	expect 2 "$bad" "$cli" render "$json/glass.json" $bad -o "$out/x.png"
+	said "$option" "$bad"
+done
+expect 0 "--size at the largest side" "$cli" render "$out/sphere.json" --size 16384x2 --crop 0,0,4,2 --renderer cpu \
+	-o "$out/x.png"
+rm -f "$out/x.png"
+# 4294967312 is 2^32 + 16: read with sscanf's %d it wrapped to 16, inside the 32x32 frame, and rendered.
+for crop in 0,0,4294967312,4294967312 -1,0,4,4 0,0,4,4x 0,,4,4 0,0,4 0,0,4,4, " 0,0,4,4" 0,0,16385,4 ""; do
+	expect 2 "--crop '$crop'" "$cli" render "$out/sphere.json" --size 32x32 --renderer cpu --crop "$crop" -o "$out/x.png"
+	said "--crop" "--crop '$crop'"
+done
+[ -e "$out/x.png" ] && fail "a refused --size, --samples, --max-depth, --tile or --crop wrote $out/x.png"
+
+# An output that names an input is refused (exit 2, naming the option and the input) and the input is
+# left as it was, however the path spells it: the same name, ./, .., a symbolic or a hard link.
+w=$out/inputs
+mkdir "$w" "$w/sub"
+cp "$out/sphere.json" "$w/s.json"
+ln -s s.json "$w/link.json"
+ln "$w/s.json" "$w/hard.json"
+for o in "$w/s.json" "$w/./s.json" "$w/sub/../s.json" "$w/link.json" "$w/hard.json"; do
+	cp "$out/sphere.json" "$w/s.json"
+	expect 2 "-o $o (the scene)" "$cli" render "$w/s.json" --size 8x8 --renderer cpu -o "$o"
+	said "-o $o" "-o $o (the scene)"
+	said "input file $w/s.json" "-o $o (the scene)"
+	cmp -s "$w/s.json" "$out/sphere.json" || fail "-o $o overwrote the scene file"
+done
+cp "$out/sphere.json" "$w/s.json"
+expect 2 "-o ./s.json, relative" sh -c 'cd "$1" && exec "$2" render s.json --size 8x8 --renderer cpu -o ./s.json' \
+	sh "$w" "$cli"
+said "-o ./s.json" "-o ./s.json, relative"
+cmp -s "$w/s.json" "$out/sphere.json" || fail "-o ./s.json overwrote the scene file"
+cp "$out/sphere.json" "$w/s.json"
+expect 2 "--float naming the scene" "$cli" render "$w/s.json" --size 8x8 --renderer cpu -o "$w/o.png" \
+	--float "$w/s.json"
+said "--float $w/s.json" "--float naming the scene"
+cmp -s "$w/s.json" "$out/sphere.json" || fail "--float overwrote the scene file"
+cp "$out/sphere.json" "$w/s.json"
+expect 2 "-o and --float naming one file" "$cli" render "$w/s.json" --size 8x8 --renderer cpu -o "$w/o.png" \
+	--float "$w/sub/../o.png"
+said "--float" "-o and --float naming one file"
+[ -e "$w/o.png" ] && fail "-o and --float naming one file wrote it"
+cp "$out/t2_cpu.png" "$out/t2_copy.png"
+expect 2 "assemble -o naming a tile" "$cli" assemble "$out/t1_cpu.png" "$out/t2_cpu.png" "$out/t3_cpu.png" \
+	-o "$out/./t2_cpu.png"
+said "-o $out/./t2_cpu.png" "assemble -o naming a tile"
+cmp -s "$out/t2_cpu.png" "$out/t2_copy.png" || fail "assemble -o overwrote a tile"
+
+# no_temps DIR: no temporary output (.NAME.XXXXXX) is left in DIR.
+no_temps() {
+	for f in "$1"/.[!.]*; do
+		[ -e "$f" ] && fail "a temporary file is left behind: $f"
+	done
+	return 0
+}
+
+# Outputs go to a temporary beside the target and are renamed into place once every output is written:
+# a failed write leaves the existing file as it was and no temporary behind.
+w=$out/atomic
+mkdir "$w"
+printf 'an image from before\n' >"$w/o.png"
+cp "$w/o.png" "$out/o.before"
+expect 1 "--float into a missing folder" "$cli" render "$out/sphere.json" --size 8x8 --renderer cpu -o "$w/o.png" \
+	--float "$w/missing/x.pfm"
+said "missing/x.pfm" "--float into a missing folder"
+cmp -s "$w/o.png" "$out/o.before" || fail "--float into a missing folder changed the existing PNG"
+no_temps "$w"
+# A file-size limit of 1 KiB (2 blocks of 512 bytes) the PNG (some 3 KB) cannot fit in; SIGXFSZ is ignored
+# so that the write fails with EFBIG instead of killing the process.
+checks=$((checks + 1))
+(trap '' XFSZ && ulimit -f 2 && exec "$cli" render "$out/sphere.json" --size 512x512 --renderer cpu --quiet \
+	-o "$w/o.png") >"$out/stdout" 2>"$out/err"
+got=$?
+[ "$got" = 1 ] || fail "a write beyond ulimit -f: exit $got, want 1; stderr: $(cat "$out/err")"
+said "o.png" "a write beyond ulimit -f"
+cmp -s "$w/o.png" "$out/o.before" || fail "a write beyond ulimit -f changed or removed the existing PNG"
+no_temps "$w"
+# The same limit with a PNG that fits (a few hundred bytes) and a PFM that does not (48 KiB): the PNG,
+# written first, must not replace the old one either.
+checks=$((checks + 1))
+(trap '' XFSZ && ulimit -f 2 && exec "$cli" render "$out/sphere.json" --size 64x64 --renderer cpu --quiet \
+	-o "$w/o.png" --float "$w/o.pfm") >"$out/stdout" 2>"$out/err"
+got=$?
+[ "$got" = 1 ] || fail "a PFM beyond ulimit -f: exit $got, want 1; stderr: $(cat "$out/err")"
+said "o.pfm" "a PFM beyond ulimit -f"
+cmp -s "$w/o.png" "$out/o.before" || fail "a PFM beyond ulimit -f changed or removed the existing PNG"
+[ -e "$w/o.pfm" ] && fail "a PFM beyond ulimit -f left $w/o.pfm"
+no_temps "$w"
+# A successful run: both files in place, with the permissions a plain create gives under the umask.
+for mask in 022 027; do
+	expect 0 "render under umask $mask" sh -c 'umask $1 && shift && exec "$@"' sh $mask "$cli" render \
+		"$out/sphere.json" --size 8x8 --renderer cpu -o "$w/o.png" --float "$w/o.pfm"
+	want=-rw-r--r--
+	[ $mask = 027 ] && want=-rw-r-----
+	for f in "$w/o.png" "$w/o.pfm"; do
+		mode=$(ls -l "$f" | cut -c1-10)
+		[ "$mode" = "$want" ] || fail "$f under umask $mask: mode $mode, want $want"
+	done
+	rm "$w/o.png" "$w/o.pfm"
+done
+# An output that is a symbolic link stays one: the file it points to is replaced (or made).
+ln -s real.png "$w/link.png"
+expect 0 "render through a link" "$cli" render "$out/sphere.json" --size 8x8 --renderer cpu -o "$w/link.png"
+[ -L "$w/link.png" ] || fail "render through a link replaced the link"
+head -c 4 "$w/real.png" | grep -q PNG || fail "render through a link did not write the file it points to"
+rm "$w/link.png" "$w/real.png"
+printf 'an image from before\n' >"$w/o.png"
+expect 0 "render over an existing PNG" "$cli" render "$out/sphere.json" --size 8x8 --renderer cpu -o "$w/o.png"
+head -c 4 "$w/o.png" | grep -q PNG || fail "render over an existing PNG did not replace it"
+no_temps "$w"
+
+# A forged tile whose Betelgeuse-Tile chunk claims a 100000x100000 frame (a 1x1 PNG with a tEXt chunk,
+# "0 0 100000 100000"), and one whose frame width, 2^32 + 1, wrapped to 1 with sscanf: malformed tiles.
+# forged_tile FILE CHUNK: a 1x1 PNG around CHUNK, the tEXt chunk given as printf escapes.
+forged_tile() {
+	{
+		printf '\211PNG\015\012\032\012\000\000\000\015IHDR\000\000\000\001\000\000\000\001\010\006\000\000\000'
+		printf '\037\025\304\211'
+		printf "$2"
+		printf '\000\000\000\015IDATx\234c\370\317\300\360\037\000\005\000\001\377\211\231=\035'
+		printf '\000\000\000\000IEND\256B`\202'
+	} >"$1"
+}
+forged_tile "$out/huge_tile.png" '\000\000\000!tEXtBetelgeuse-Tile\0000 0 100000 100000\215\261;\214'
+forged_tile "$out/wrapped_tile.png" '\000\000\000 tEXtBetelgeuse-Tile\0000 0 4294967297 1\267\004\2404'
+for tile in huge_tile wrapped_tile; do
+	expect 2 "assemble $tile" "$cli" assemble "$out/$tile.png" -o "$out/x.png"
+	said "$tile.png: malformed Betelgeuse-Tile" "assemble $tile"
+done
+# Tiles that are not regular files: named, and a FIFO does not block the open (timeout: a hang fails).
+mkfifo "$out/fifo.png"
+mkdir "$out/dir.png"
+expect 2 "assemble a FIFO tile" timeout 20 "$cli" assemble "$out/fifo.png" -o "$out/x.png"
+said "fifo.png: is not a regular file (a FIFO)" "assemble a FIFO tile"
+expect 2 "assemble a directory tile" timeout 20 "$cli" assemble "$out/dir.png" -o "$out/x.png"
+said "dir.png: is a directory" "assemble a directory tile"
+[ -e "$out/x.png" ] && fail "a refused assemble wrote $out/x.png"
+
 # info: the counts, the bounds and the plan.
 expect 0 "info" "$cli" info "$json/bunny.json"
 for word in objects triangles lights bounds camera "GPU plan"; do
 	grep -qF "$word" "$out/stdout" || fail "info prints no '$word': $(cat "$out/stdout")"
 done
 grep -q "3674 triangles" "$out/stdout" || fail "info: the bunny's 3674 triangles are not counted: $(cat "$out/stdout")"
+
+# What the scene-file library tells the command: every file it reads (here a texture) is an input that
+# -o may not overwrite, and a scene that is a FIFO or a directory is refused without blocking.
+w=$out/textured
+mkdir "$w"
+cp "$json/paper_earth.json" "$json/earth.png" "$w/"
+expect 2 "-o naming the scene's texture" "$cli" render "$w/paper_earth.json" --size 8x8 --renderer cpu -o "$w/earth.png"
+said "earth.png" "-o naming the scene's texture"
+cmp -s "$w/earth.png" "$json/earth.png" || fail "-o overwrote the scene's texture"
+mkfifo "$out/fifo.json"
+expect 2 "a FIFO scene" timeout 20 "$cli" render "$out/fifo.json" --renderer cpu -o "$out/x.png"
+said "is not a regular file (a FIFO)" "a FIFO scene"
+mkdir "$out/dir.json"
+expect 2 "a directory scene" timeout 20 "$cli" render "$out/dir.json" --renderer cpu -o "$out/x.png"
+said "is a directory" "a directory scene"
 
 [ "$failed" = 0 ] && echo "check-command: $checks commands as expected"

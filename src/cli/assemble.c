@@ -1,18 +1,53 @@
 /* `betelgeuse assemble TILE... -o OUT.png`: the tiles of one frame (each PNG carries its place,
  * tile_file.h) put together. Every pixel of the frame must come from exactly one tile: a gap, an
- * overlap or tiles of different frames are refused, naming the file, and nothing is written. */
+ * overlap or tiles of different frames are refused, naming the file, and nothing is written; so is
+ * an -o that names one of the tiles. The frame replaces OUT.png only once it is fully written. */
 #include "cli.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "inputs.h"
+#include "output.h"
 #include "tile_file.h"
 
 static int usage_error(const char *message)
 {
     fprintf(stderr, "betelgeuse assemble: %s\n(see betelgeuse --help)\n", message);
     return CLI_EXIT_USAGE;
+}
+
+/* The exit code for out against the tiles, with the message printed: 2 when out is one of them
+ * (by identity: any spelling or link of it), as the frame would replace a tile it is made from. */
+static int check_output(const char *out, char **paths, int tiles)
+{
+    cli_inputs inputs;
+    memset(&inputs, 0, sizeof inputs);
+    for (int t = 0; t < tiles; t++)
+        cli_inputs_add(&inputs, paths[t]);
+    char why[1024];
+    int status = CLI_EXIT_OK;
+    if (inputs.out_of_memory) {
+        fprintf(stderr, "betelgeuse assemble: out of memory listing the tiles\n");
+        status = CLI_EXIT_FAILED;
+    } else if (!cli_inputs_allow(&inputs, "-o", out, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse assemble: %s\n", why);
+        status = CLI_EXIT_USAGE;
+    }
+    cli_inputs_free(&inputs);
+    return status;
+}
+
+/* The whole frame into a temporary beside out, put in place only when fully written. */
+static bool write_frame(const char *out, const bg_image *frame, char *why, size_t size)
+{
+    cli_placement whole = {0, 0, frame->width, frame->height};
+    cli_output file;
+    bool ok = cli_output_open(&file, out, why, size) && cli_png_write(file.file, out, frame, &whole, why, size) &&
+              cli_output_finish(&file, why, size) && cli_outputs_commit(&file, 1, why, size);
+    cli_output_discard(&file);
+    return ok;
 }
 
 int cli_assemble(int argc, char **argv)
@@ -41,6 +76,11 @@ int cli_assemble(int argc, char **argv)
     if (!out || tiles == 0) {
         free(paths);
         return usage_error(!out ? "-o OUT.png is required" : "no tiles given");
+    }
+    int checked = check_output(out, paths, tiles);
+    if (checked != CLI_EXIT_OK) {
+        free(paths);
+        return checked;
     }
     int status = CLI_EXIT_OK;
     bg_image frame = {0, 0, BG_PIXEL_RGBA8, 0, NULL};
@@ -93,12 +133,9 @@ int cli_assemble(int argc, char **argv)
                     i % (size_t)frame.width, i / (size_t)frame.width, frame.width, frame.height);
             status = CLI_EXIT_USAGE;
         }
-    if (status == CLI_EXIT_OK) {
-        cli_placement whole = {0, 0, frame.width, frame.height};
-        if (!cli_png_write(out, &frame, &whole, why, sizeof why)) {
-            fprintf(stderr, "betelgeuse assemble: %s\n", why);
-            status = CLI_EXIT_FAILED;
-        }
+    if (status == CLI_EXIT_OK && !write_frame(out, &frame, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse assemble: %s\n", why);
+        status = CLI_EXIT_FAILED;
     }
     free(frame.pixels);
     free(covered);

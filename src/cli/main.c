@@ -2,11 +2,17 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "betelgeuse.h"
 #include "cli.h"
+#include "numbers.h"
+#include "output.h"
 
 #ifndef BG_CLI_VERSION
 #define BG_CLI_VERSION "unknown"
 #endif
+
+/* The library's limits as text, so that the help states the numbers the parser enforces. */
+#define SIDE CLI_NUMBER_TEXT(BG_MAX_IMAGE_SIDE)
 
 static const char help[] =
     "usage: betelgeuse render SCENE -o OUT.png [options]\n"
@@ -19,15 +25,17 @@ static const char help[] =
     "\n"
     "render options:\n"
     "  -o, --output OUT.png   the image (8-bit RGBA; it records its place in the frame for assemble)\n"
-    "  --size WxH             the frame's size (default: the scene file's image, else 640x480)\n"
-    "  --samples N            camera rays per pixel, 1 .. 256, stratified, box-filtered (default: the file's, else 1)\n"
+    "  --size WxH             the frame's size, each side 1 .. " SIDE " (default: the scene file's image, else\n"
+    "                         640x480)\n"
+    "  --samples N            camera rays per pixel, 1 .. " CLI_NUMBER_TEXT(BG_MAX_SAMPLES) ", stratified,\n"
+    "                         box-filtered (default: the file's, else 1)\n"
     "  --renderer gpu|cpu     the GPU renderer on a headless context (default) or the CPU reference\n"
     "  --backend egl|osmesa   the headless context for the GPU: EGL (a GPU device, else surfaceless) or\n"
     "                         OSMesa; default: EGL device, EGL surfaceless, then OSMesa\n"
-    "  --crop X0,Y0,X1,Y1     render only this window of the frame (pixels, X1 and Y1 exclusive)\n"
+    "  --crop X0,Y0,X1,Y1     render only this window of the frame (pixels 0 .. " SIDE ", X1 and Y1 exclusive)\n"
     "  --tile I/N             render only band I of N of the frame (or of the crop): rows\n"
     "                         [floor((I-1) H / N), floor(I H / N)); `assemble` joins the bands\n"
-    "  --max-depth D          bounce levels, 0 .. 64 (default: the file's, else 5)\n"
+    "  --max-depth D          bounce levels, 0 .. " CLI_NUMBER_TEXT(BG_MAX_DEPTH) " (default: the file's, else 5)\n"
     "  --linear               write linear values instead of sRGB\n"
     "  --float OUT.pfm        also write the linear radiance as a PFM (renders the frame a second time)\n"
     "  -q, --quiet            print nothing but errors (no progress bar, no warnings)\n"
@@ -35,11 +43,17 @@ static const char help[] =
     "A progress bar with the elapsed and remaining time goes to stderr when it is a terminal; Ctrl-C\n"
     "cancels the render and writes nothing. Pixels are the same whatever the crop or tile.\n"
     "\n"
+    "Outputs are written beside their target under a temporary name and renamed into place only when\n"
+    "every output of the run is complete: a failed write leaves existing files as they were. An output\n"
+    "that names an input (the scene, a model, a texture, a tile), or -o and --float naming one file,\n"
+    "is refused.\n"
+    "\n"
     "exit codes: 0 done; 1 the render or a write failed (or was cancelled); 2 bad usage, or a bad\n"
     "scene, model or tile file (the message names the file, the field and the reason).\n";
 
 int main(int argc, char **argv)
 {
+    cli_output_init();
     if (argc < 2) {
         fputs(help, stderr);
         return CLI_EXIT_USAGE;

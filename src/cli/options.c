@@ -2,53 +2,27 @@
  * reason in the message, before any file is read. */
 #include "options.h"
 
-#include <errno.h>
-#include <limits.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-/* A whole number in [lo, hi] that is all of text. */
-static bool parse_int(const char *text, int lo, int hi, int *out)
-{
-    if (!text || !*text)
-        return false;
-    char *end = NULL;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (errno != 0 || *end != '\0' || v < lo || v > hi)
-        return false;
-    *out = (int)v;
-    return true;
-}
+#include "betelgeuse.h"
+#include "numbers.h"
 
-/* "A<sep>B" with each a whole number in [lo, hi]. */
-static bool parse_pair(const char *text, char sep, int lo, int hi, int *a, int *b)
-{
-    const char *at = text ? strchr(text, sep) : NULL;
-    if (!at || at == text)
-        return false;
-    char first[32];
-    size_t n = (size_t)(at - text);
-    if (n >= sizeof first)
-        return false;
-    memcpy(first, text, n);
-    first[n] = '\0';
-    return parse_int(first, lo, hi, a) && parse_int(at + 1, lo, hi, b);
-}
+/* The limits are the library's, so that a value the parser accepts is one the renderer takes. */
+#define SIDE CLI_NUMBER_TEXT(BG_MAX_IMAGE_SIDE)
 
+/* X1 and Y1 are exclusive, so they may reach the largest side itself. */
 static bool parse_crop(const char *text, cli_options *o)
 {
     int v[4];
-    char extra;
-    if (!text || sscanf(text, "%d,%d,%d,%d%c", &v[0], &v[1], &v[2], &v[3], &extra) != 4)
+    if (!cli_parse_ints(text, ',', 4, 0, BG_MAX_IMAGE_SIDE, v) || v[2] <= v[0] || v[3] <= v[1])
         return false;
     o->crop = true;
     o->crop_x0 = v[0];
     o->crop_y0 = v[1];
     o->crop_x1 = v[2];
     o->crop_y1 = v[3];
-    return v[0] >= 0 && v[1] >= 0 && v[2] > v[0] && v[3] > v[1];
+    return true;
 }
 
 static bool fail(char *why, size_t size, const char *format, const char *option, const char *value)
@@ -107,24 +81,35 @@ bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char 
             o->float_output = value;
         } else if (strcmp(a, "--size") == 0) {
             VALUE();
-            if (!parse_pair(value, 'x', 1, 65536, &o->width, &o->height))
-                return fail(why, size, "%s: '%s' is not WIDTHxHEIGHT with each 1 .. 65536", a, value);
+            int wh[2];
+            if (!cli_parse_ints(value, 'x', 2, 1, BG_MAX_IMAGE_SIDE, wh))
+                return fail(why, size, "%s: '%s' is not WIDTHxHEIGHT with each 1 .. " SIDE, a, value);
+            o->width = wh[0];
+            o->height = wh[1];
         } else if (strcmp(a, "--samples") == 0) {
             VALUE();
-            if (!parse_int(value, 1, 256, &o->samples))
-                return fail(why, size, "%s: '%s' is not a whole number of samples, 1 .. 256", a, value);
+            if (!cli_parse_ints(value, '\0', 1, 1, BG_MAX_SAMPLES, &o->samples))
+                return fail(why, size,
+                            "%s: '%s' is not a whole number of samples, 1 .. " CLI_NUMBER_TEXT(BG_MAX_SAMPLES), a,
+                            value);
         } else if (strcmp(a, "--max-depth") == 0) {
             VALUE();
-            if (!parse_int(value, 0, 64, &o->max_depth))
-                return fail(why, size, "%s: '%s' is not a bounce depth, 0 .. 64", a, value);
+            if (!cli_parse_ints(value, '\0', 1, 0, BG_MAX_DEPTH, &o->max_depth))
+                return fail(why, size, "%s: '%s' is not a bounce depth, 0 .. " CLI_NUMBER_TEXT(BG_MAX_DEPTH), a, value);
         } else if (strcmp(a, "--crop") == 0) {
             VALUE();
             if (!parse_crop(value, o))
-                return fail(why, size, "%s: '%s' is not X0,Y0,X1,Y1 with 0 <= X0 < X1 and 0 <= Y0 < Y1", a, value);
+                return fail(why, size,
+                            "%s: '%s' is not X0,Y0,X1,Y1 with 0 <= X0 < X1 <= " SIDE " and 0 <= Y0 < Y1 <= " SIDE, a,
+                            value);
         } else if (strcmp(a, "--tile") == 0) {
             VALUE();
-            if (!parse_pair(value, '/', 1, 65536, &o->tile, &o->tiles) || o->tile > o->tiles)
-                return fail(why, size, "%s: '%s' is not I/N with 1 <= I <= N", a, value);
+            /* No frame has more rows than its longest side: more tiles could never be split. */
+            int in[2];
+            if (!cli_parse_ints(value, '/', 2, 1, BG_MAX_IMAGE_SIDE, in) || in[0] > in[1])
+                return fail(why, size, "%s: '%s' is not I/N with 1 <= I <= N <= " SIDE, a, value);
+            o->tile = in[0];
+            o->tiles = in[1];
         } else if (strcmp(a, "--linear") == 0) {
             o->linear = true;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {

@@ -2,7 +2,8 @@
  * scene-file library into a scene, rendered by the GPU (a headless context) or the CPU reference,
  * with the frame, samples, window and tile the options ask for, written as a PNG that records its
  * place in the frame (and a PFM of the radiance with --float). Ctrl-C cancels through the progress
- * callback: the render returns BG_ERR_CANCELLED and nothing is written. */
+ * callback: the render returns BG_ERR_CANCELLED and nothing is written. The outputs are replaced
+ * only when all of them are written (output.h), and never when they name a file the scene reads. */
 #include "cli.h"
 
 #include <signal.h>
@@ -13,8 +14,10 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "inputs.h"
 #include "macs.h"
 #include "options.h"
+#include "output.h"
 #include "progress.h"
 #include "tile_file.h"
 
@@ -112,8 +115,10 @@ static bg_status render_once(const cli_options *o, gpu *g, bg_scene *scene, cons
 }
 
 /* The scene or model file into a new scene (*out, committed); the exit code on failure, with the
- * message printed: 2 for a bad or missing file, 1 when out of memory. */
-static int load_scene(const char *path, bool *quiet_logs, bg_scene **out, bg_scenefile_result *file)
+ * message printed: 2 for a bad or missing file, 1 when out of memory. Each file the load reads goes
+ * into inputs when it is not NULL. */
+static int load_scene(const char *path, bool *quiet_logs, cli_inputs *inputs, bg_scene **out,
+                      bg_scenefile_result *file)
 {
     *out = NULL;
     bg_scene *scene = NULL;
@@ -125,6 +130,12 @@ static int load_scene(const char *path, bool *quiet_logs, bg_scene **out, bg_sce
     memset(&fd, 0, sizeof fd);
     fd.logger.func = on_log;
     fd.logger.user = quiet_logs;
+    if (inputs) {
+        /* The scene file is added here too, so that it is protected whatever the library reports. */
+        cli_inputs_add(inputs, path);
+        fd.inputs.func = cli_inputs_on_read;
+        fd.inputs.user = inputs;
+    }
     char why[1024] = "";
     bg_status st = bg_scenefile_load_any(path, &fd, scene, file, why, sizeof why);
     if (st != BG_OK) {
@@ -136,6 +147,128 @@ static int load_scene(const char *path, bool *quiet_logs, bg_scene **out, bg_sce
     return CLI_EXIT_OK;
 }
 
+/* Refuses, before any render, outputs that would overwrite an input or each other; the exit code. */
+static int check_outputs(const cli_options *o, const cli_inputs *inputs)
+{
+    char why[1024];
+    if (inputs->out_of_memory) {
+        fprintf(stderr, "betelgeuse: out of memory listing the scene's files\n");
+        return CLI_EXIT_FAILED;
+    }
+    if (!cli_inputs_allow(inputs, "-o", o->output, why, sizeof why) ||
+        (o->float_output && !cli_inputs_allow(inputs, "--float", o->float_output, why, sizeof why))) {
+        fprintf(stderr, "betelgeuse render: %s\n", why);
+        return CLI_EXIT_USAGE;
+    }
+    return CLI_EXIT_OK;
+}
+
+/* The frame, window and settings the options and the scene file ask for; false with the reason
+ * when the window does not fit the frame. */
+static bool plan_render(const cli_options *o, const bg_scenefile_result *file, bg_render_settings *settings,
+                        cli_placement *where, int *w, int *h, char *why, size_t size)
+{
+    int frame_w = o->width ? o->width : file->image.width, frame_h = o->height ? o->height : file->image.height;
+    int x, y;
+    if (!cli_options_window(o, frame_w, frame_h, &x, &y, w, h, why, size))
+        return false;
+    *settings = file->settings;
+    settings->samples = o->samples ? o->samples : file->image.samples;
+    if (o->max_depth >= 0)
+        settings->max_depth = o->max_depth;
+    if (o->linear)
+        settings->encoding = BG_ENCODING_LINEAR;
+    settings->frame_width = frame_w;
+    settings->frame_height = frame_h;
+    settings->window_x = x;
+    settings->window_y = y;
+    *where = (cli_placement){x, y, frame_w, frame_h};
+    return true;
+}
+
+/* The float frame (when asked for) and the PNG's; BG_OK or the failure, with the reason in why.
+ * Ctrl-C cancels through the progress callback. */
+static bg_status render_images(const cli_options *o, gpu *g, bg_scene *scene, bg_render_settings *settings,
+                               bg_image *image, bg_image *radiance, cli_progress *bar, char *why, size_t size)
+{
+    cli_progress_start(bar, !o->quiet);
+    settings->progress = on_progress;
+    settings->progress_user = bar;
+    /* The float frame renders first when asked for: it is the one progress runs over twice. */
+    bg_status st = o->float_output ? render_once(o, g, scene, settings, radiance, why, size) : BG_OK;
+    if (st == BG_OK)
+        st = render_once(o, g, scene, settings, image, why, size);
+    cli_progress_finish(bar, st == BG_OK);
+    if (st == BG_ERR_CANCELLED)
+        snprintf(why, size, "cancelled; nothing was written");
+    return st;
+}
+
+/* Both images into their temporaries, then both put in place: a failure anywhere before the
+ * renames leaves every existing file as it was. */
+static bool write_outputs(const cli_options *o, cli_output outs[2], const bg_image *image, const bg_image *radiance,
+                          const cli_placement *where, char *why, size_t size)
+{
+    if (!cli_png_write(outs[0].file, o->output, image, where, why, size) || !cli_output_finish(&outs[0], why, size))
+        return false;
+    if (o->float_output && (!cli_pfm_write(outs[1].file, o->float_output, radiance, why, size) ||
+                            !cli_output_finish(&outs[1], why, size)))
+        return false;
+    /* Ctrl-C while the files were written still cancels: the last moment before anything changes. */
+    if (interrupted) {
+        snprintf(why, size, "cancelled; nothing was written");
+        return false;
+    }
+    return cli_outputs_commit(outs, o->float_output ? 2 : 1, why, size);
+}
+
+/* Renders the planned window and writes it; the exit code, with the message printed. The outputs'
+ * temporaries are made first, so that a folder that cannot be written fails before the render. */
+static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_settings *settings,
+                            const cli_placement *where, int w, int h)
+{
+    char why[1024];
+    cli_output outs[2];
+    memset(outs, 0, sizeof outs);
+    gpu g;
+    memset(&g, 0, sizeof g);
+    bg_image image = {w, h, BG_PIXEL_RGBA8, 0, NULL};
+    bg_image radiance = {w, h, BG_PIXEL_RGBA32F, 0, NULL};
+    int status = CLI_EXIT_FAILED;
+    if (!cli_output_open(&outs[0], o->output, why, sizeof why) ||
+        (o->float_output && !cli_output_open(&outs[1], o->float_output, why, sizeof why))) {
+        fprintf(stderr, "betelgeuse: %s\n", why);
+    } else if (o->renderer == CLI_RENDERER_GPU && !gpu_open(o->backend, &g, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse: no GPU context: %s (--renderer cpu renders without one)\n", why);
+    } else if (!(image.pixels = malloc((size_t)w * (size_t)h * 4)) ||
+               (o->float_output && !(radiance.pixels = malloc((size_t)w * (size_t)h * 16)))) {
+        fprintf(stderr, "betelgeuse: out of memory for a %dx%d image\n", w, h);
+    } else {
+        /* Ctrl-C is caught until the outputs are in place, so that it never leaves a temporary. */
+        struct sigaction action, previous;
+        memset(&action, 0, sizeof action);
+        action.sa_handler = on_interrupt;
+        sigaction(SIGINT, &action, &previous);
+        cli_progress bar;
+        if (render_images(o, &g, scene, settings, &image, &radiance, &bar, why, sizeof why) != BG_OK ||
+            !write_outputs(o, outs, &image, &radiance, where, why, sizeof why))
+            fprintf(stderr, "betelgeuse: %s\n", why);
+        else
+            status = CLI_EXIT_OK;
+        sigaction(SIGINT, &previous, NULL);
+        if (status == CLI_EXIT_OK && !o->quiet && isatty(2))
+            fprintf(stderr, "betelgeuse: %dx%d%s written to %s in %.1f s\n", w, h,
+                    w != where->frame_width || h != where->frame_height ? " window" : "", o->output,
+                    cli_now() - bar.start);
+    }
+    cli_output_discard(&outs[0]);
+    cli_output_discard(&outs[1]);
+    free(image.pixels);
+    free(radiance.pixels);
+    gpu_close(&g);
+    return status;
+}
+
 int cli_render(int argc, char **argv)
 {
     cli_options o;
@@ -144,84 +277,29 @@ int cli_render(int argc, char **argv)
         fprintf(stderr, "betelgeuse render: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
+    if (o.float_output && cli_output_same_file(o.output, o.float_output)) {
+        fprintf(stderr, "betelgeuse render: --float %s: the same file as -o %s; one would replace the other\n",
+                o.float_output, o.output);
+        return CLI_EXIT_USAGE;
+    }
     bool quiet_logs = o.quiet || !isatty(2);
     bg_scene *scene = NULL;
     bg_scenefile_result file;
-    int loaded = load_scene(o.scene, &quiet_logs, &scene, &file);
-    if (loaded != CLI_EXIT_OK)
-        return loaded;
-    bg_status st;
-    int frame_w = o.width ? o.width : file.image.width, frame_h = o.height ? o.height : file.image.height;
-    int x, y, w, h;
-    if (!cli_options_window(&o, frame_w, frame_h, &x, &y, &w, &h, why, sizeof why)) {
+    cli_inputs inputs;
+    memset(&inputs, 0, sizeof inputs);
+    int status = load_scene(o.scene, &quiet_logs, &inputs, &scene, &file);
+    if (status == CLI_EXIT_OK)
+        status = check_outputs(&o, &inputs);
+    cli_inputs_free(&inputs);
+    bg_render_settings settings;
+    cli_placement where;
+    int w = 0, h = 0;
+    if (status == CLI_EXIT_OK && !plan_render(&o, &file, &settings, &where, &w, &h, why, sizeof why)) {
         fprintf(stderr, "betelgeuse render: %s\n", why);
-        bg_scene_destroy(scene);
-        return CLI_EXIT_USAGE;
+        status = CLI_EXIT_USAGE;
     }
-    bg_render_settings settings = file.settings;
-    settings.samples = o.samples ? o.samples : file.image.samples;
-    if (o.max_depth >= 0)
-        settings.max_depth = o.max_depth;
-    if (o.linear)
-        settings.encoding = BG_ENCODING_LINEAR;
-    settings.frame_width = frame_w;
-    settings.frame_height = frame_h;
-    settings.window_x = x;
-    settings.window_y = y;
-
-    gpu g;
-    memset(&g, 0, sizeof g);
-    if (o.renderer == CLI_RENDERER_GPU && !gpu_open(o.backend, &g, why, sizeof why)) {
-        fprintf(stderr, "betelgeuse: no GPU context: %s (--renderer cpu renders without one)\n", why);
-        bg_scene_destroy(scene);
-        return CLI_EXIT_FAILED;
-    }
-    bg_image image = {w, h, BG_PIXEL_RGBA8, 0, malloc((size_t)w * (size_t)h * 4)};
-    bg_image radiance = {w, h, BG_PIXEL_RGBA32F, 0, NULL};
-    if (o.float_output)
-        radiance.pixels = malloc((size_t)w * (size_t)h * 16);
-    if (!image.pixels || (o.float_output && !radiance.pixels)) {
-        fprintf(stderr, "betelgeuse: out of memory for a %dx%d image\n", w, h);
-        free(image.pixels);
-        free(radiance.pixels);
-        gpu_close(&g);
-        bg_scene_destroy(scene);
-        return CLI_EXIT_FAILED;
-    }
-    cli_progress bar;
-    cli_progress_start(&bar, !o.quiet);
-    settings.progress = on_progress;
-    settings.progress_user = &bar;
-    struct sigaction action, previous;
-    memset(&action, 0, sizeof action);
-    action.sa_handler = on_interrupt;
-    sigaction(SIGINT, &action, &previous);
-    /* The float frame renders first when asked for: it is the one progress runs over twice. */
-    st = o.float_output ? render_once(&o, &g, scene, &settings, &radiance, why, sizeof why) : BG_OK;
-    if (st == BG_OK)
-        st = render_once(&o, &g, scene, &settings, &image, why, sizeof why);
-    sigaction(SIGINT, &previous, NULL);
-    cli_progress_finish(&bar, st == BG_OK);
-    int status = CLI_EXIT_OK;
-    if (st != BG_OK) {
-        fprintf(stderr, "betelgeuse: %s\n", st == BG_ERR_CANCELLED ? "cancelled; nothing was written" : why);
-        status = CLI_EXIT_FAILED;
-    }
-    cli_placement where = {x, y, frame_w, frame_h};
-    if (status == CLI_EXIT_OK && !cli_png_write(o.output, &image, &where, why, sizeof why)) {
-        fprintf(stderr, "betelgeuse: %s\n", why);
-        status = CLI_EXIT_FAILED;
-    }
-    if (status == CLI_EXIT_OK && o.float_output && !cli_pfm_write(o.float_output, &radiance, why, sizeof why)) {
-        fprintf(stderr, "betelgeuse: %s\n", why);
-        status = CLI_EXIT_FAILED;
-    }
-    if (status == CLI_EXIT_OK && !o.quiet && isatty(2))
-        fprintf(stderr, "betelgeuse: %dx%d%s written to %s in %.1f s\n", w, h,
-                w != frame_w || h != frame_h ? " window" : "", o.output, cli_now() - bar.start);
-    free(image.pixels);
-    free(radiance.pixels);
-    gpu_close(&g);
+    if (status == CLI_EXIT_OK)
+        status = render_and_write(&o, scene, &settings, &where, w, h);
     bg_scene_destroy(scene);
     return status;
 }
@@ -251,7 +329,7 @@ int cli_info(int argc, char **argv)
     bool quiet_logs = !isatty(2);
     bg_scene *scene = NULL;
     bg_scenefile_result file;
-    int loaded = load_scene(o.scene, &quiet_logs, &scene, &file);
+    int loaded = load_scene(o.scene, &quiet_logs, NULL, &scene, &file);
     if (loaded != CLI_EXIT_OK)
         return loaded;
     const bg_scenefile_summary *s = &file.summary;

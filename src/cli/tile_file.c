@@ -11,6 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "betelgeuse/io/open_input.h"
+#include "numbers.h"
+
 #define TILE_KEY "Betelgeuse-Tile"
 
 static bool fail(char *why, size_t size, const char *format, const char *path, const char *detail)
@@ -33,28 +36,35 @@ static void on_png_warning(png_structp png, png_const_charp message)
     (void)message; /* a warning changes nothing the command writes or reads */
 }
 
-bool cli_png_write(const char *path, const bg_image *image, const cli_placement *where, char *why, size_t why_size)
+/* libpng's own writer reports a short write as a bare "Write Error"; this one says why (a full
+ * disk, a file-size limit), while errno still holds the reason. */
+static void write_data(png_structp png, png_bytep data, size_t length)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return fail(why, why_size, "%s: cannot create: %s", path, strerror(errno));
+    if (fwrite(data, 1, length, png_get_io_ptr(png)) != length)
+        png_error(png, strerror(errno));
+}
+
+static void flush_data(png_structp png)
+{
+    (void)png; /* cli_output_finish flushes and checks the stream once at the end */
+}
+
+bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_placement *where, char *why,
+                   size_t why_size)
+{
     char message[256] = "";
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, NULL);
-        fclose(f);
-        remove(path);
-        return fail(why, why_size, "%s: %s", path, "out of memory");
+        return fail(why, why_size, "%s: %s", name, "out of memory");
     }
     size_t stride = image->stride ? image->stride : (size_t)image->width * 4;
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        fclose(f);
-        remove(path);
-        return fail(why, why_size, "%s: %s", path, message);
+        return fail(why, why_size, "%s: cannot write: %s", name, message);
     }
-    png_init_io(png, f);
+    png_set_write_fn(png, f, write_data, flush_data);
     png_set_IHDR(png, info, (png_uint_32)image->width, (png_uint_32)image->height, 8, PNG_COLOR_TYPE_RGB_ALPHA,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     char text[96];
@@ -70,10 +80,6 @@ bool cli_png_write(const char *path, const bg_image *image, const cli_placement 
         png_write_row(png, (png_const_bytep)image->pixels + (size_t)y * stride);
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
-    if (fclose(f) != 0) {
-        remove(path);
-        return fail(why, why_size, "%s: cannot finish writing: %s", path, strerror(errno));
-    }
     return true;
 }
 
@@ -87,11 +93,13 @@ static bool placement_of(png_structp png, png_infop info, const bg_image *image,
     for (int i = 0; i < n; i++) {
         if (strcmp(texts[i].key, TILE_KEY) != 0)
             continue;
-        cli_placement p;
-        char extra;
-        if (sscanf(texts[i].text, "%d %d %d %d %c", &p.x, &p.y, &p.frame_width, &p.frame_height, &extra) != 4)
+        /* A frame larger than any render could make is a forged or broken chunk, not a request to
+         * allocate gigabytes; with every value bounded, the sums below cannot overflow. */
+        int v[4];
+        if (!cli_parse_ints(texts[i].text, ' ', 4, 0, BG_MAX_IMAGE_SIDE, v))
             return false;
-        if (p.x < 0 || p.y < 0 || p.frame_width < 1 || p.frame_height < 1 || p.x > p.frame_width - image->width ||
+        cli_placement p = {v[0], v[1], v[2], v[3]};
+        if (p.frame_width < 1 || p.frame_height < 1 || p.x > p.frame_width - image->width ||
             p.y > p.frame_height - image->height)
             return false;
         *where = p;
@@ -102,9 +110,10 @@ static bool placement_of(png_structp png, png_infop info, const bg_image *image,
 bool cli_png_read(const char *path, bg_image *image, cli_placement *where, char *why, size_t why_size)
 {
     memset(image, 0, sizeof *image);
-    FILE *f = fopen(path, "rb");
+    char reason[256];
+    FILE *f = bgi_open_input(path, reason, sizeof reason);
     if (!f)
-        return fail(why, why_size, "%s: cannot open: %s", path, strerror(errno));
+        return fail(why, why_size, "%s: %s", path, reason);
     unsigned char signature[8];
     if (fread(signature, 1, 8, f) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
         fclose(f);
@@ -136,7 +145,8 @@ bool cli_png_read(const char *path, bg_image *image, cli_placement *where, char 
     png_set_interlace_handling(png);
     png_read_update_info(png, info);
     png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
-    if (w == 0 || h == 0 || w > 65536 || h > 65536 || png_get_rowbytes(png, info) != (size_t)w * 4) {
+    if (w == 0 || h == 0 || w > BG_MAX_IMAGE_SIDE || h > BG_MAX_IMAGE_SIDE ||
+        png_get_rowbytes(png, info) != (size_t)w * 4) {
         png_destroy_read_struct(&png, &info, NULL);
         fclose(f);
         return fail(why, why_size, "%s: %s", path, "unsupported image size or layout");
@@ -166,30 +176,26 @@ bool cli_png_read(const char *path, bg_image *image, cli_placement *where, char 
     return true;
 }
 
-bool cli_pfm_write(const char *path, const bg_image *image, char *why, size_t why_size)
+bool cli_pfm_write(FILE *f, const char *name, const bg_image *image, char *why, size_t why_size)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return fail(why, why_size, "%s: cannot create: %s", path, strerror(errno));
     size_t stride = image->stride ? image->stride : (size_t)image->width * 16;
     /* The scale's sign gives the byte order of the floats: negative little-endian. */
     const uint16_t probe = 1;
     bool little = *(const unsigned char *)&probe == 1;
     bool ok = fprintf(f, "PF\n%d %d\n%s\n", image->width, image->height, little ? "-1.0" : "1.0") > 0;
+    int err = errno;
     float *row = malloc((size_t)image->width * 3 * sizeof *row);
-    ok = ok && row;
+    if (!row)
+        return fail(why, why_size, "%s: %s", name, "out of memory");
     for (int y = image->height - 1; y >= 0 && ok; y--) {
         const float *src = (const float *)((const unsigned char *)image->pixels + (size_t)y * stride);
         for (int x = 0; x < image->width; x++)
             memcpy(row + 3 * x, src + 4 * x, 3 * sizeof *row);
         ok = fwrite(row, sizeof *row, (size_t)image->width * 3, f) == (size_t)image->width * 3;
+        err = errno;
     }
     free(row);
-    if (fclose(f) != 0)
-        ok = false;
-    if (!ok) {
-        remove(path);
-        return fail(why, why_size, "%s: cannot write: %s", path, strerror(errno));
-    }
+    if (!ok)
+        return fail(why, why_size, "%s: cannot write: %s", name, strerror(err));
     return true;
 }

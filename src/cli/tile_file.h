@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "betelgeuse.h"
 
@@ -16,15 +17,20 @@ typedef struct cli_placement {
     int frame_width, frame_height;
 } cli_placement;
 
-/* Writes an RGBA8 image as a PNG with its placement in a "Betelgeuse-Tile" text chunk
- * ("x y frame_width frame_height"); false with the reason in why. */
-bool cli_png_write(const char *path, const bg_image *image, const cli_placement *where, char *why, size_t why_size);
+/* Writes an RGBA8 image as a PNG into f (an output.h temporary), with its placement in a
+ * "Betelgeuse-Tile" text chunk ("x y frame_width frame_height"); false with the reason in why,
+ * which names the file as name. f stays open. */
+bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_placement *where, char *why,
+                   size_t why_size);
 
 /* Reads a PNG written by cli_png_write into *image (pixels allocated with malloc, RGBA8, rows
- * top-down) and its placement; a PNG without the chunk is a whole frame. False with the reason. */
+ * top-down) and its placement; a PNG without the chunk is a whole frame. False with the reason,
+ * also for a path that is not a regular file (a directory, a FIFO) and for a placement outside
+ * BG_MAX_IMAGE_SIDE. */
 bool cli_png_read(const char *path, bg_image *image, cli_placement *where, char *why, size_t why_size);
 
-/* Writes an RGBA32F image's RGB as a little-endian PFM (rows bottom-up, as the format has them). */
-bool cli_pfm_write(const char *path, const bg_image *image, char *why, size_t why_size);
+/* Writes an RGBA32F image's RGB as a PFM into f (rows bottom-up, as the format has them; the
+ * machine's byte order, given by the scale's sign). f stays open. */
+bool cli_pfm_write(FILE *f, const char *name, const bg_image *image, char *why, size_t why_size);
 
 #endif
