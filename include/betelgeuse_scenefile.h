@@ -52,7 +52,7 @@ typedef struct bg_scenefile_desc {
  * the caller passes it on to the renderer's settings where they have a field for it. */
 typedef struct bg_scenefile_image {
     int width, height; /* 1 .. 16384 */
-    int samples;       /* 1 .. 1024 */
+    int samples;       /* 1 .. BG_MAX_SAMPLES (256), what the renderers take */
 } bg_scenefile_image;
 
 /* What was loaded, for a command's `info`: counts over the items the loader added, and the world

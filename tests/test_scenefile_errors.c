@@ -63,6 +63,7 @@ static const broken cases[] = {
     {"{\"camera\": {\"fov_y\": 180}}", BG_ERR_INVALID_ARGUMENT, {"camera.fov_y: must be in (0, 180) (got 180)", NULL}},
     {"{\"image\": {\"width\": 0}}", BG_ERR_INVALID_ARGUMENT, {"image.width: must be in 1 .. 16384 (got 0)", NULL}},
     {"{\"image\": {\"samples\": 2.5}}", BG_ERR_INVALID_ARGUMENT, {"image.samples: must be a whole number (got 2.5)", NULL}},
+    {"{\"image\": {\"samples\": 257}}", BG_ERR_INVALID_ARGUMENT, {"image.samples: must be in 1 .. 256 (got 257)", NULL}},
     {"{\"settings\": {\"max_depth\": 65}}", BG_ERR_INVALID_ARGUMENT, {"settings.max_depth: must be in 0 .. 64 (got 65)", NULL}},
     {"{\"settings\": {\"ambient\": -0.5}}", BG_ERR_INVALID_ARGUMENT, {"settings.ambient: must be >= 0 (got -0.5)", NULL}},
     {"{\"settings\": {\"background\": [0, -1, 0]}}", BG_ERR_INVALID_ARGUMENT,

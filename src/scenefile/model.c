@@ -368,7 +368,7 @@ static void read_camera(model *md)
     double aspect = has_aspect ? c->mAspect : (double)out->image.width / out->image.height;
     if (has_aspect) {
         double h = floor(out->image.width / aspect + 0.5);
-        out->image.height = h < 1 ? 1 : h > 16384 ? 16384 : (int)h;
+        out->image.height = h < 1 ? 1 : h > BG_MAX_IMAGE_SIDE ? BG_MAX_IMAGE_SIDE : (int)h;
     }
     double fov = 0.0;
     if (c->mHorizontalFOV > 0 && isfinite(c->mHorizontalFOV))

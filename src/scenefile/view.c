@@ -23,9 +23,9 @@ bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v)
     static const char *const keys[] = {"width", "height", "samples", NULL};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_scenefile_image *im = &ctx->out->image;
-    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "width", 1, 16384, &im->width));
-    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "height", 1, 16384, &im->height));
-    return bgi_sf_field_int(ctx, v, "samples", 1, 1024, &im->samples);
+    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "width", 1, BG_MAX_IMAGE_SIDE, &im->width));
+    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "height", 1, BG_MAX_IMAGE_SIDE, &im->height));
+    return bgi_sf_field_int(ctx, v, "samples", 1, BG_MAX_SAMPLES, &im->samples);
 }
 
 bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v)
@@ -34,7 +34,7 @@ bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v)
     static const char *const encodings[] = {"srgb", "linear", NULL};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_render_settings *s = &ctx->out->settings;
-    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "max_depth", 0, 64, &s->max_depth));
+    BGI_SF_TRY(bgi_sf_field_int(ctx, v, "max_depth", 0, BG_MAX_DEPTH, &s->max_depth));
     BGI_SF_TRY(bgi_sf_field_rgb(ctx, v, "background", bgi_sf_nonneg, s->background));
     BGI_SF_TRY(bgi_sf_field_rgb(ctx, v, "ambient", bgi_sf_nonneg, ctx->out->ambient));
     int e = (int)s->encoding;
