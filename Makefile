@@ -1,6 +1,7 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
 # Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command,
-# check-cluster, examples, bench, stress, install, uninstall, clean.
+# check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
+# (libFuzzer with clang: docs/fuzzing.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
 VERSION   := 0.1.0
@@ -114,7 +115,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples check-command check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind
+.PHONY: FORCE all check check-symbols check-examples check-command check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -272,9 +273,123 @@ test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.
-check: all glsl-check check-symbols check-examples check-command $(TEST_BIN) $(BUILD)/tests/probe_headless
+check: all glsl-check check-symbols check-examples check-command check-fuzz-corpus $(TEST_BIN) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless TIMES=build/suite-times \
 	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
+
+# ==== Fuzzing (docs/fuzzing.md) ===================================================================
+# The scene-file loaders under libFuzzer, one target each (tests/fuzz/): json (JSON scene text,
+# bg_scenefile_load_string) and ply, obj, stl (bg_scenefile_load_model on a file of that extension).
+# Each target's seed corpus is tests/fuzz/corpus/<target>/, kept in the repository; the fuzzer never
+# writes there.
+#   make check-fuzz-corpus   every corpus file through its target, built with $(CC) and this build's
+#                            flags (ASan + UBSan under SANITIZE=1): a regression test without clang
+#   make fuzz-build          the libFuzzer binaries $(BUILD)/fuzz/fuzz_<target> (needs clang)
+#   make fuzz FUZZ_TARGET=json|ply|obj|stl FUZZ_SECONDS=600 [FUZZ_ARGS=...]
+#                            one target on $(BUILD)/fuzz/work-<target>, a copy of its seeds that keeps
+#                            what the fuzzer finds from run to run; crashers go to
+#                            $(BUILD)/fuzz/crashes-<target>/
+FUZZ_TARGETS := json ply obj stl
+FUZZ_MODELS  := ply obj stl
+FUZZ_TARGET  ?= json
+FUZZ_SECONDS ?= 600
+FUZZ_ARGS    ?=
+FUZZ_CC      ?= clang
+FUZZ_DIR     := $(BUILD)/fuzz
+FUZZ_HDR     := tests/fuzz/fuzz_target.h
+# The JSON target resolves the seeds' texture and mesh paths against the shipped scenes' folder;
+# an absolute path, so that the binaries run from any folder (BG_FUZZ_SCENE_DIR overrides it).
+FUZZ_SCENE_DIR := -DFUZZ_SCENE_DIR='"$(abspath examples/scenes/json)"'
+# assimp's own leaks on files it gives up on (tests/fuzz/assimp_leaks.supp says why).
+FUZZ_LSAN := LSAN_OPTIONS=suppressions=$(abspath tests/fuzz/assimp_leaks.supp)
+
+# The replay programs: the targets with tests/fuzz/replay_main.c for a main, on this build's archives.
+FUZZ_REPLAY_DIR := $(BUILD)/tests/fuzz
+FUZZ_REPLAY_BIN := $(FUZZ_TARGETS:%=$(FUZZ_REPLAY_DIR)/replay_%)
+$(FUZZ_REPLAY_DIR)/replay_main.o $(FUZZ_REPLAY_DIR)/fuzz_common.o: $(FUZZ_HDR)
+$(FUZZ_REPLAY_DIR)/target_json.o: tests/fuzz/fuzz_scene_json.c $(FUZZ_HDR) $(wildcard include/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
+$(FUZZ_MODELS:%=$(FUZZ_REPLAY_DIR)/target_%.o): $(FUZZ_REPLAY_DIR)/target_%.o: tests/fuzz/fuzz_model.c $(FUZZ_HDR) \
+  $(wildcard include/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
+# Under SANITIZE the LSan hook of examples/scenes comes along, as in every other sanitized program.
+$(FUZZ_REPLAY_DIR)/replay_%: $(FUZZ_REPLAY_DIR)/target_%.o $(FUZZ_REPLAY_DIR)/replay_main.o \
+  $(FUZZ_REPLAY_DIR)/fuzz_common.o $(if $(SANFLAGS),$(BUILD)/examples/scenes/lsan_suppressions.o) $(SF_A) $(BG_A) \
+  $(MACS_A)
+	$(CC) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(SF_A) $(STATIC_LINK) $(SF_LIBS)
+
+# Every target's corpus, each input in a process of its own; every failing input is named, then the
+# check fails. Standard input is /dev/null, as under make fuzz.
+check-fuzz-corpus: $(FUZZ_REPLAY_BIN)
+	@echo "== fuzz corpus replay (tests/fuzz/corpus)"
+	@status=0; for t in $(FUZZ_TARGETS); do \
+	  $(FUZZ_LSAN) $(FUZZ_REPLAY_DIR)/replay_$$t tests/fuzz/corpus/$$t </dev/null || status=1; \
+	done; exit $$status
+
+# The libFuzzer build: the three libraries compiled again from the same sources with $(FUZZ_CC) and
+# coverage instrumentation (-fsanitize=fuzzer-no-link) under ASan and UBSan, in $(BUILD)/fuzz/obj.
+# cJSON, assimp and libpng are the system's, not instrumented: the fuzzer sees coverage of this
+# project's code only, and ASan still checks their heap through its malloc and new. The library
+# objects leave out -Werror: this compiler's warnings are not the project's gate (the $(CC) build
+# is), and a clang-only warning should not stop a fuzzing run; the fuzz targets keep it.
+FUZZ_OBJ_DIR := $(FUZZ_DIR)/obj
+FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_WARN    := $(filter-out -Werror,$(WARN))
+FUZZ_CFLAGS  := $(DEFS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link -Iinclude -Isrc $(SF_CFLAGS)
+FUZZ_LIB_OBJ := $(MACS_SRC:%.c=$(FUZZ_OBJ_DIR)/%.o) $(BG_SRC:%.c=$(FUZZ_OBJ_DIR)/%.o) \
+  $(FUZZ_OBJ_DIR)/gen/macs_shaders.o $(FUZZ_OBJ_DIR)/gen/bg_shaders.o
+FUZZ_SF_OBJ  := $(SF_SRC:%.c=$(FUZZ_OBJ_DIR)/%.o)
+# Archives, so that the link takes only the members the loaders reach, as a user's static link does.
+FUZZ_A       := $(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a $(FUZZ_OBJ_DIR)/libbetelgeuse.a $(FUZZ_OBJ_DIR)/libmacs.a
+FUZZ_BIN     := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
+
+$(FUZZ_OBJ_DIR)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/scenefile/*.h) $(FUZZ_HDR)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_WARN) $(FUZZ_CFLAGS) -c $< -o $@
+$(FUZZ_OBJ_DIR)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_WARN) -Wno-overlength-strings $(FUZZ_CFLAGS) -c $< -o $@
+$(FUZZ_OBJ_DIR)/libmacs.a: $(filter $(FUZZ_OBJ_DIR)/src/macs/%,$(FUZZ_LIB_OBJ)) $(FUZZ_OBJ_DIR)/gen/macs_shaders.o
+	@rm -f $@
+	ar rcs $@ $^
+$(FUZZ_OBJ_DIR)/libbetelgeuse.a: $(filter $(FUZZ_OBJ_DIR)/src/betelgeuse/%,$(FUZZ_LIB_OBJ)) $(FUZZ_OBJ_DIR)/gen/bg_shaders.o
+	@rm -f $@
+	ar rcs $@ $^
+$(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a: $(FUZZ_SF_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+$(FUZZ_OBJ_DIR)/target_json.o: tests/fuzz/fuzz_scene_json.c $(FUZZ_HDR) $(wildcard include/*.h)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
+$(FUZZ_MODELS:%=$(FUZZ_OBJ_DIR)/target_%.o): $(FUZZ_OBJ_DIR)/target_%.o: tests/fuzz/fuzz_model.c $(FUZZ_HDR) \
+  $(wildcard include/*.h)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
+$(FUZZ_OBJ_DIR)/fuzz_common.o: tests/fuzz/fuzz_common.c $(FUZZ_HDR)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) -c $< -o $@
+$(FUZZ_DIR)/fuzz_%: $(FUZZ_OBJ_DIR)/target_%.o $(FUZZ_OBJ_DIR)/fuzz_common.o $(FUZZ_A)
+	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer $(LDFLAGS) -o $@ $(filter %.o,$^) $(FUZZ_A) $(SF_LIBS) $(BG_LIBS) \
+	  $(MACS_LIBS)
+
+fuzz-build: $(FUZZ_BIN)
+
+# libFuzzer's options go after the corpus folder. It adds what it finds to the first (here the only)
+# folder, the work copy; -timeout makes a hang a finding, -rss_limit_mb (which also caps any one
+# malloc at that size) makes a runaway allocation one. Standard input is /dev/null, so that a file
+# named /dev/stdin in an input cannot stall the run.
+ifneq ($(filter fuzz,$(MAKECMDGOALS)),)
+$(if $(filter $(FUZZ_TARGETS),$(FUZZ_TARGET)),,$(error FUZZ_TARGET must be one of: $(FUZZ_TARGETS) (got "$(FUZZ_TARGET)")))
+endif
+fuzz: $(FUZZ_DIR)/fuzz_$(FUZZ_TARGET)
+	@mkdir -p $(FUZZ_DIR)/work-$(FUZZ_TARGET) $(FUZZ_DIR)/crashes-$(FUZZ_TARGET)
+	@cp tests/fuzz/corpus/$(FUZZ_TARGET)/* $(FUZZ_DIR)/work-$(FUZZ_TARGET)/
+	$(FUZZ_LSAN) $(FUZZ_DIR)/fuzz_$(FUZZ_TARGET) $(FUZZ_DIR)/work-$(FUZZ_TARGET) -max_total_time=$(FUZZ_SECONDS) \
+	  -rss_limit_mb=2048 -timeout=10 -dict=tests/fuzz/dict/$(FUZZ_TARGET).dict \
+	  -artifact_prefix=$(FUZZ_DIR)/crashes-$(FUZZ_TARGET)/ -print_final_stats=1 $(FUZZ_ARGS) </dev/null
+# ==== End of fuzzing ==============================================================================
 
 # valgrind over the MACS suites and the GPU renderer's error and smoke suites (renderer create/destroy
 # cycles, failure paths, the paper scenes), leaks as errors, two at a time; tests/valgrind.supp holds

@@ -420,7 +420,7 @@ static bg_status read_lights(model *md)
     return BG_OK;
 }
 
-/* The file opened as a regular file and its counts checked against its size, then read through the
+/* The file opened as a regular file and checked where assimp would trust it (a PLY), then read through the
  * same checked file access, with assimp's validation as the first step. It must run inside the
  * import: assimp 5.2's aiApplyPostProcessing releases a scene that fails validation twice. */
 static const struct aiScene *import(bgi_sf_ctx *ctx, const char *path, bg_status *st)
@@ -430,7 +430,7 @@ static const struct aiScene *import(bgi_sf_ctx *ctx, const char *path, bg_status
     FILE *f = NULL;
     if ((*st = bgi_sf_open_input(ctx, path, what, &f)) != BG_OK)
         return NULL;
-    *st = bgi_sf_check_ply_counts(ctx, path, f);
+    *st = bgi_sf_check_ply(ctx, path, f);
     fclose(f);
     if (*st != BG_OK)
         return NULL;

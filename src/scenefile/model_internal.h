@@ -18,10 +18,12 @@ typedef struct bgi_sf_model_io {
 
 void bgi_sf_model_io_init(bgi_sf_model_io *m, bgi_sf_ctx *ctx);
 
-/* ---- ply_counts.c ---- */
+/* ---- ply_check.c ---- */
 
-/* When f (at its start) is a PLY file: BG_ERR_INVALID_ARGUMENT when its body is too short for the
- * element counts its header declares; BG_OK for any other file. */
-bg_status bgi_sf_check_ply_counts(bgi_sf_ctx *ctx, const char *path, FILE *f);
+/* When f (at its start) begins with "ply": the whole file checked as a PLY (a strict header, counts
+ * that fit the file, numbers where numbers belong, face indices within the vertices), before
+ * assimp, which trusts all of that, reads it; BG_ERR_INVALID_ARGUMENT naming the fault. BG_OK for
+ * any other file. */
+bg_status bgi_sf_check_ply(bgi_sf_ctx *ctx, const char *path, FILE *f);
 
 #endif

@@ -52,15 +52,22 @@ typedef struct bgi_sf_ctx {
             return st_;               \
     } while (0)
 
+/* Lets the compiler check the arguments of the printf-like sinks below against their formats. */
+#if defined(__GNUC__)
+#define BGI_SF_PRINTF_(format_arg, first_arg) __attribute__((__format__(__printf__, format_arg, first_arg)))
+#else
+#define BGI_SF_PRINTF_(format_arg, first_arg)
+#endif
+
 /* ---- context.c ---- */
 void bgi_sf_ctx_init(bgi_sf_ctx *ctx, const char *file, const bg_scenefile_desc *desc, bg_scene *scene,
                      bg_scenefile_result *out, char *message, size_t message_size);
 void bgi_sf_ctx_free(bgi_sf_ctx *ctx);
 /* Records "FILE: PATH: reason" (the first failure only), logs it and returns status. */
-bg_status bgi_sf_fail(bgi_sf_ctx *ctx, bg_status status, const char *format, ...);
+bg_status bgi_sf_fail(bgi_sf_ctx *ctx, bg_status status, const char *format, ...) BGI_SF_PRINTF_(3, 4);
 /* A scene call's failure: its status, with the scene's own message after the path. */
 bg_status bgi_sf_scene_fail(bgi_sf_ctx *ctx, bg_status status, const char *what);
-void bgi_sf_warn(bgi_sf_ctx *ctx, const char *format, ...);
+void bgi_sf_warn(bgi_sf_ctx *ctx, const char *format, ...) BGI_SF_PRINTF_(2, 3);
 /* Path steps: each returns the length to give bgi_sf_pop to step back. */
 size_t bgi_sf_push_key(bgi_sf_ctx *ctx, const char *key);
 size_t bgi_sf_push_index(bgi_sf_ctx *ctx, size_t index);
