@@ -320,6 +320,9 @@ $(FUZZ_REPLAY_DIR)/replay_%: $(FUZZ_REPLAY_DIR)/target_%.o $(FUZZ_REPLAY_DIR)/re
   $(MACS_A)
 	$(CC) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(SF_A) $(STATIC_LINK) $(SF_LIBS)
 
+# Built with the other test programs, so that a parallel make builds them before make check.
+test-programs: $(FUZZ_REPLAY_BIN)
+
 # Every target's corpus, each input in a process of its own; every failing input is named, then the
 # check fails. Standard input is /dev/null, as under make fuzz.
 check-fuzz-corpus: $(FUZZ_REPLAY_BIN)
