@@ -8,8 +8,9 @@
  *     comment and obj_info lines only, up to end_header, with known types;
  *   - the counts against the file's size (each element takes at least one number per property in
  *     ASCII, its fixed-size properties and list counts in binary), before anything is read;
- *   - the body element by element: every ASCII value a number, every list count within the file,
- *     every face's vertex indices within the vertices.
+ *   - the body element by element: every ASCII element one line of numbers (assimp reads them
+ *     line by line), every list count within the file, every face's vertex indices within the
+ *     vertices, and nothing after the last element but white space (ASCII).
  * A file that is not a PLY (no "ply" at its start) is left to assimp. */
 #include "model_internal.h"
 
@@ -200,6 +201,10 @@ static bg_status read_header(ply *p)
             if (strcmp(line, "ply") != 0 && strcmp(line, "PLY") != 0)
                 return fail(p, "the first line of a PLY file must be \"ply\"");
         } else if (strcmp(line, "end_header") == 0) {
+            for (int i = 0; i < p->elements; i++)
+                if (p->element[i].count > 0 && p->element[i].properties == 0)
+                    return fail(p, "PLY element \"%s\" has %llu instances but no properties", p->element[i].name,
+                                p->element[i].count);
             return p->format == PLY_NONE ? fail(p, "the PLY header has no format line") : BG_OK;
         } else {
             BGI_SF_TRY(header_line(p, number, line));
@@ -287,18 +292,22 @@ static bg_status check_size(ply *p)
 
 /* ---- the body ---- */
 
-/* The next value of the body as a number (an ASCII word, or size bytes in the file's byte order);
- * false at the end of the file or on a word that is not a number of the type. */
+/* The next value of the body as a number (an ASCII word on the element's line, or size bytes in the
+ * file's byte order); false at the end of the line or the file, or on a word that is not a number
+ * of the type. An ASCII element is one line: assimp reads it line by line, so a value on the next
+ * line would be read by the two differently. */
 static bool next_value(ply *p, const ply_type *t, double *out)
 {
     if (p->format == PLY_ASCII) {
         char word[64];
         int c, n = 0;
-        while ((c = getc(p->f)) != EOF && isspace(c))
+        while ((c = getc(p->f)) == ' ' || c == '\t' || c == '\r')
             ;
         for (; c != EOF && !isspace(c); c = getc(p->f))
             if (n < (int)sizeof word - 1)
                 word[n++] = (char)c;
+        if (c != EOF)
+            ungetc(c, p->f);
         word[n] = '\0';
         char *end = NULL;
         errno = 0;
@@ -322,13 +331,22 @@ static bool next_value(ply *p, const ply_type *t, double *out)
     return true;
 }
 
+/* The end of an ASCII element's line: nothing but spaces before the line end (or the file's). */
+static bool line_ends(ply *p)
+{
+    int c;
+    while ((c = getc(p->f)) == ' ' || c == '\t' || c == '\r')
+        ;
+    return c == '\n' || c == EOF;
+}
+
 /* One list: its count within what the file can still hold, then its items (indices checked). */
 static bg_status read_list(ply *p, const ply_element *e, unsigned long long index, const ply_property *pr,
                            unsigned long long left)
 {
     double count, v;
     if (!next_value(p, pr->count, &count))
-        return fail(p, "PLY %s element %llu: a list count that is not a number, or the file ends early", e->name,
+        return fail(p, "PLY %s element %llu: a list count that is not a number, or its line or the file ends early", e->name,
                     index);
     /* An ASCII item takes at least two bytes (a digit and a space), a binary one its size. */
     double room = p->format == PLY_ASCII ? (double)left : (double)(left / pr->type->size);
@@ -337,7 +355,7 @@ static bg_status read_list(ply *p, const ply_element *e, unsigned long long inde
                     count);
     for (unsigned long long i = 0; i < (unsigned long long)count; i++) {
         if (!next_value(p, pr->type, &v))
-            return fail(p, "PLY %s element %llu: a list item that is not a number, or the file ends early", e->name,
+            return fail(p, "PLY %s element %llu: a list item that is not a number, or its line or the file ends early", e->name,
                         index);
         if (pr->indices && !(v >= 0 && v < (double)p->vertices)) {
             return fail(p, "PLY %s element %llu: vertex index %.0f is out of range (the file has %llu vertices)",
@@ -351,7 +369,7 @@ static bg_status read_body(ply *p, unsigned long long size)
 {
     for (int i = 0; i < p->elements; i++) {
         const ply_element *e = &p->element[i];
-        for (unsigned long long k = 0; e->properties > 0 && k < e->count; k++)
+        for (unsigned long long k = 0; k < e->count; k++)
             for (int j = 0; j < e->properties; j++) {
                 const ply_property *pr = &e->property[j];
                 double v;
@@ -361,10 +379,20 @@ static bg_status read_body(ply *p, unsigned long long size)
                                                                                        : 0;
                     BGI_SF_TRY(read_list(p, e, k, pr, left));
                 } else if (!next_value(p, pr->type, &v)) {
-                    return fail(p, "PLY %s element %llu: a value that is not a number, or the file ends early",
-                                e->name, k);
+                    return fail(p, "PLY %s element %llu: a value that is not a number, or its line or the file "
+                                "ends early", e->name, k);
                 }
+                if (j + 1 == e->properties && p->format == PLY_ASCII && !line_ends(p))
+                    return fail(p, "PLY %s element %llu: more values on its line than its properties (an ASCII "
+                                "element is one line)", e->name, k);
             }
+    }
+    if (p->format == PLY_ASCII) {
+        int c;
+        while ((c = getc(p->f)) != EOF && isspace(c))
+            ;
+        if (c != EOF)
+            return fail(p, "more data after the last element than the header declares");
     }
     return BG_OK;
 }
