@@ -232,12 +232,18 @@ static void ply_counts_must_fit_the_file(void **state)
     l = load_ply("bad_count.ply", "ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", 48);
     expect(&l, BG_ERR_INVALID_ARGUMENT, "PLY header line 3: an element needs a short name and a count");
 
-    /* assimp reads an ASCII element per line; read across lines, this face crashed assimp (fuzzing). */
-    static const char lines[] = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+    /* assimp reads an ASCII element per line: values beyond an element's are not the next one's (a
+     * file read across lines that way crashed assimp under the fuzzer). */
+    static const char lines[] = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                                "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n";
+                                "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n";
     l = load_ply("lines.ply", lines, sizeof lines - 1);
     expect(&l, BG_ERR_INVALID_ARGUMENT, "PLY face element 0: more values on its line than its properties");
+    static const char empty_face[] = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                     "end_header\n0 0 0\n1 0 0\n0 1 0\n0\n";
+    l = load_ply("empty_face.ply", empty_face, sizeof empty_face - 1);
+    expect(&l, BG_ERR_INVALID_ARGUMENT, "PLY face element 0: a face of 0 vertices (a face needs at least 3)");
     static const char keyword[] = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprz\nend_header\n";
     l = load_ply("keyword.ply", keyword, sizeof keyword - 1);
     expect(&l, BG_ERR_INVALID_ARGUMENT, "PLY header line 5: \"prz\" is not a PLY header keyword");

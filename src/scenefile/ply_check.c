@@ -350,6 +350,11 @@ static bg_status read_list(ply *p, const ply_element *e, unsigned long long inde
                     index);
     /* An ASCII item takes at least two bytes (a digit and a space), a binary one its size. */
     double room = p->format == PLY_ASCII ? (double)left : (double)(left / pr->type->size);
+    /* A face of fewer than 3 vertices is no polygon; assimp's triangulation aborts the process on
+     * one with none (found by fuzzing). */
+    if (pr->indices && count < 3)
+        return fail(p, "PLY %s element %llu: a face of %.0f vertices (a face needs at least 3)", e->name, index,
+                    count);
     if (count < 0 || count > room)
         return fail(p, "PLY %s element %llu: a list count of %.0f, more than the file can still hold", e->name, index,
                     count);
