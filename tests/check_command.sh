@@ -58,6 +58,14 @@ done
 expect 0 "render an OBJ model" "$cli" render "$root/tests/data/two_boxes.obj" --size 48x36 -o "$out/obj.png" \
 	--renderer cpu --float "$out/obj.pfm"
 head -c 2 "$out/obj.pfm" | grep -q PF || fail "--float wrote no PFM"
+# What a model loses is said on stderr, terminal or not (here a file), and --quiet silences it.
+expect 0 "a model warning without a terminal" "$cli" render "$root/tests/data/emissive_jpeg_texture.gltf" --size 32x24 \
+	--renderer cpu -o "$out/warn.png"
+said "warning: " "a model warning without a terminal"
+said "glow_not_read.jpg" "a model warning without a terminal"
+expect 0 "a model warning under --quiet" "$cli" render "$root/tests/data/emissive_jpeg_texture.gltf" --size 32x24 \
+	--renderer cpu -o "$out/warn.png" --quiet
+grep -q "warning: " "$out/err" && fail "--quiet printed a warning: $(cat "$out/err")"
 
 # Tiles and crop windows are the full render's pixels: assembled they are the same file.
 for renderer in cpu gpu; do

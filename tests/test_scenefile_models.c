@@ -269,7 +269,7 @@ static void model_materials_say_what_they_leave_out(void **state)
     if (st != BG_OK)
         fail_msg("%s", message);
     if (w.count != 2 || !strstr(w.all, "texture \"wood.jpg\" is left out (only PNG files are read)") ||
-        !strstr(w.all, "texture is left out (only the colour texture is mapped)"))
+        !strstr(w.all, "texture is left out (only the colour and emissive textures are mapped)"))
         fail_msg("%d warnings:\n%s", w.count, w.all);
 
     write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd no_such_texture.png\n");

@@ -36,7 +36,7 @@ static bool on_progress(double fraction, void *user)
     return !interrupted;
 }
 
-/* Warnings (what a model's materials lose) when someone watches; errors come back as messages. */
+/* Warnings (what a model's materials lose) unless --quiet; errors come back as messages. */
 static void on_log(bg_log_level level, const char *message, void *user)
 {
     const bool *quiet = user;
@@ -282,7 +282,9 @@ int cli_render(int argc, char **argv)
                 o.float_output, o.output);
         return CLI_EXIT_USAGE;
     }
-    bool quiet_logs = o.quiet || !isatty(2);
+    /* Warnings (what a model's materials lose) go to stderr terminal or not, so that a script's log
+     * says what was dropped; --quiet silences them. */
+    bool quiet_logs = o.quiet;
     bg_scene *scene = NULL;
     bg_scenefile_result file;
     cli_inputs inputs;
@@ -326,7 +328,7 @@ int cli_info(int argc, char **argv)
         fprintf(stderr, "betelgeuse info: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
-    bool quiet_logs = !isatty(2);
+    bool quiet_logs = false;
     bg_scene *scene = NULL;
     bg_scenefile_result file;
     int loaded = load_scene(o.scene, &quiet_logs, NULL, &scene, &file);
