@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "driver.h"
 
 /* Before the renderer exists its failures go to the caller's buffer and the desc's logger, as
  * macs_context_create's do. */
@@ -69,16 +69,11 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
 
 void bgi_gpu_release_all(bg_renderer *r)
 {
-    bgi_gpu_passes_release(r);
-    bgi_gpu_targets_release(r);
-    bgi_gpu_scene_textures_release(r);
+    bgi_gpu_multipass_release(r);
     bgi_gpu_fused_release(r);
-    if (r->meshes) {
-        bgi_gpu_fused_tree_release(&r->allocator, r->meshes);
-        bgi_free(&r->allocator, r->meshes);
-        r->meshes = NULL;
-    }
-    memset(&r->key, 0, sizeof r->key);
+    bgi_free(&r->allocator, r->readback);
+    r->readback = NULL;
+    r->readback_size = 0;
 }
 
 void bg_renderer_destroy(bg_renderer *renderer)

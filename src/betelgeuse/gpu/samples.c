@@ -8,7 +8,7 @@
 
 #include "../common/alloc.h"
 #include "../cpu/cpu_internal.h"
-#include "gpu_internal.h"
+#include "driver.h"
 
 void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out)
 {

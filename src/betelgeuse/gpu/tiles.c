@@ -5,7 +5,7 @@
  * piece's. GPU memory then follows the tile: every target is made at the tile's size. */
 #include <math.h>
 
-#include "gpu_internal.h"
+#include "driver.h"
 
 #define DEFAULT_BUDGET (1024.0 * 1024.0 * 1024.0)
 

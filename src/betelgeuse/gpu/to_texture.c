@@ -1,11 +1,11 @@
 /* bg_render_gpu_to_texture: the frame ends in the caller's MACS texture instead of a host image.
  * The same checks as bg_render_gpu, with the texture's size and format in the image's place; the
  * frame itself is bgi_gpu_frame_render's, which writes the target on the GPU (fused.c, frame.c) and
- * reads back only the tree variant's marks (fused_tree_target.c). */
+ * reads back only the tree variant's marks (fallback.c). */
 
 #include "../common/image.h"
 #include "../common/render_settings.h"
-#include "gpu_internal.h"
+#include "driver.h"
 
 #define FN "bg_render_gpu_to_texture"
 

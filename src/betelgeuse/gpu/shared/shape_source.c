@@ -2,8 +2,8 @@
  * bg_shape_span, and every stage over it (a root, a shadow test) calls it by that name; a pass holds
  * one copy of the pair per distinct shape, both renamed by the shape's suffix (common/shapes.h), so
  * that bg_hit_root_sphere calls bg_shape_span_sphere. */
-#include "../common/shapes.h"
-#include "gpu_internal.h"
+#include "../../common/shapes.h"
+#include "shared.h"
 
 #define SUFFIX_OF(shape, name, glsl, thin, default_uv, cpu_span, half_extent) [shape] = name,
 static const char *const shape_suffix[BG_SHAPE_COUNT_] = {BG_SHAPES(SUFFIX_OF)};

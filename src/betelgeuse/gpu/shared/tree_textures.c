@@ -16,14 +16,14 @@
  * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
  * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
  * rendered here by the CPU reference, pixel by pixel, on the same tree: never cut short silently
- * (fused_tree_target.c does the same for a frame that ends in the caller's texture). */
+ * (fallback.c does the same for a frame that ends in the caller's texture). */
 #include <stdio.h>
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "../common/bvh.h"
-#include "../cpu/cpu_internal.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "../../common/bvh.h"
+#include "../../cpu/cpu_internal.h"
+#include "shared.h"
 
 enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096, MESH_TRIANGLE_TEXELS = 6 };
 /* A mesh tree's leaf holds its triangle's corners, one texel each, in place of its box (bg_mesh.glsl):
@@ -51,7 +51,7 @@ static bool geometry(int max_size, uint32_t items, int per, int *per_row, int *w
     return rows <= (uint64_t)max_size;
 }
 
-bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
+bool bgi_gpu_tree_textures_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
 {
     int k, w, h;
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
@@ -65,12 +65,12 @@ bool bgi_gpu_fused_tree_fits(const bg_renderer *r, const bg_scene_state *state, 
                  r->limits.max_texture_size, w);
         return false;
     }
-    return bgi_gpu_fused_tree_meshes_fit(r, state, why, size);
+    return bgi_gpu_meshes_fit(r, state, why, size);
 }
 
 /* ---- the host copies ---- */
 
-static bg_status fill_nodes(const bg_scene_state *state, const gpu_fused_tree *t, float *out)
+static bg_status fill_nodes(const bg_scene_state *state, const gpu_tree_textures *t, float *out)
 {
     (void)t;
     const bg_vec3 *eye = &state->camera.camera.position;
@@ -79,7 +79,7 @@ static bg_status fill_nodes(const bg_scene_state *state, const gpu_fused_tree *t
 }
 
 /* Object i's texels, as bg_fused_tree.glsl reads them. */
-static void fill_object(const bg_scene_state *state, const gpu_fused_tree *t, uint32_t i, float *o)
+static void fill_object(const bg_scene_state *state, const gpu_tree_textures *t, uint32_t i, float *o)
 {
     const bg_object_data *obj = &state->objects[i];
     float m16[16];
@@ -104,7 +104,7 @@ static void fill_object(const bg_scene_state *state, const gpu_fused_tree *t, ui
     }
 }
 
-static bg_status fill_objects(const bg_scene_state *state, const gpu_fused_tree *t, float *out)
+static bg_status fill_objects(const bg_scene_state *state, const gpu_tree_textures *t, float *out)
 {
     for (uint32_t i = 0; i < state->object_count; i++)
         fill_object(state, t, i, out + (size_t)i * OBJECT_TEXELS * 4);
@@ -114,9 +114,9 @@ static bg_status fill_objects(const bg_scene_state *state, const gpu_fused_tree 
 /* ---- one texture ---- */
 
 /* Makes *texture hold what fill writes for a width x height texture, uploading only a change. */
-static bg_status texture_prepare(bg_renderer *r, const gpu_fused_tree *tree, gpu_fused_tree_texture *t,
+static bg_status texture_prepare(bg_renderer *r, const gpu_tree_textures *tree, gpu_held_texture *t,
                                  const bg_scene_state *state, int width, int height,
-                                 bg_status (*fill)(const bg_scene_state *, const gpu_fused_tree *, float *),
+                                 bg_status (*fill)(const bg_scene_state *, const gpu_tree_textures *, float *),
                                  const char *what)
 {
     size_t floats = (size_t)width * (size_t)height * 4;
@@ -152,7 +152,7 @@ static bg_status texture_prepare(bg_renderer *r, const gpu_fused_tree *tree, gpu
     return BG_OK;
 }
 
-static void texture_release(const bg_allocator *a, gpu_fused_tree_texture *t)
+static void texture_release(const bg_allocator *a, gpu_held_texture *t)
 {
     macs_texture_destroy(t->texture);
     bgi_free(a, t->held);
@@ -252,7 +252,7 @@ static int mesh_width(int max_size)
     return w;
 }
 
-bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
+bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
 {
     if (state->mesh_object_count == 0)
         return true;
@@ -284,7 +284,7 @@ bool bgi_gpu_fused_tree_meshes_fit(const bg_renderer *r, const bg_scene_state *s
  * its triangle's corners {v0, triangle}, {v1, miss}, {v2, 0}; and its triangles' attributes into tris
  * (docs/gpu_pipeline.md, "Meshes"). A subtree over k triangles has 2k - 1 nodes and takes
  * mesh_tree_texels(k) texels, which turns a miss link's node span into a texel span. */
-static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_fused_tree *t, float *nodes,
+static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_tree_textures *t, float *nodes,
                         float *tris)
 {
     for (uint32_t i = 0; i < state->object_count; i++) {
@@ -334,7 +334,7 @@ static void fill_meshes(const bg_scene_state *state, const uint32_t *first, cons
  * serial names its contents for good, so a commit that only moves the camera or objects keeps them,
  * and the ten million texels of a million triangles need neither a rebuild nor a comparison);
  * otherwise records them as what they are about to hold. False when out of memory for the record. */
-static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, const uint32_t *first,
+static bool meshes_held(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state, const uint32_t *first,
                         bool *held)
 {
     uint32_t n = 0;
@@ -363,7 +363,7 @@ static bool meshes_held(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state 
 }
 
 /* Makes a mesh texture w x h hold `data` (h rows of w texels). */
-static bg_status mesh_texture_upload(bg_renderer *r, gpu_fused_tree_texture *t, int w, int h, const float *data)
+static bg_status mesh_texture_upload(bg_renderer *r, gpu_held_texture *t, int w, int h, const float *data)
 {
     size_t floats = (size_t)w * (size_t)h * 4;
     if (t->floats != floats) {
@@ -381,7 +381,7 @@ static bg_status mesh_texture_upload(bg_renderer *r, gpu_fused_tree_texture *t, 
 
 /* Every distinct mesh into the mesh textures, first[] the objects' first-of-mesh indices. The host
  * copy lives only while it goes up: the textures' keys say what they hold. */
-static bg_status meshes_upload(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, const uint32_t *first)
+static bg_status meshes_upload(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state, const uint32_t *first)
 {
     mesh_texels texels = mesh_layout(state, first, t->mesh_base);
     int w = mesh_width(r->limits.max_texture_size);
@@ -415,7 +415,7 @@ static bg_status meshes_upload(bg_renderer *r, gpu_fused_tree *t, const bg_scene
 }
 
 /* The mesh textures and every mesh object's bases for the committed scene. */
-static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state)
+static bg_status meshes_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state)
 {
     if (state->mesh_object_count == 0) {
         texture_release(&r->allocator, &t->mesh_nodes);
@@ -440,14 +440,14 @@ static bg_status meshes_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scen
     return st;
 }
 
-bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state, bool walks)
+bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state, bool walks)
 {
     if (t->serial != 0 && t->serial == state->serial && t->walks == walks)
         return BG_OK; /* the same commit: the textures hold it, nothing to build or compare */
     t->serial = 0;
     char why[160];
     if (!walks) {
-        if (!bgi_gpu_fused_tree_meshes_fit(r, state, why, sizeof why))
+        if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
             /* The unrolled plan checked this before it took the frame, so only the multipass, the
              * last plan, gets here. */
             return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: no plan can render these meshes: %s", why);
@@ -458,7 +458,7 @@ bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg
         }
         return st;
     }
-    if (!bgi_gpu_fused_tree_fits(r, state, why, sizeof why))
+    if (!bgi_gpu_tree_textures_fit(r, state, why, sizeof why))
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
     int k, w, h;
@@ -480,7 +480,7 @@ bg_status bgi_gpu_fused_tree_prepare(bg_renderer *r, gpu_fused_tree *t, const bg
     return st;
 }
 
-void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
+void bgi_gpu_tree_textures_release(const bg_allocator *a, gpu_tree_textures *t)
 {
     texture_release(a, &t->nodes);
     texture_release(a, &t->objects);
@@ -492,33 +492,7 @@ void bgi_gpu_fused_tree_release(const bg_allocator *a, gpu_fused_tree *t)
     bgi_free(a, t->mesh_keys);
     t->mesh_keys = NULL;
     t->mesh_key_count = t->mesh_key_room = 0;
-    bgi_gpu_fused_tree_marks_release(t);
+    bgi_gpu_marks_release(t);
     memset(&t->dims, 0, sizeof t->dims);
     t->serial = 0;
-}
-
-uint64_t bgi_gpu_fused_tree_fallback(const bg_scene_state *state, const bg_render_settings *settings,
-                                 const bgi_render_view *view, const bg_image *image, size_t stride)
-{
-    uint64_t count = 0;
-    bool as_float = image->format == BG_PIXEL_RGBA32F;
-    for (int y = 0; y < image->height; y++) {
-        const unsigned char *row = (const unsigned char *)image->pixels + (size_t)y * stride;
-        for (int x = 0; x < image->width; x++) {
-            bool marked;
-            if (as_float) {
-                float alpha, one = 1.0f;
-                memcpy(&alpha, row + (size_t)x * 16 + 12, sizeof alpha);
-                marked = alpha < 0.5f;
-                memcpy((unsigned char *)row + (size_t)x * 16 + 12, &one, sizeof one);
-            } else {
-                marked = row[(size_t)x * 4 + 3] == 0;
-            }
-            if (marked) {
-                bgi_cpu_render_pixel(state, settings, view, image, stride, x, y);
-                count++;
-            }
-        }
-    }
-    return count;
 }

@@ -5,8 +5,8 @@
  * batch.c) and none of them calls back. */
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "multipass.h"
 
 /* Signed side of point p (w = 1) or direction p (w = 0) relative to the plane of object o. */
 static double plane_side(const bg_object_data *o, const double p[3], double w)
@@ -74,7 +74,7 @@ static bool shadow_needed(const bg_scene_state *state, uint32_t o, int group)
  * per object and light group, one light pass per group. */
 static bg_status allocate_pass_lists(bg_renderer *r, const bg_scene_state *state)
 {
-    gpu_passes *p = &r->passes;
+    gpu_passes *p = &r->multipass->passes;
     int groups = (int)((state->light_count + GPU_LIGHTS_PER_GROUP - 1) / GPU_LIGHTS_PER_GROUP);
     p->object_count = (int)state->object_count;
     p->group_count = groups;
@@ -97,7 +97,7 @@ static bg_status allocate_pass_lists(bg_renderer *r, const bg_scene_state *state
  * object (the order, and so every tie, stays the same). */
 static bg_status build_hit_batches(bg_renderer *r, const bg_scene_state *state)
 {
-    gpu_passes *p = &r->passes;
+    gpu_passes *p = &r->multipass->passes;
     int n = (int)state->object_count;
     gpu_batch *plan = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * sizeof *plan);
     if (!plan)
@@ -129,7 +129,7 @@ static bg_status build_hit_batches(bg_renderer *r, const bg_scene_state *state)
 /* Builds one planned shadow batch, or one pass per object where GL refuses the batched shader. */
 static bg_status build_shadow_batch(bg_renderer *r, const bg_scene_state *state, const gpu_batch *planned)
 {
-    gpu_passes *p = &r->passes;
+    gpu_passes *p = &r->multipass->passes;
     bool rejected = false;
     gpu_batch *out = &p->shadow[p->shadow_count];
     *out = *planned;
@@ -183,8 +183,8 @@ static bg_status build_shadow_batches(bg_renderer *r, const bg_scene_state *stat
  * says whether some shadow pass exists (the light passes then read the visibility texture). */
 static bg_status build_shadow_passes(bg_renderer *r, const bg_scene_state *state, bool *any_shadow)
 {
-    gpu_passes *p = &r->passes;
-    bool cull = !(r->key.disable_skips & BG_SKIP_SHADOW_CULL);
+    gpu_passes *p = &r->multipass->passes;
+    bool cull = !(r->multipass->key.disable_skips & BG_SKIP_SHADOW_CULL);
     bg_status st = BG_OK;
     *any_shadow = false;
     for (int g = 0; g < p->group_count && st == BG_OK; g++) {
@@ -207,7 +207,7 @@ static bg_status build_shadow_passes(bg_renderer *r, const bg_scene_state *state
  * light pass's inputs fit the texture units, and generic and specialised shaders agree. */
 static bg_status build_light_passes(bg_renderer *r, const bg_scene_state *state, bool any_shadow)
 {
-    gpu_passes *p = &r->passes;
+    gpu_passes *p = &r->multipass->passes;
     bg_status st = BG_OK;
     for (int g = 0; g < p->group_count && st == BG_OK; g++)
         st = bgi_gpu_light_pass_build(r, state, g, any_shadow, &p->light[g]);
@@ -258,18 +258,18 @@ static void release(bg_renderer *r, gpu_passes *p)
 
 void bgi_gpu_passes_release(bg_renderer *r)
 {
-    release(r, &r->passes);
-    release(r, &r->retired);
+    release(r, &r->multipass->passes);
+    release(r, &r->multipass->retired);
 }
 
 void bgi_gpu_passes_retire(bg_renderer *r)
 {
-    release(r, &r->retired);
-    r->retired = r->passes;
-    memset(&r->passes, 0, sizeof r->passes);
+    release(r, &r->multipass->retired);
+    r->multipass->retired = r->multipass->passes;
+    memset(&r->multipass->passes, 0, sizeof r->multipass->passes);
 }
 
 void bgi_gpu_passes_release_retired(bg_renderer *r)
 {
-    release(r, &r->retired);
+    release(r, &r->multipass->retired);
 }

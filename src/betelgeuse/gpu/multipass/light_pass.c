@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "gpu_internal.h"
+#include "multipass.h"
 
 #define PI 3.14159265358979323846
 
@@ -72,7 +72,7 @@ bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
 /* Live hit pixels only: both stencil bits set (or only the hit bit when the stencil skip is off). */
 static void hit_stencil(const bg_renderer *r, macs_stencil_state *s)
 {
-    bool live_too = !(r->key.disable_skips & BG_SKIP_STENCIL);
+    bool live_too = !(r->multipass->key.disable_skips & BG_SKIP_STENCIL);
     s->test = true;
     s->func = MACS_COMPARE_EQUAL;
     s->ref = GPU_STENCIL_HIT | (live_too ? GPU_STENCIL_LIVE : 0u);
@@ -154,7 +154,7 @@ static void add_shadow_uniforms(shadow_pass_parts *sp)
 static void emit_shadow_main(const bg_renderer *r, const bg_scene_state *state, const shadow_pass_parts *sp,
                              gpu_text *main)
 {
-    bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
+    bool skip_facing = !(r->multipass->key.disable_skips & BG_SKIP_FACING);
     bgi_gpu_text_append(main, "vec4 bg_h = texture2D(bg_g_hit, macs_uv);\n");
     bool any = false;
     for (int j = 0; j < sp->count; j++)
@@ -233,10 +233,10 @@ static bg_status set_shadow_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
         if (!ms)
             ms = macs_pass_set_uniform(pass, sp->names[j][C_TO_OBJECT], m16);
         if (!ms && sp->mesh[j])
-            ms = macs_pass_set_uniform(pass, sp->names[j][C_MESH_BASE], &r->meshes->mesh_base[2 * (size_t)sp->casters[j]]);
+            ms = macs_pass_set_uniform(pass, sp->names[j][C_MESH_BASE], &r->multipass->meshes->mesh_base[2 * (size_t)sp->casters[j]]);
     }
     if (!ms && sp->meshes > 0)
-        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->meshes->dims.meshes);
+        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->multipass->meshes->dims.meshes);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "shadow pass uniforms");
     return bgi_gpu_set_light_uniforms(r, pass, state, sp->group * GPU_LIGHTS_PER_GROUP, sp->lights);
@@ -258,7 +258,7 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     sp.group = group;
     sp.lights = group_size(state, group);
     sp.meshes = 0;
-    sp.on_meshes = r->features.mesh;
+    sp.on_meshes = r->multipass->features.mesh;
     for (int j = 0; j < count; j++) {
         sp.mesh[j] = state->objects[casters[j]].shape == BGI_SHAPE_MESH;
         sp.meshes += sp.mesh[j] && blocks[j] ? 1 : 0;
@@ -272,16 +272,16 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     bool have = shadow_functions(&functions, state, &sp);
 
     macs_input_desc inputs[5] = {{"bg_g_hit"}, {"bg_g_normal"}, {"bg_g_mesh"}, {"bg_mesh_nodes"}, {"bg_mesh_tris"}};
-    macs_texture *input_tex[5] = {r->gbuffer[GPU_SLOT_HIT], r->gbuffer[GPU_SLOT_NORMAL], r->gbuffer[GPU_SLOT_MESH],
-                                  r->meshes ? r->meshes->mesh_nodes.texture : NULL,
-                                  r->meshes ? r->meshes->mesh_tris.texture : NULL};
+    macs_texture *input_tex[5] = {r->multipass->gbuffer[GPU_SLOT_HIT], r->multipass->gbuffer[GPU_SLOT_NORMAL], r->multipass->gbuffer[GPU_SLOT_MESH],
+                                  r->multipass->meshes ? r->multipass->meshes->mesh_nodes.texture : NULL,
+                                  r->multipass->meshes ? r->multipass->meshes->mesh_tris.texture : NULL};
     int input_count = sp.meshes > 0 ? 5 : sp.on_meshes ? 3 : 2;
     macs_output_desc output = {"visibility", "bg_vis"};
-    macs_texture *output_tex[1] = {r->vis};
+    macs_texture *output_tex[1] = {r->multipass->vis};
     macs_pass_desc desc;
     bgi_gpu_pass_desc_init(&desc, main.s, inputs, input_tex, input_count, sp.uniforms, sp.uniform_count, &output,
                            output_tex, 1);
-    desc.depth_stencil = r->depth;
+    desc.depth_stencil = r->multipass->depth;
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_MULTIPLY;
 
@@ -293,21 +293,21 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
 
 bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out)
 {
-    const gpu_features *f = &r->features;
+    const gpu_features *f = &r->multipass->features;
     int count = group_size(state, group);
-    bool skip_facing = !(r->key.disable_skips & BG_SKIP_FACING);
+    bool skip_facing = !(r->multipass->key.disable_skips & BG_SKIP_FACING);
     if (count == 0) {
         /* Ambient and emission alone: they are already weighted in the G-buffer. With meshes, the
          * alpha counts the hits whose walk ran out of steps (frame.c hands those pixels to the CPU). */
         macs_input_desc in[2] = {{"bg_g_once"}, {"bg_g_mesh"}};
-        macs_texture *in_tex[2] = {r->gbuffer[GPU_SLOT_ONCE], r->gbuffer[GPU_SLOT_MESH]};
+        macs_texture *in_tex[2] = {r->multipass->gbuffer[GPU_SLOT_ONCE], r->multipass->gbuffer[GPU_SLOT_MESH]};
         macs_output_desc output = {"radiance", f->mesh ? "vec4(texture2D(bg_g_once, macs_uv).rgb, "
                                                          "texture2D(bg_g_mesh, macs_uv).w < -1.5 ? 1.0 : 0.0)"
                                                        : "vec4(texture2D(bg_g_once, macs_uv).rgb, 0.0)"};
-        macs_texture *output_tex[1] = {r->accum};
+        macs_texture *output_tex[1] = {r->multipass->accum};
         macs_pass_desc desc;
         bgi_gpu_pass_desc_init(&desc, NULL, in, in_tex, f->mesh ? 2 : 1, NULL, 0, &output, output_tex, 1);
-        desc.depth_stencil = r->depth;
+        desc.depth_stencil = r->multipass->depth;
         hit_stencil(r, &desc.stencil);
         desc.blend = MACS_BLEND_ADD;
         (void)vis;
@@ -317,21 +317,21 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     macs_texture *input_tex[10];
     int ni = 0;
 #define INPUT(input_name, texture) (inputs[ni].name = (input_name), input_tex[ni++] = (texture))
-    INPUT("bg_g_hit", r->gbuffer[GPU_SLOT_HIT]);
-    INPUT("bg_g_normal", r->gbuffer[GPU_SLOT_NORMAL]);
-    INPUT("bg_g_base", r->gbuffer[GPU_SLOT_BASE]);
+    INPUT("bg_g_hit", r->multipass->gbuffer[GPU_SLOT_HIT]);
+    INPUT("bg_g_normal", r->multipass->gbuffer[GPU_SLOT_NORMAL]);
+    INPUT("bg_g_base", r->multipass->gbuffer[GPU_SLOT_BASE]);
     INPUT("bg_ray_dir", NULL);
     /* The light weight is the path weight x opaque; without transparency that is the path weight. */
     if (f->slot[GPU_SLOT_XPARENT])
-        INPUT("bg_g_xparent", r->gbuffer[GPU_SLOT_XPARENT]);
+        INPUT("bg_g_xparent", r->multipass->gbuffer[GPU_SLOT_XPARENT]);
     else
         INPUT("bg_ray_weight", NULL);
     if (f->slot[GPU_SLOT_TANGENT])
-        INPUT("bg_g_tangent", r->gbuffer[GPU_SLOT_TANGENT]);
+        INPUT("bg_g_tangent", r->multipass->gbuffer[GPU_SLOT_TANGENT]);
     if (f->slot[GPU_SLOT_COAT])
-        INPUT("bg_g_coat", r->gbuffer[GPU_SLOT_COAT]);
+        INPUT("bg_g_coat", r->multipass->gbuffer[GPU_SLOT_COAT]);
     if (vis)
-        INPUT("bg_vis", r->vis);
+        INPUT("bg_vis", r->multipass->vis);
 #undef INPUT
     macs_uniform_desc uniforms[LIGHT_UNIFORM_COUNT];
     int nu = 0;
@@ -362,7 +362,7 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
         /* A dead ray (weight 0) gets no light work, like the stencil does for it; with the stencil
          * skip off it is shaded and multiplied by 0, as every pixel is. */
         bgi_gpu_text_printf(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0%s) {\n    vec4 bg_term;\n",
-                        (r->key.disable_skips & BG_SKIP_STENCIL) ? "" : " && bg_max3(bg_lw) > 0.0");
+                        (r->multipass->key.disable_skips & BG_SKIP_STENCIL) ? "" : " && bg_max3(bg_lw) > 0.0");
         for (int i = 0; i < count; i++)
             bgi_gpu_text_printf(&main,
                             "    bg_term = bg_light_term(bg_h.xyz, bg_nr.xyz, bg_view, bg_tg.xyz, bg_b.rgb, bg_nr.w, bg_b.a, "
@@ -376,10 +376,10 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     bgi_gpu_text_append(&main, "if (bg_any == 0.0 && bg_unknown == 0.0) discard;\n");
 
     macs_output_desc output = {"radiance", "vec4(bg_sum, bg_unknown)"};
-    macs_texture *output_tex[1] = {r->accum};
+    macs_texture *output_tex[1] = {r->multipass->accum};
     macs_pass_desc desc;
     bgi_gpu_pass_desc_init(&desc, main.s, inputs, input_tex, ni, uniforms, nu, &output, output_tex, 1);
-    desc.depth_stencil = r->depth;
+    desc.depth_stencil = r->multipass->depth;
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_ADD;
 

@@ -6,8 +6,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "fused.h"
 
 static const bool param_is_color[GPU_FUSED_P_COUNT_] = {
 #define COLOR_(id, local, color, unit, need) color,
@@ -163,7 +163,7 @@ static int walk_budget(const gpu_fused_layout *l)
     int loops = l->loop_rays * (1 + (l->light_loop ? (int)l->light_count : 0));
     /* Per ray and light: the tree's walk and one per unrolled mesh. */
     long walks = (long)l->loop_rays * (1 + (long)l->light_count) * (1 + (long)l->unrolled_meshes);
-    long left = GPU_FUSED_MAX_LOOP - loops - 3 * walks - 64;
+    long left = GPU_MAX_LOOP - loops - 3 * walks - 64;
     return left > 0 ? (int)left : 0;
 }
 
@@ -239,7 +239,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
      * bound only tells whether that constant is enough (bgi_gpu_fused_render). Each ray runs the light
      * loop too, where there is one, and every iteration counts against llvmpipe's limit. */
     double full = rays_bound(l.max_depth, l.transparent, 0.0);
-    int most = GPU_FUSED_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
+    int most = GPU_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
     l.loop_rays = full < most ? (int)full : most;
     l.rays_needed = rays_bound(l.max_depth, l.transparent, settings->min_weight);
     l.walk_budget = tree || l.mesh ? walk_budget(&l) : 0;

@@ -2,7 +2,7 @@
  * bg_render_stats.phase_ms means the same for each. */
 #include <time.h>
 
-#include "gpu_internal.h"
+#include "shared.h"
 
 double bgi_gpu_now_ms(void)
 {

@@ -4,21 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "gpu_internal.h"
-
-bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
-{
-    if (*out)
-        return BG_OK;
-    macs_texture_desc d;
-    memset(&d, 0, sizeof d);
-    d.width = w;
-    d.height = h;
-    d.format = format;
-    macs_status ms = macs_texture_create(r->ctx, &d, out);
-    return ms ? bgi_gpu_fail_macs(r, ms, what) : BG_OK;
-}
+#include "../../common/alloc.h"
+#include "multipass.h"
 
 macs_format bgi_gpu_slot_format(const bg_renderer *r, gpu_slot slot)
 {
@@ -105,49 +92,46 @@ bool bgi_gpu_half_probe(bg_renderer *r, char *why, size_t why_size)
 void bgi_gpu_targets_release(bg_renderer *r)
 {
     for (int s = 0; s < GPU_SLOT_COUNT; s++) {
-        macs_texture_destroy(r->gbuffer[s]);
-        r->gbuffer[s] = NULL;
+        macs_texture_destroy(r->multipass->gbuffer[s]);
+        r->multipass->gbuffer[s] = NULL;
     }
-    macs_texture_destroy(r->accum);
-    macs_texture_destroy(r->vis);
-    macs_texture_destroy(r->encoded);
-    macs_depth_stencil_destroy(r->depth);
-    r->accum = r->vis = r->encoded = NULL;
-    r->depth = NULL;
-    for (int i = 0; i < r->set_count; i++) {
-        macs_texture_destroy(r->sets[i].origin);
-        macs_texture_destroy(r->sets[i].dir);
-        macs_texture_destroy(r->sets[i].weight);
+    macs_texture_destroy(r->multipass->accum);
+    macs_texture_destroy(r->multipass->vis);
+    macs_texture_destroy(r->multipass->encoded);
+    macs_depth_stencil_destroy(r->multipass->depth);
+    r->multipass->accum = r->multipass->vis = r->multipass->encoded = NULL;
+    r->multipass->depth = NULL;
+    for (int i = 0; i < r->multipass->set_count; i++) {
+        macs_texture_destroy(r->multipass->sets[i].origin);
+        macs_texture_destroy(r->multipass->sets[i].dir);
+        macs_texture_destroy(r->multipass->sets[i].weight);
     }
-    bgi_free(&r->allocator, r->sets);
-    r->sets = NULL;
-    r->set_count = 0;
-    bgi_free(&r->allocator, r->readback);
-    r->readback = NULL;
-    r->readback_size = 0;
-    r->width = r->height = 0;
+    bgi_free(&r->allocator, r->multipass->sets);
+    r->multipass->sets = NULL;
+    r->multipass->set_count = 0;
+    r->multipass->width = r->multipass->height = 0;
 }
 
 bg_status bgi_gpu_targets_prepare(bg_renderer *r, int w, int h)
 {
-    if (r->width != w || r->height != h)
+    if (r->multipass->width != w || r->multipass->height != h)
         bgi_gpu_targets_release(r);
-    r->width = w;
-    r->height = h;
+    r->multipass->width = w;
+    r->multipass->height = h;
     bg_status st = BG_OK;
     for (int s = 0; s < GPU_SLOT_COUNT && st == BG_OK; s++)
-        if (r->features.slot[s])
-            st = bgi_gpu_texture_ensure(r, w, h, bgi_gpu_slot_format(r, (gpu_slot)s), &r->gbuffer[s], "G-buffer texture");
+        if (r->multipass->features.slot[s])
+            st = bgi_gpu_texture_ensure(r, w, h, bgi_gpu_slot_format(r, (gpu_slot)s), &r->multipass->gbuffer[s], "G-buffer texture");
     if (st == BG_OK)
-        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &r->accum, "accumulation texture");
+        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &r->multipass->accum, "accumulation texture");
     /* Visibility is 0 or 1 per channel: 8 bits hold it exactly. */
     if (st == BG_OK)
-        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->vis, "visibility texture");
+        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->multipass->vis, "visibility texture");
     if (st == BG_OK)
-        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->encoded, "output texture");
-    if (st == BG_OK && !r->depth) {
+        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->multipass->encoded, "output texture");
+    if (st == BG_OK && !r->multipass->depth) {
         macs_depth_stencil_desc d = {w, h, r->float_depth ? MACS_DEPTH32F_STENCIL8 : MACS_DEPTH24_STENCIL8};
-        macs_status ms = macs_depth_stencil_create(r->ctx, &d, &r->depth);
+        macs_status ms = macs_depth_stencil_create(r->ctx, &d, &r->multipass->depth);
         if (ms)
             st = bgi_gpu_fail_macs(r, ms, "depth/stencil buffer");
     }
@@ -156,34 +140,34 @@ bg_status bgi_gpu_targets_prepare(bg_renderer *r, int w, int h)
 
 bg_status bgi_gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
 {
-    if (index >= r->set_count) {
-        size_t old = (size_t)r->set_count * sizeof *r->sets, need = (size_t)(index + 1) * sizeof *r->sets;
-        gpu_ray_set *grown = bgi_realloc(&r->allocator, r->sets, old, need);
+    if (index >= r->multipass->set_count) {
+        size_t old = (size_t)r->multipass->set_count * sizeof *r->multipass->sets, need = (size_t)(index + 1) * sizeof *r->multipass->sets;
+        gpu_ray_set *grown = bgi_realloc(&r->allocator, r->multipass->sets, old, need);
         if (!grown)
             return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for ray set %d", index);
         memset((char *)grown + old, 0, need - old);
-        r->sets = grown;
-        r->set_count = index + 1;
+        r->multipass->sets = grown;
+        r->multipass->set_count = index + 1;
     }
-    gpu_ray_set *s = &r->sets[index];
-    bg_status st = bgi_gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
+    gpu_ray_set *s = &r->multipass->sets[index];
+    bg_status st = bgi_gpu_texture_ensure(r, r->multipass->width, r->multipass->height, MACS_FORMAT_RGBA32F, &s->origin, "ray origin map");
     if (st == BG_OK)
-        st = bgi_gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
+        st = bgi_gpu_texture_ensure(r, r->multipass->width, r->multipass->height, MACS_FORMAT_RGBA32F, &s->dir, "ray direction map");
     if (st == BG_OK)
-        st = bgi_gpu_texture_ensure(r, r->width, r->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
+        st = bgi_gpu_texture_ensure(r, r->multipass->width, r->multipass->height, MACS_FORMAT_RGBA32F, &s->weight, "ray weight map");
     *out = s;
     return st;
 }
 
 void bgi_gpu_scene_textures_release(bg_renderer *r)
 {
-    for (uint32_t i = 0; i < r->texture_count; i++)
-        macs_texture_destroy(r->textures[i]);
-    bgi_free(&r->allocator, r->textures);
-    r->textures = NULL;
-    r->texture_count = 0;
-    macs_texture_destroy(r->white);
-    r->white = NULL;
+    for (uint32_t i = 0; i < r->multipass->texture_count; i++)
+        macs_texture_destroy(r->multipass->textures[i]);
+    bgi_free(&r->allocator, r->multipass->textures);
+    r->multipass->textures = NULL;
+    r->multipass->texture_count = 0;
+    macs_texture_destroy(r->multipass->white);
+    r->multipass->white = NULL;
 }
 
 bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state)
@@ -196,34 +180,20 @@ bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *s
     d.format = MACS_FORMAT_RGBA32F;
     d.filter = MACS_FILTER_NEAREST; /* exactly 1.0, so constant x white is the constant */
     d.data = white;
-    macs_status ms = macs_texture_create(r->ctx, &d, &r->white);
+    macs_status ms = macs_texture_create(r->ctx, &d, &r->multipass->white);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "white texture");
     if (state->texture_count == 0)
         return BG_OK;
-    r->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *r->textures);
-    if (!r->textures)
+    r->multipass->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *r->multipass->textures);
+    if (!r->multipass->textures)
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
-    memset(r->textures, 0, state->texture_count * sizeof *r->textures);
-    r->texture_count = state->texture_count;
+    memset(r->multipass->textures, 0, state->texture_count * sizeof *r->multipass->textures);
+    r->multipass->texture_count = state->texture_count;
     for (uint32_t i = 0; i < state->texture_count; i++) {
-        bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &r->textures[i]);
+        bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &r->multipass->textures[i]);
         if (st != BG_OK)
             return st;
     }
     return BG_OK;
-}
-
-bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
-{
-    macs_texture_desc d;
-    memset(&d, 0, sizeof d);
-    d.width = t->width;
-    d.height = t->height;
-    d.format = MACS_FORMAT_RGBA32F;
-    d.filter = t->filter == BG_FILTER_NEAREST ? MACS_FILTER_NEAREST : MACS_FILTER_LINEAR; /* no mipmaps: docs/shading.md 5 */
-    d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
-    d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
-    macs_status ms = macs_texture_create(r->ctx, &d, out);
-    return ms ? bgi_gpu_fail_macs(r, ms, "scene texture") : BG_OK;
 }

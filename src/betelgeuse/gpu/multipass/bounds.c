@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "gpu_internal.h"
+#include "multipass.h"
 
 typedef struct box3 {
     double lo[3], hi[3];

@@ -9,7 +9,7 @@
  * as small as the scene's extent around the camera: the image no longer depends on where the scene
  * is, only on how large it is. Directions, normals and distances do not change, so nothing else
  * (dmax, scissor rectangles, shading) sees the move. */
-#include "gpu_internal.h"
+#include "shared.h"
 
 static const double *origin_of(const bg_scene_state *state)
 {

@@ -1,5 +1,5 @@
 /* The tree variant's pixels that ran out of walk steps when the frame ends in the caller's texture
- * (bg_render_gpu_to_texture). The shader marks them with alpha 0 (fused_tree.c); they must still
+ * (bg_render_gpu_to_texture). The shader marks them with alpha 0 (tree_textures.c); they must still
  * come from the CPU reference, never stay black, while the rest of the frame stays on the GPU.
  *
  * One pass packs the marks into an RGBA8 texture of one bit per pixel (bg_tree_marks.glsl: 32
@@ -8,8 +8,8 @@
  * as bg_render_gpu's read-back path does, in the target's format, and each run of marked pixels in a
  * row goes up with one glTexSubImage2D (macs_texture_upload_region). Rows are the texture's, bottom
  * first; the image row of texture row y is height - 1 - y. */
-#include "../cpu/cpu_internal.h"
-#include "gpu_internal.h"
+#include "../../cpu/cpu_internal.h"
+#include "shared.h"
 
 enum { PIXELS_PER_TEXEL = 32 };
 
@@ -27,7 +27,7 @@ static bg_status mark_pass_create(bg_renderer *r, macs_texture *marks, macs_pass
 
 /* Makes the marks texture and its pass fit a width x height frame. The new pass is made before the
  * old one goes, so that MACS's program cache hands the program over instead of compiling it again. */
-static bg_status marks_prepare(bg_renderer *r, gpu_fused_tree *t, int width, int height)
+static bg_status marks_prepare(bg_renderer *r, gpu_tree_textures *t, int width, int height)
 {
     int mw = (width + PIXELS_PER_TEXEL - 1) / PIXELS_PER_TEXEL, have_w = 0, have_h = 0;
     macs_texture_size(t->marks, &have_w, &have_h);
@@ -42,7 +42,7 @@ static bg_status marks_prepare(bg_renderer *r, gpu_fused_tree *t, int width, int
         macs_texture_destroy(marks);
         return st;
     }
-    bgi_gpu_fused_tree_marks_release(t);
+    bgi_gpu_marks_release(t);
     t->marks = marks;
     t->mark_pass = pass;
     return BG_OK;
@@ -50,7 +50,7 @@ static bg_status marks_prepare(bg_renderer *r, gpu_fused_tree *t, int width, int
 
 /* Runs the mark pass over target and reads the marks into the read-back buffer, followed by room
  * for one row of target texels; *marks and *row point into it. */
-static bg_status marks_read(bg_renderer *r, gpu_fused_tree *t, macs_texture *target, int width, int height,
+static bg_status marks_read(bg_renderer *r, gpu_tree_textures *t, macs_texture *target, int width, int height,
                             const unsigned char **marks, unsigned char **row)
 {
     bg_status st = marks_prepare(r, t, width, height);
@@ -85,7 +85,7 @@ static bool marked(const unsigned char *mark_row, int x)
     return (mark_row[x / 8] >> (x % 8)) & 1u;
 }
 
-bg_status bgi_gpu_fused_tree_fallback_texture(bg_renderer *r, gpu_fused_tree *t, const bg_scene_state *state,
+bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state,
                                           const bg_render_settings *settings, macs_texture *target, uint64_t *count)
 {
     *count = 0;
@@ -120,10 +120,36 @@ bg_status bgi_gpu_fused_tree_fallback_texture(bg_renderer *r, gpu_fused_tree *t,
     return BG_OK;
 }
 
-void bgi_gpu_fused_tree_marks_release(gpu_fused_tree *t)
+void bgi_gpu_marks_release(gpu_tree_textures *t)
 {
     macs_pass_destroy(t->mark_pass);
     macs_texture_destroy(t->marks);
     t->mark_pass = NULL;
     t->marks = NULL;
+}
+
+uint64_t bgi_gpu_fallback_image(const bg_scene_state *state, const bg_render_settings *settings,
+                                 const bgi_render_view *view, const bg_image *image, size_t stride)
+{
+    uint64_t count = 0;
+    bool as_float = image->format == BG_PIXEL_RGBA32F;
+    for (int y = 0; y < image->height; y++) {
+        const unsigned char *row = (const unsigned char *)image->pixels + (size_t)y * stride;
+        for (int x = 0; x < image->width; x++) {
+            bool marked;
+            if (as_float) {
+                float alpha, one = 1.0f;
+                memcpy(&alpha, row + (size_t)x * 16 + 12, sizeof alpha);
+                marked = alpha < 0.5f;
+                memcpy((unsigned char *)row + (size_t)x * 16 + 12, &one, sizeof one);
+            } else {
+                marked = row[(size_t)x * 4 + 3] == 0;
+            }
+            if (marked) {
+                bgi_cpu_render_pixel(state, settings, view, image, stride, x, y);
+                count++;
+            }
+        }
+    }
+    return count;
 }

@@ -5,7 +5,7 @@
  * texture buffer can be reused by the allocator with other contents. */
 #include <string.h>
 
-#include "gpu_internal.h"
+#include "multipass.h"
 
 typedef struct hasher {
     uint64_t h;

@@ -3,7 +3,7 @@
  * passes. A leaf of gpu/ below every pass builder: it calls only shader_source.c and fail.c. */
 #include <string.h>
 
-#include "gpu_internal.h"
+#include "shared.h"
 
 void bgi_gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
                         macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,

@@ -1,6 +1,6 @@
 /* Unions of screen rectangles {x, y, width, height}. A rectangle of zero width or height is empty
  * and adds nothing, so a union may start from {0, 0, 0, 0}. */
-#include "gpu_internal.h"
+#include "multipass.h"
 
 void bgi_gpu_rect_union(int a[4], const int b[4])
 {

@@ -11,9 +11,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "../common/shapes.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "../../common/shapes.h"
+#include "multipass.h"
 
 static const char *const uv_file[BG_UV_COUNT_] = {NULL, "bg_uv_spherical.glsl", "bg_uv_planar.glsl",
                                                   "bg_uv_box.glsl", "bg_uv_cylindrical.glsl"};
@@ -128,7 +128,7 @@ int bgi_gpu_hit_texture_lane(uint32_t *lanes, int *lane_count, uint32_t texture)
 /* Describes object `object` as member j of a pass. */
 static void member_describe(const bg_renderer *r, const bg_scene_state *state, uint32_t object, int j, member *mb)
 {
-    const gpu_features *f = &r->features;
+    const gpu_features *f = &r->multipass->features;
     mb->object = object;
     describe(&state->materials[state->objects[object].material], f, mb->p);
     mb->texture_count = 0;
@@ -209,7 +209,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
 }
 
 /* Sets a member's object constants (those it declares) into the pass. */
-static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const gpu_fused_tree *meshes,
+static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const gpu_tree_textures *meshes,
                                        const member *mb)
 {
     const bg_object_data *obj = &state->objects[mb->object];
@@ -386,7 +386,7 @@ static void describe_members(const bg_renderer *r, const bg_scene_state *state, 
         member_describe(r, state, first + (uint32_t)j, j, mb);
         hp->meshes += mb->mesh ? 1 : 0;
         for (int i = 0; i < P_COUNT; i++)
-            if (samples_texture(&mb->p[i], &r->features))
+            if (samples_texture(&mb->p[i], &r->multipass->features))
                 mb->p[i].sampler = bgi_gpu_hit_texture_lane(hp->lane_texture, &hp->lanes, mb->p[i].texture);
     }
 }
@@ -404,13 +404,13 @@ static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
         uint32_t texture = hp->lane_texture[lane];
         snprintf(hp->input_names[lane], sizeof hp->input_names[lane], "bg_tex%d", lane);
         hp->inputs[hp->input_count].name = hp->input_names[lane];
-        hp->input_tex[hp->input_count++] = texture ? r->textures[texture - 1] : r->white;
+        hp->input_tex[hp->input_count++] = texture ? r->multipass->textures[texture - 1] : r->multipass->white;
     }
     if (hp->meshes > 0) {
         hp->inputs[hp->input_count].name = "bg_mesh_nodes";
-        hp->input_tex[hp->input_count++] = r->meshes->mesh_nodes.texture;
+        hp->input_tex[hp->input_count++] = r->multipass->meshes->mesh_nodes.texture;
         hp->inputs[hp->input_count].name = "bg_mesh_tris";
-        hp->input_tex[hp->input_count++] = r->meshes->mesh_tris.texture;
+        hp->input_tex[hp->input_count++] = r->multipass->meshes->mesh_tris.texture;
     }
 }
 
@@ -428,7 +428,7 @@ static void add_uniforms(hit_pass_parts *hp)
 /* The G-buffer slots the features ask for. */
 static void add_outputs(const bg_renderer *r, hit_pass_parts *hp)
 {
-    const gpu_features *f = &r->features;
+    const gpu_features *f = &r->multipass->features;
     /* ONCE carries the ior lane only with transparency, TANGENT the coat's isotropy only with coats. */
     snprintf(hp->once_value, sizeof hp->once_value, "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), %s)",
              f->transparent ? "bg_ior" : "1.0");
@@ -451,7 +451,7 @@ static void add_outputs(const bg_renderer *r, hit_pass_parts *hp)
             continue;
         hp->outputs[hp->output_count].name = slot_name[s];
         hp->outputs[hp->output_count].value = slot_value[s];
-        hp->output_tex[hp->output_count++] = r->gbuffer[s];
+        hp->output_tex[hp->output_count++] = r->multipass->gbuffer[s];
     }
 }
 
@@ -463,7 +463,7 @@ static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state,
     /* Writing gl_FragDepth makes GL test the stencil after the shader, so a dead ray is also
      * rejected here, before any intersection work (the same pixels as the stencil rejects). */
     bgi_gpu_text_append(main, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n");
-    if (!(r->key.disable_skips & BG_SKIP_STENCIL))
+    if (!(r->multipass->key.disable_skips & BG_SKIP_STENCIL))
         bgi_gpu_text_append(main, "if (bg_w.a <= 0.0)\n    discard;\n");
     bgi_gpu_text_append(main,
                     "vec4 bg_ro = texture2D(bg_ray_origin, macs_uv);\n"
@@ -510,7 +510,7 @@ static void emit_nearest_root(const bg_renderer *r, const bg_scene_state *state,
 static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *state, const hit_pass_parts *hp,
                                 gpu_text *main)
 {
-    const gpu_features *f = &r->features;
+    const gpu_features *f = &r->multipass->features;
     bool need_tangent = f->slot[GPU_SLOT_TANGENT];
     /* A pixel whose walk ran out is kept at depth 0, marked in the MESH slot for the CPU reference
      * (frame.c), whatever it met. */
@@ -547,8 +547,8 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
 /* Depth LESS as between one-object passes; the stencil keeps live rays and marks their hits. */
 static void set_depth_stencil(const bg_renderer *r, macs_pass_desc *desc)
 {
-    bool stencil_skip = !(r->key.disable_skips & BG_SKIP_STENCIL);
-    desc->depth_stencil = r->depth;
+    bool stencil_skip = !(r->multipass->key.disable_skips & BG_SKIP_STENCIL);
+    desc->depth_stencil = r->multipass->depth;
     desc->depth.test = true;
     desc->depth.write = true;
     desc->depth.func = MACS_COMPARE_LESS;
@@ -564,7 +564,7 @@ static void set_depth_stencil(const bg_renderer *r, macs_pass_desc *desc)
 static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pass_parts *hp, bool trial,
                              macs_pass **out, bool *rejected)
 {
-    bool need_tangent = r->features.slot[GPU_SLOT_TANGENT];
+    bool need_tangent = r->multipass->features.slot[GPU_SLOT_TANGENT];
     gpu_text main, functions;
     bgi_gpu_text_init(&main, &r->allocator);
     bgi_gpu_text_init(&functions, &r->allocator);
@@ -585,9 +585,9 @@ static bg_status set_members_uniforms(bg_renderer *r, macs_pass *pass, const bg_
 {
     macs_status ms = MACS_OK;
     if (hp->meshes > 0)
-        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->meshes->dims.meshes);
+        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->multipass->meshes->dims.meshes);
     for (int j = 0; j < hp->count && !ms; j++) {
-        ms = set_object_uniforms(pass, state, r->meshes, &hp->members[j]);
+        ms = set_object_uniforms(pass, state, r->multipass->meshes, &hp->members[j]);
         if (!ms)
             ms = set_material_uniforms(pass, state, &hp->members[j]);
     }

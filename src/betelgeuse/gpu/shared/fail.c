@@ -4,7 +4,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-#include "gpu_internal.h"
+#include "shared.h"
 
 bg_status bgi_gpu_fail(bg_renderer *r, bg_status status, const char *format, ...)
 {

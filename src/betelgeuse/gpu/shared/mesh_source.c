@@ -1,6 +1,6 @@
 /* The mesh code of the fused plans (docs/gpu_pipeline.md, "Meshes"): when the object tree's walk
  * reaches a mesh object's leaf, or the unrolled code a mesh object, the ray goes into the object's
- * space and walks the mesh's own tree, stackless, from the mesh textures (fused_tree.c): interior
+ * space and walks the mesh's own tree, stackless, from the mesh textures (tree_textures.c): interior
  * nodes in the object tree's format, leaves holding their triangle's corners, which go through
  * bg_triangle.glsl. Every node step of both levels spends one of the
  * pixel's walk steps (bg_tree_left); a mesh walk that runs out marks the pixel (bg_tree_short) for
@@ -12,7 +12,7 @@
  * walk skips exactly that triangle of that object. */
 #include <stdio.h>
 
-#include "gpu_internal.h"
+#include "shared.h"
 
 /* The loops of one mesh walk, as emit_walk in fused_source.c writes the object tree's: `body` is the
  * leaf's test, `found` ends the walk early (or NULL). */
@@ -107,7 +107,7 @@ void bgi_gpu_walk_globals(gpu_text *t)
 
 int bgi_gpu_mesh_pass_budget(int walks)
 {
-    return GPU_FUSED_MAX_LOOP - 64 - 3 * walks;
+    return GPU_MAX_LOOP - 64 - 3 * walks;
 }
 
 void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t)

@@ -6,7 +6,7 @@
  * Ray-map inputs are bound per ray set by frame.c at the fixed input positions of gpu_internal.h. */
 #include <string.h>
 
-#include "gpu_internal.h"
+#include "multipass.h"
 
 /* A pass over the live (and, with hit_bits, hit or missed) pixels with one or two ray-map inputs. */
 static bg_status simple_pass(bg_renderer *r, const char *what, const char *const *files, const char *main,
@@ -21,7 +21,7 @@ static bg_status simple_pass(bg_renderer *r, const char *what, const char *const
                        output_count);
     desc.blend = blend;
     if (stencil) {
-        desc.depth_stencil = r->depth;
+        desc.depth_stencil = r->multipass->depth;
         desc.stencil = *stencil;
     }
     if (output_count == 3) {
@@ -49,14 +49,14 @@ static macs_stencil_state stencil_equal(unsigned ref, unsigned mask)
 
 static bool stencil_skip(const bg_renderer *r)
 {
-    return !(r->key.disable_skips & BG_SKIP_STENCIL);
+    return !(r->multipass->key.disable_skips & BG_SKIP_STENCIL);
 }
 
 /* The camera's frame as uniforms, relative to the camera (its eye is the frame's origin); the size
  * and aspect are the full frame's, the shift the view's window and sample (docs/shading.md 1.1). */
 bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *state)
 {
-    macs_pass *pass = r->passes.camera;
+    macs_pass *pass = r->multipass->passes.camera;
     const bg_camera_data *c = &state->camera;
     int fw_px = r->view.pixels.frame_width, fh_px = r->view.pixels.frame_height;
     float size[2] = {(float)fw_px, (float)fh_px};
@@ -94,7 +94,7 @@ static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, 
                                "vec4 bg_o0, bg_o1, bg_o2;\n"
                                "bg_camera_ray(gl_FragCoord.xy + bg_shift, bg_size, bg_eye, bg_forward, bg_right, "
                                "bg_up, bg_tan_half, bg_o0, bg_o1, bg_o2);\n",
-                               NULL, 0, NULL, u, 7, NULL, outs, 3, MACS_BLEND_NONE, NULL, &r->passes.camera);
+                               NULL, 0, NULL, u, 7, NULL, outs, 3, MACS_BLEND_NONE, NULL, &r->multipass->passes.camera);
     return st == BG_OK ? bgi_gpu_camera_uniforms_set(r, state) : st;
 }
 
@@ -104,7 +104,7 @@ static bg_status build_mark_pass(bg_renderer *r)
 {
     macs_input_desc in[1] = {{"bg_ray_weight"}};
     macs_texture *in_tex[1] = {NULL};
-    macs_texture *outs[1] = {r->accum};
+    macs_texture *outs[1] = {r->multipass->accum};
     macs_stencil_state s;
     memset(&s, 0, sizeof s);
     if (stencil_skip(r)) {
@@ -118,10 +118,10 @@ static bg_status build_mark_pass(bg_renderer *r)
     macs_output_desc od = {"none", "vec4(0.0)"};
     bgi_gpu_pass_desc_init(&desc, "if (texture2D(bg_ray_weight, macs_uv).a <= 0.0) discard;\n", in, in_tex, 1, NULL, 0,
                        &od, outs, 1);
-    desc.depth_stencil = r->depth;
+    desc.depth_stencil = r->multipass->depth;
     desc.stencil = s;
     desc.color_mask = MACS_COLOR_MASK_NONE;
-    return bgi_gpu_pass_create(r, "mark pass", NULL, NULL, &desc, &r->passes.mark);
+    return bgi_gpu_pass_create(r, "mark pass", NULL, NULL, &desc, &r->multipass->passes.mark);
 }
 
 /* Background where a live ray missed every object: the hit bit is clear. Its colour is a plain
@@ -131,16 +131,16 @@ static bg_status build_background_pass(bg_renderer *r, const double background[3
     macs_input_desc in[1] = {{"bg_ray_weight"}};
     macs_texture *in_tex[1] = {NULL};
     macs_uniform_desc u[1] = {{"bg_background", MACS_UNIFORM_VEC3, 0}};
-    macs_texture *outs[1] = {r->accum};
+    macs_texture *outs[1] = {r->multipass->accum};
     macs_stencil_state s = stencil_skip(r) ? stencil_equal(GPU_STENCIL_LIVE, GPU_STENCIL_LIVE | GPU_STENCIL_HIT)
                                            : stencil_equal(0, GPU_STENCIL_HIT);
     bg_status st = simple_pass(r, "background pass", NULL, "vec4 bg_w = texture2D(bg_ray_weight, macs_uv);\n", in, 1,
                                in_tex, u, 1, "vec4(bg_w.rgb * bg_background, 0.0)", outs, 1, MACS_BLEND_ADD, &s,
-                               &r->passes.background);
+                               &r->multipass->passes.background);
     if (st != BG_OK)
         return st;
     float bgc[3] = {(float)background[0], (float)background[1], (float)background[2]};
-    macs_status ms = macs_pass_set_uniform(r->passes.background, "bg_background", bgc);
+    macs_status ms = macs_pass_set_uniform(r->multipass->passes.background, "bg_background", bgc);
     return ms ? bgi_gpu_fail_macs(r, ms, "background uniforms") : BG_OK;
 }
 
@@ -148,7 +148,7 @@ static bg_status build_background_pass(bg_renderer *r, const double background[3
  * material may bounce, unless the bounce cull is switched off. */
 static bool spawn_passes_wanted(const bg_renderer *r)
 {
-    return r->key.bounces && (r->features.bounce || (r->key.disable_skips & BG_SKIP_BOUNCE_CULL));
+    return r->multipass->key.bounces && (r->multipass->features.bounce || (r->multipass->key.disable_skips & BG_SKIP_BOUNCE_CULL));
 }
 
 enum { SPAWN_REFLECT = 0, SPAWN_REFRACT = 1, SPAWN_MAX_INPUTS = 9 };
@@ -158,29 +158,29 @@ enum { SPAWN_REFLECT = 0, SPAWN_REFRACT = 1, SPAWN_MAX_INPUTS = 9 };
 static int spawn_inputs(const bg_renderer *r, int kind, macs_input_desc in[SPAWN_MAX_INPUTS],
                         macs_texture *in_tex[SPAWN_MAX_INPUTS])
 {
-    const gpu_features *f = &r->features;
+    const gpu_features *f = &r->multipass->features;
     int ni = 0;
     in[ni].name = "bg_ray_dir", in_tex[ni++] = NULL;    /* GPU_SPAWN_IN_DIR */
     in[ni].name = "bg_ray_weight", in_tex[ni++] = NULL; /* GPU_SPAWN_IN_WEIGHT */
-    in[ni].name = "bg_g_hit", in_tex[ni++] = r->gbuffer[GPU_SLOT_HIT];
-    in[ni].name = "bg_g_normal", in_tex[ni++] = r->gbuffer[GPU_SLOT_NORMAL];
+    in[ni].name = "bg_g_hit", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_HIT];
+    in[ni].name = "bg_g_normal", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_NORMAL];
     if (kind == SPAWN_REFLECT)
-        in[ni].name = "bg_g_base", in_tex[ni++] = r->gbuffer[GPU_SLOT_BASE];
+        in[ni].name = "bg_g_base", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_BASE];
     if (kind == SPAWN_REFLECT && f->slot[GPU_SLOT_COAT])
-        in[ni].name = "bg_g_coat", in_tex[ni++] = r->gbuffer[GPU_SLOT_COAT];
+        in[ni].name = "bg_g_coat", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_COAT];
     if (f->transparent) {
-        in[ni].name = "bg_g_xparent", in_tex[ni++] = r->gbuffer[GPU_SLOT_XPARENT];
-        in[ni].name = "bg_g_once", in_tex[ni++] = r->gbuffer[GPU_SLOT_ONCE];
+        in[ni].name = "bg_g_xparent", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_XPARENT];
+        in[ni].name = "bg_g_once", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_ONCE];
     }
     if (f->mesh)
-        in[ni].name = "bg_g_mesh", in_tex[ni++] = r->gbuffer[GPU_SLOT_MESH];
+        in[ni].name = "bg_g_mesh", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_MESH];
     return ni;
 }
 
 /* The spawn call of a pass's main, with the lanes a missing slot would have filled as constants. */
 static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
 {
-    const gpu_features *f = &r->features;
+    const gpu_features *f = &r->multipass->features;
     bool reflect = kind == SPAWN_REFLECT;
     bgi_gpu_text_append(main, "vec4 bg_o0, bg_o1, bg_o2;\n");
     bgi_gpu_text_printf(main,
@@ -207,7 +207,7 @@ static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
  * frame.c rebinds to the child set; the child set's mark pass counts them. */
 static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *set0)
 {
-    macs_pass **out = kind == SPAWN_REFRACT ? &r->passes.refract : &r->passes.reflect;
+    macs_pass **out = kind == SPAWN_REFRACT ? &r->multipass->passes.refract : &r->multipass->passes.reflect;
     macs_input_desc in[SPAWN_MAX_INPUTS];
     macs_texture *in_tex[SPAWN_MAX_INPUTS];
     int ni = spawn_inputs(r, kind, in, in_tex);
@@ -229,7 +229,7 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
     bgi_gpu_text_free(&main);
     if (st != BG_OK)
         return st;
-    float mw = (float)r->key.min_weight;
+    float mw = (float)r->multipass->key.min_weight;
     macs_status ms = macs_pass_set_uniform(*out, "bg_min_weight", &mw);
     return ms ? bgi_gpu_fail_macs(r, ms, "spawn uniforms") : BG_OK;
 }
@@ -245,23 +245,23 @@ static const char *const resolve_main = "vec4 bg_a = texture2D(bg_accum, macs_uv
 static bg_status build_resolve_pass(bg_renderer *r)
 {
     macs_input_desc in[1] = {{"bg_accum"}};
-    macs_texture *in_tex[1] = {r->accum};
-    macs_texture *outs[1] = {r->encoded};
+    macs_texture *in_tex[1] = {r->multipass->accum};
+    macs_texture *outs[1] = {r->multipass->encoded};
     const char *files[] = {"bg_stage_resolve.glsl", NULL};
     return simple_pass(r, "resolve pass", files, resolve_main, in, 1, in_tex, NULL, 0,
-                       r->key.encoding == BG_ENCODING_LINEAR ? "vec4(bg_encode(bg_l, false), bg_alpha)"
+                       r->multipass->key.encoding == BG_ENCODING_LINEAR ? "vec4(bg_encode(bg_l, false), bg_alpha)"
                                                              : "vec4(bg_encode(bg_l, true), bg_alpha)",
-                       outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve);
+                       outs, 1, MACS_BLEND_NONE, NULL, &r->multipass->passes.resolve);
 }
 
 /* The accumulation as it is into a float target texture, alpha as the RGBA8 resolve writes it. */
 bg_status bgi_gpu_resolve_float_pass_build(bg_renderer *r, macs_texture *target)
 {
     macs_input_desc in[1] = {{"bg_accum"}};
-    macs_texture *in_tex[1] = {r->accum};
+    macs_texture *in_tex[1] = {r->multipass->accum};
     macs_texture *outs[1] = {target};
     return simple_pass(r, "float resolve pass", NULL, resolve_main, in, 1, in_tex, NULL, 0, "vec4(bg_l, bg_alpha)",
-                       outs, 1, MACS_BLEND_NONE, NULL, &r->passes.resolve_float);
+                       outs, 1, MACS_BLEND_NONE, NULL, &r->multipass->passes.resolve_float);
 }
 
 bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings)
@@ -272,11 +272,11 @@ bg_status bgi_gpu_ray_passes_build(bg_renderer *r, const bg_scene_state *state, 
         st = build_camera_pass(r, state, set0);
     if (st == BG_OK)
         st = build_mark_pass(r);
-    if (st == BG_OK && r->key.background_on)
+    if (st == BG_OK && r->multipass->key.background_on)
         st = build_background_pass(r, settings->background);
     if (st == BG_OK && spawn_passes_wanted(r)) {
         st = build_spawn_pass(r, SPAWN_REFLECT, set0);
-        if (st == BG_OK && r->features.transparent)
+        if (st == BG_OK && r->multipass->features.transparent)
             st = build_spawn_pass(r, SPAWN_REFRACT, set0);
     }
     if (st == BG_OK)

@@ -15,8 +15,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "fused.h"
 
 /* Bounds of BG_PLAN_AUTO, as measured on llvmpipe (2 cores shared, 512x512, medians): objects are
  * unrolled into the shader, so its compile time grows faster than their number: many_spheres with
@@ -48,7 +48,7 @@ struct gpu_fused {
     macs_texture **textures; /* per scene texture (handle - 1), those some sampler reads */
     uint32_t texture_count;
     uint64_t texture_hash;   /* of what textures hold */
-    gpu_fused_tree tree;     /* the tree variant's textures */
+    gpu_tree_textures tree;     /* the tree variant's textures */
 };
 
 
@@ -95,9 +95,9 @@ static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fu
 {
     int comps = bgi_gpu_fused_uniform_components(l), budget = macs_context_max_uniform_components(r->ctx);
     int units = input_count(l);
-    if (l->tree && !bgi_gpu_fused_tree_fits(r, state, why, size))
+    if (l->tree && !bgi_gpu_tree_textures_fit(r, state, why, size))
         return false;
-    if (!l->tree && !bgi_gpu_fused_tree_meshes_fit(r, state, why, size))
+    if (!l->tree && !bgi_gpu_meshes_fit(r, state, why, size))
         return false;
     if (bgi_gpu_fused_layout_budgeted(l) && l->walk_budget < MIN_WALK_BUDGET)
         snprintf(why, size, "%.0f rays per pixel with %u lights leave the tree walks %d loop steps, fewer than %d",
@@ -371,7 +371,7 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     bool walks = bgi_gpu_fused_layout_walks(l);
     bg_status st = textures_prepare(r, f, state, l);
     if (st == BG_OK && (walks || l->mesh))
-        st = bgi_gpu_fused_tree_prepare(r, &f->tree, state, walks);
+        st = bgi_gpu_tree_textures_prepare(r, &f->tree, state, walks);
     if (st == BG_OK)
         st = output_for(r, f, o, out);
     if (st != BG_OK)
@@ -406,18 +406,18 @@ static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_f
 }
 
 /* The frame's end: the image read back, or the texture as the pass left it. Either way the pixels
- * the tree walks marked are then rendered by the CPU reference (fused_tree.c, fused_tree_target.c). */
+ * the tree walks marked are then rendered by the CPU reference (tree_textures.c, fallback.c). */
 static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                         const gpu_frame_out *o, macs_texture *out)
 {
     bool walks = bgi_gpu_fused_layout_budgeted(&r->fused->layout);
     if (o->texture)
-        return walks ? bgi_gpu_fused_tree_fallback_texture(r, &r->fused->tree, state, settings, o->texture,
+        return walks ? bgi_gpu_fallback_texture(r, &r->fused->tree, state, settings, o->texture,
                                                      &r->stats.fallback_pixels)
                      : BG_OK;
     bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
     if (st == BG_OK && walks)
-        r->stats.fallback_pixels = bgi_gpu_fused_tree_fallback(state, settings, &r->view.pixels, o->image, o->stride);
+        r->stats.fallback_pixels = bgi_gpu_fallback_image(state, settings, &r->view.pixels, o->image, o->stride);
     return st;
 }
 
@@ -512,7 +512,7 @@ void bgi_gpu_fused_release(bg_renderer *r)
     macs_pass_destroy(f->pass);
     outputs_release(f);
     textures_release(r, f);
-    bgi_gpu_fused_tree_release(&r->allocator, &f->tree);
+    bgi_gpu_tree_textures_release(&r->allocator, &f->tree);
     bgi_gpu_fused_layout_free(&r->allocator, &f->layout);
     bgi_free(&r->allocator, f->key);
     bgi_free(&r->allocator, f->refused);

@@ -7,7 +7,7 @@
  * Intersection batches are runs of consecutive objects: ties between objects go to the one drawn
  * first, and a run keeps that order both inside the pass (hit_pass.c) and between passes.
  * Shadow batches may take any casters of a group: visibility is a product of 0s and 1s. */
-#include "gpu_internal.h"
+#include "multipass.h"
 
 /* Per-pass cost on llvmpipe in pixel-object tests: what a pass costs beyond its pixels (draw,
  * framebuffer binding, uniform upload, tile setup). An estimate, not a measurement: on the paper's
@@ -30,7 +30,7 @@ int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count)
 
 static bool batching(const bg_renderer *r)
 {
-    return !(r->key.disable_skips & BG_SKIP_BATCH);
+    return !(r->multipass->key.disable_skips & BG_SKIP_BATCH);
 }
 
 bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, const gpu_view *view, int rect[4])
@@ -48,8 +48,8 @@ bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, cons
 /* Camera-ray pixels of a run (the whole image when some object is unbounded or the scissor is off). */
 static double camera_area(const bg_renderer *r, const bg_scene_state *state, int first, int count)
 {
-    double full = (double)r->width * (double)r->height;
-    if (r->key.disable_skips & BG_SKIP_SCISSOR)
+    double full = (double)r->multipass->width * (double)r->multipass->height;
+    if (r->multipass->key.disable_skips & BG_SKIP_SCISSOR)
         return full;
     gpu_batch b = {NULL, first, count, 0};
     int rect[4];
@@ -65,7 +65,7 @@ static double camera_area(const bg_renderer *r, const bg_scene_state *state, int
  * per-pixel work that does not depend on the objects counts once. */
 static bool merge_pays(const bg_renderer *r, const bg_scene_state *state, int first, int count)
 {
-    bool bounces = r->key.bounces && (r->features.bounce || (r->key.disable_skips & BG_SKIP_BOUNCE_CULL));
+    bool bounces = r->multipass->key.bounces && (r->multipass->features.bounce || (r->multipass->key.disable_skips & BG_SKIP_BOUNCE_CULL));
     if (bounces)
         return true;
     double run = camera_area(r, state, first, count);
@@ -78,7 +78,7 @@ int bgi_gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, g
 {
     int n = (int)state->object_count, batches = 0;
     /* The ray maps take three, the mesh textures two. */
-    int units = r->limits.max_texture_units - 3 - (r->features.mesh ? 2 : 0);
+    int units = r->limits.max_texture_units - 3 - (r->multipass->features.mesh ? 2 : 0);
     int budget = macs_context_max_uniform_components(r->ctx) - bgi_gpu_hit_shared_components();
     for (int o = 0; o < n;) {
         uint32_t textures[GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES];

@@ -8,8 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "fused.h"
 
 #define PI 3.14159265358979323846
 

@@ -1,8 +1,8 @@
 /* The last step of a frame into the caller's image: a finished RGBA8 or RGBA32F texture read back. */
 #include <string.h>
 
-#include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "../../common/alloc.h"
+#include "shared.h"
 
 void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes)
 {
