@@ -1,6 +1,7 @@
 /* The driver of the GPU renderer: the entry points (bg_render_gpu, bg_render_gpu_to_texture), the
- * renderer object, tiles, samples and the frame that chooses a plan. It calls down into fused/ and
- * multipass/ (and shared/); nothing there calls back up. */
+ * renderer object, tiles, the frame, samples and the plan choice. Calls go one way, entry -> tiles ->
+ * frame -> (samples ->) plan choice -> a plan, and down into fused/ and multipass/ (and shared/);
+ * nothing there calls back up. */
 #ifndef BG_GPU_DRIVER_H
 #define BG_GPU_DRIVER_H
 
@@ -17,10 +18,6 @@ void bgi_gpu_release_all(bg_renderer *r);
  * progress at 1; fills the renderer's statistics. */
 bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
                                const gpu_frame_out *out, const bgi_render_view *view);
-/* One pass of the frame for r->view (one sample): the fused plan where it runs, else the multipass;
- * resets and fills the renderer's statistics. */
-bg_status bgi_gpu_frame_pass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                             const gpu_frame_out *out);
 
 /* ---- tiles.c ---- */
 /* bg_render_gpu's frame into out->image: in one piece through bgi_gpu_frame_render, or as tiles of
@@ -35,7 +32,16 @@ void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out);
 /* A frame of view->samples > 1: one pass per sample into a float image on the host, summed there in
  * sample order and divided by the count, then encoded into out's image or uploaded into its
  * texture; progress after each pass, cancelling between passes leaves out untouched. */
-bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                                 const gpu_frame_out *out, const bgi_render_view *view);
+bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                                 const bg_render_settings *settings, const gpu_frame_out *out,
+                                 const bgi_render_view *view);
+
+/* ---- plan.c ---- */
+/* One pass of the frame for r->view (one sample) by the plan the settings ask for, or under
+ * BG_PLAN_AUTO the one that takes it; resets and fills the renderer's statistics. */
+bg_status bgi_gpu_plan_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                              const bg_render_settings *settings, const gpu_frame_out *out);
+/* Frees every plan's objects. */
+void bgi_gpu_plans_release(bg_renderer *r);
 
 #endif

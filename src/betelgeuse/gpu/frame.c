@@ -1,25 +1,8 @@
-/* One frame of the committed scene: the driver's step between the entry points (through tiles.c and
- * samples.c) and the plans. A frame of several samples goes to samples.c, which comes back here for
- * each sample's pass; a pass is rendered by the plan that takes it (fused/, else multipass/). */
-#include <string.h>
-
+/* One frame of the committed scene: the driver's step between the entry points (through tiles.c) and
+ * the plan choice (plan.c). The committed state is read here, once per frame; a frame of several
+ * samples goes to samples.c, which hands each sample's pass to the plan choice. */
 #include "../common/render_settings.h"
 #include "driver.h"
-
-bg_status bgi_gpu_frame_pass(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                             const gpu_frame_out *out)
-{
-    const bg_scene_state *state = bgi_scene_committed(scene);
-    memset(&r->stats, 0, sizeof r->stats);
-    uint64_t compiled = macs_context_programs_compiled(r->ctx);
-    /* The fused plan renders the whole frame in one pass where it can (fused.c); else the multipass. */
-    bool fused = false;
-    bg_status st = bgi_gpu_fused_render(r, state, settings, out, &fused);
-    if (st == BG_OK && !fused)
-        st = bgi_gpu_multipass_render(r, scene, state, settings, out);
-    r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
-    return st;
-}
 
 bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
                                const gpu_frame_out *out, const bgi_render_view *view)
@@ -31,9 +14,9 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
         return bgi_gpu_fail(r, BG_ERR_CANCELLED, "%s: cancelled by settings.progress before the first pass; the "
                             "pixels of this frame (of this tile, when tiled) are untouched", out->fn);
     if (view->samples > 1)
-        return bgi_gpu_samples_render(r, scene, settings, out, view);
+        return bgi_gpu_samples_render(r, scene, state, settings, out, view);
     bgi_gpu_view_for_sample(view, 0, &r->view);
-    bg_status st = bgi_gpu_frame_pass(r, scene, settings, out);
+    bg_status st = bgi_gpu_plan_render(r, scene, state, settings, out);
     if (st == BG_OK)
         bgi_render_progress(settings, 1.0);
     return st;

@@ -56,8 +56,9 @@ static bg_status write_out(bg_renderer *r, const bg_render_settings *settings, c
     return ms ? bgi_gpu_fail_macs(r, ms, "bg_render_gpu_to_texture: uploading the averaged samples") : BG_OK;
 }
 
-bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                                 const gpu_frame_out *out, const bgi_render_view *view)
+bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                                 const bg_render_settings *settings, const gpu_frame_out *out,
+                                 const bgi_render_view *view)
 {
     int w = out->width, h = out->height, n = view->samples;
     size_t bytes = (size_t)w * (size_t)h * 16;
@@ -79,7 +80,7 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_rende
     size_t floats = (size_t)w * (size_t)h * 4;
     for (int s = 0; s < n && st == BG_OK; s++) {
         bgi_gpu_view_for_sample(view, s, &r->view);
-        st = bgi_gpu_frame_pass(r, scene, settings, &one);
+        st = bgi_gpu_plan_render(r, scene, state, settings, &one);
         if (st != BG_OK)
             break;
         fallback += r->stats.fallback_pixels;

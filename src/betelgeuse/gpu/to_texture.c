@@ -1,6 +1,6 @@
 /* bg_render_gpu_to_texture: the frame ends in the caller's MACS texture instead of a host image.
  * The same checks as bg_render_gpu, with the texture's size and format in the image's place; the
- * frame itself is bgi_gpu_frame_render's, which writes the target on the GPU (fused.c, frame.c) and
+ * frame itself is bgi_gpu_frame_render's, which writes the target on the GPU (fused/fused.c, multipass/multipass_frame.c) and
  * reads back only the tree variant's marks (fallback.c). */
 
 #include "../common/image.h"

@@ -8,10 +8,10 @@
  *
  * Invariant: the program depends on the scene's structure alone (gpu_fused_layout), and its full
  * source is the cache key; values reach it as uniforms, so a re-commit that moves the camera or
- * changes a material's colour compiles nothing. BG_PLAN_AUTO takes the fused plan only within the
- * bounds below, where it was measured against the CPU reference (test_bg_gpu_plans) and against the
- * multipass; outside them, or when GL refuses the program, it renders with the multipass and says
- * why at BG_LOG_INFO. */
+ * changes a material's colour compiles nothing. Under BG_PLAN_AUTO the plan declines a frame beyond
+ * the bounds below, where it was measured against the CPU reference (test_bg_gpu_plans) and against
+ * the multipass, or when GL refuses the program; the driver's choice (plan.c) then renders it with
+ * the multipass and says why at BG_LOG_INFO. */
 #include <stdio.h>
 #include <string.h>
 
@@ -29,11 +29,6 @@
 #define AUTO_MAX_OBJECTS 32
 #define AUTO_MAX_LIGHTS 64
 #define AUTO_MAX_RAYS 1023.0
-/* BG_PLAN_AUTO walks a tree from this many objects in the scene's tree on, and unrolls below. At
- * 512x512 (one process, 2 quiet cores) many_spheres with 8 and 16 spheres took 79 and 102 ms with
- * the tree against 89 and 170 unrolled; the shared scenes of 2 to 5 objects (paper_earth_shadow,
- * glass, textured_aniso) 21-62 ms against 12-42 ms. */
-#define AUTO_TREE_FROM 8
 /* The fewest walk steps per pixel the tree variant runs with: below, most pixels of an ordinary
  * scene would go to the CPU reference. */
 #define MIN_WALK_BUDGET 1024
@@ -52,29 +47,7 @@ struct gpu_fused {
 };
 
 
-/* BG_PLAN_AUTO goes to the multipass: says why at BG_LOG_INFO. */
-static bg_status decline(bg_renderer *r, const char *why)
-{
-    bgi_gpu_log(r, BG_LOG_INFO, "bg_render_gpu: rendering with the multipass plan: %s", why);
-    return BG_OK;
-}
-
 /* ---- what the fused plan can render ---- */
-
-/* A setting or renderer option that only the multipass has, which BG_PLAN_AUTO honours by choosing
- * it (a forced fused plan has none of them and ignores them); NULL when none is asked for. */
-static const char *multipass_option(const bg_renderer *r, const bg_render_settings *settings)
-{
-    if (settings->gpu_disable_skips)
-        return "settings.gpu_disable_skips switches off work of the multipass plan";
-    if (settings->dmax > 0.0)
-        return "settings.dmax sets the multipass plan's depth scale";
-    if (r->half_gbuffer)
-        return "the renderer was created for a half-float G-buffer, which only the multipass plan has";
-    if (r->float_depth)
-        return "the renderer was created for a float depth buffer, which only the multipass plan has";
-    return NULL;
-}
 
 /* The program's textures: the scene's, then the object tree's two where it walks one, then the
  * meshes' (bind_frame sets them in this order). */
@@ -311,21 +284,20 @@ static void adopt_layout(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *
 
 /* Makes f->pass the program of p at w x h, reusing the cached one when its key is the same. A size
  * change alone makes a pass of the same program, which MACS's program cache hands over while the
- * old pass still holds it: nothing is compiled. *declined is set when GL refused the program under
- * BG_PLAN_AUTO (the reason logged). */
+ * old pass still holds it: nothing is compiled. Under BG_PLAN_AUTO a program GL refused declines the
+ * frame: BG_OK with the reason in why. */
 static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_layout *l, program_text *p,
-                              const gpu_frame_out *o, bool forced, bool *declined)
+                              const gpu_frame_out *o, bool forced, char *why, size_t why_size)
 {
     int w = o->width, h = o->height;
-    *declined = false;
     bool same = f->pass && f->key && strcmp(f->key, p->key.s) == 0;
     if (same && f->width == w && f->height == h) {
         adopt_layout(r, f, l);
         return BG_OK;
     }
     if (!forced && f->refused && strcmp(f->refused, p->key.s) == 0) {
-        *declined = true;
-        return decline(r, "GL refused the fused program for this scene before");
+        snprintf(why, why_size, "GL refused the fused program for this scene before");
+        return BG_OK;
     }
     if (f->width != w || f->height != h)
         outputs_release(f);
@@ -334,15 +306,13 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
     if (st != BG_OK)
         return st;
     macs_pass *pass = NULL;
-    char refused[MACS_MESSAGE_SIZE] = "";
-    st = pass_create(r, l, p, out, !forced, &pass, refused, sizeof refused);
+    st = pass_create(r, l, p, out, !forced, &pass, why, why_size);
     if (st != BG_OK)
         return st;
     if (!pass) {
         bgi_free(&r->allocator, f->refused);
         f->refused = bgi_strdup(&r->allocator, p->key.s);
-        *declined = true;
-        return decline(r, refused);
+        return BG_OK;
     }
     macs_pass_destroy(f->pass);
     f->pass = pass;
@@ -421,9 +391,10 @@ static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_re
     return st;
 }
 
-/* Everything after the choice: the program, the frame's inputs, the pass, the frame's end. */
+/* Everything after the layout: the program, the frame's inputs, the pass, the frame's end; BG_OK
+ * with why set when GL refused the program under BG_PLAN_AUTO. */
 static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
-                        const gpu_frame_out *o, gpu_fused_layout *l, bool forced, bool *declined)
+                        const gpu_frame_out *o, gpu_fused_layout *l, bool forced, char *why, size_t why_size)
 {
     bool timing = settings->gpu_timing;
     double clock = 0.0;
@@ -432,9 +403,9 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     program_text p;
     bg_status st = program_text_make(r, l, &p);
     if (st == BG_OK)
-        st = pass_prepare(r, r->fused, l, &p, o, forced, declined);
+        st = pass_prepare(r, r->fused, l, &p, o, forced, why, why_size);
     program_text_free(r, &p);
-    if (st != BG_OK || *declined)
+    if (st != BG_OK || why[0])
         return st;
     macs_texture *out = NULL;
     st = bind_frame(r, state, settings, o, &out);
@@ -458,20 +429,10 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     return BG_OK;
 }
 
-bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
-                           const gpu_frame_out *out, bool *done)
+/* One pass of the fused plan, unrolled or (tree) with the object tree walked from textures. */
+static bg_status render_variant(bg_renderer *r, const gpu_plan_frame *f, bool tree, char *why, size_t why_size)
 {
-    *done = false;
-    r->stats.plan = BG_PLAN_MULTIPASS;
-    if (settings->gpu_plan == BG_PLAN_MULTIPASS)
-        return BG_OK;
-    bool forced = settings->gpu_plan == BG_PLAN_FUSED || settings->gpu_plan == BG_PLAN_FUSED_TREE;
-    bool tree = settings->gpu_plan == BG_PLAN_FUSED_TREE ||
-                (settings->gpu_plan == BG_PLAN_AUTO && (state->tree_count >= AUTO_TREE_FROM || state->mesh_object_count > 0));
-    const char *name = tree ? "BG_PLAN_FUSED_TREE" : "BG_PLAN_FUSED";
-    const char *option = multipass_option(r, settings);
-    if (!forced && option)
-        return decline(r, option);
+    why[0] = '\0';
     if (!r->fused) {
         r->fused = bgi_alloc(&r->allocator, sizeof *r->fused);
         if (!r->fused)
@@ -479,30 +440,33 @@ bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, cons
         memset(r->fused, 0, sizeof *r->fused);
     }
     gpu_fused_layout l;
-    if (!bgi_gpu_fused_layout_build(&r->allocator, state, settings, tree, &l))
+    if (!bgi_gpu_fused_layout_build(&r->allocator, f->state, f->settings, tree, &l))
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan's layout");
-    char why[256];
-    if (!fits(r, state, &l, forced, why, sizeof why)) {
-        bgi_gpu_fused_layout_free(&r->allocator, &l);
-        if (forced)
-            return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s: %s cannot render this frame: %s", out->fn, name, why);
-        return decline(r, why);
+    bg_status st = BG_OK;
+    if (fits(r, f->state, &l, f->forced, why, why_size)) {
+        why[0] = '\0';
+        st = render(r, f->state, f->settings, f->out, &l, f->forced, why, why_size);
     }
-    bool declined = false;
-    bg_status st = render(r, state, settings, out, &l, forced, &declined);
     bgi_gpu_fused_layout_free(&r->allocator, &l);
     if (st != BG_OK) {
         /* Start the next render from nothing: a failure may have left any object half made. */
         bgi_gpu_fused_release(r);
-        *done = true;
-        return st;
     }
-    if (!declined) {
-        r->stats.plan = tree ? BG_PLAN_FUSED_TREE : BG_PLAN_FUSED;
-        *done = true;
-    }
-    return BG_OK;
+    return st;
 }
+
+static bg_status render_unrolled(bg_renderer *r, const gpu_plan_frame *f, char *why, size_t why_size)
+{
+    return render_variant(r, f, false, why, why_size);
+}
+
+static bg_status render_tree(bg_renderer *r, const gpu_plan_frame *f, char *why, size_t why_size)
+{
+    return render_variant(r, f, true, why, why_size);
+}
+
+const gpu_plan bgi_gpu_fused_plan = {BG_PLAN_FUSED, "BG_PLAN_FUSED", render_unrolled, bgi_gpu_fused_release};
+const gpu_plan bgi_gpu_fused_tree_plan = {BG_PLAN_FUSED_TREE, "BG_PLAN_FUSED_TREE", render_tree, bgi_gpu_fused_release};
 
 void bgi_gpu_fused_release(bg_renderer *r)
 {

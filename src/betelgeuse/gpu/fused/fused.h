@@ -160,11 +160,11 @@ typedef struct gpu_fused_values {
     const gpu_view *view; /* the frame size, the window and the sample */
 } gpu_fused_values;
 
-/* Renders the frame with the fused plan when settings (and, for BG_PLAN_AUTO, the scene and the GL
- * limits) choose it: *done true. Otherwise *done is false with BG_OK and the caller runs the
- * multipass (stats.plan says so). */
-bg_status bgi_gpu_fused_render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
-                           const gpu_frame_out *out, bool *done);
+/* The fused plan, unrolled (BG_PLAN_FUSED) and with the object tree (BG_PLAN_FUSED_TREE). Under
+ * BG_PLAN_AUTO either declines a frame beyond the GL limits, beyond the bounds it was measured
+ * within, or whose program GL refuses. */
+extern const gpu_plan bgi_gpu_fused_plan;
+extern const gpu_plan bgi_gpu_fused_tree_plan;
 /* Frees the fused plan's program, textures and cache. */
 void bgi_gpu_fused_release(bg_renderer *r);
 

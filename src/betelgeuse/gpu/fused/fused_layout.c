@@ -1,7 +1,7 @@
-/* The structure of a committed scene as the fused plan's program sees it (gpu_internal.h,
+/* The structure of a committed scene as the fused plan's program sees it (fused.h,
  * gpu_fused_layout). Invariant: nothing here depends on a value the scene may change without a new
  * structure, except through the material feature classes the multipass specialises on too
- * (features.c): transparency > 0, isotropy < 1, roughness < 1/2, a coat, a texture handle. A value
+ * (shared/material_traits.c, multipass/features.c): transparency > 0, isotropy < 1, roughness < 1/2, a coat, a texture handle. A value
  * that moves a material across one of them changes the program; any other value only a uniform. */
 #include <math.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* The fused shader's uniforms, from one list (GPU_FUSED_UNIFORMS and GPU_FUSED_PARAMS in
- * gpu_internal.h): their declarations, the uniform budget they take, their values per render, and
+ * fused.h): their declarations, the uniform budget they take, their values per render, and
  * the names the generated source uses. A new uniform is one new row there and, for a row of
  * GPU_FUSED_UNIFORMS, one value function here.
  *

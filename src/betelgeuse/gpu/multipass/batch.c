@@ -60,7 +60,7 @@ static double camera_area(const bg_renderer *r, const bg_scene_state *state, int
 
 /* Whether adding object `next` to the run first .. first + count - 1 costs camera rays no more than
  * it saves. A scene whose rays bounce always merges: every secondary set covers the same rectangle
- * for all objects (frame.c), where one pass fewer is a pure saving, and those sets outnumber the
+ * for all objects (multipass_frame.c), where one pass fewer is a pure saving, and those sets outnumber the
  * camera's one. Otherwise the cost of a pass is its overhead plus its area times (1 + objects): the
  * per-pixel work that does not depend on the objects counts once. */
 static bool merge_pays(const bg_renderer *r, const bg_scene_state *state, int first, int count)

@@ -513,7 +513,7 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
     const gpu_features *f = &r->multipass->features;
     bool need_tangent = f->slot[GPU_SLOT_TANGENT];
     /* A pixel whose walk ran out is kept at depth 0, marked in the MESH slot for the CPU reference
-     * (frame.c), whatever it met. */
+     * (multipass_frame.c), whatever it met. */
     if (hp->meshes > 0)
         bgi_gpu_text_append(main, "bool bg_short = bg_tree_short > 0.0;\nif (bg_win < 0.0 && !bg_short)\n    discard;\n"
                                   "gl_FragDepth = bg_short ? 0.0 : bg_z;\nvec3 bg_mesh_ov = vec3(0.0);\n");

@@ -298,7 +298,7 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     bool skip_facing = !(r->multipass->key.disable_skips & BG_SKIP_FACING);
     if (count == 0) {
         /* Ambient and emission alone: they are already weighted in the G-buffer. With meshes, the
-         * alpha counts the hits whose walk ran out of steps (frame.c hands those pixels to the CPU). */
+         * alpha counts the hits whose walk ran out of steps (multipass_frame.c hands those pixels to the CPU). */
         macs_input_desc in[2] = {{"bg_g_once"}, {"bg_g_mesh"}};
         macs_texture *in_tex[2] = {r->multipass->gbuffer[GPU_SLOT_ONCE], r->multipass->gbuffer[GPU_SLOT_MESH]};
         macs_output_desc output = {"radiance", f->mesh ? "vec4(texture2D(bg_g_once, macs_uv).rgb, "
@@ -355,7 +355,7 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     bgi_gpu_text_append(&main, vis ? "vec4 bg_v = texture2D(bg_vis, macs_uv);\n" : "vec4 bg_v = vec4(1.0);\n");
     bgi_gpu_text_append(&main, "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\nfloat bg_unknown = 0.0;\n");
     /* A visibility strictly between 0 and 1 is a shadow walk that ran out of steps (shadow pass):
-     * the alpha counts it, and frame.c hands the pixel to the CPU reference. */
+     * the alpha counts it, and multipass_frame.c hands the pixel to the CPU reference. */
     for (int i = 0; i < count && vis && f->mesh; i++)
         bgi_gpu_text_printf(&main, "if (bg_v.%c > 0.0 && bg_v.%c < 1.0)\n    bg_unknown = 1.0;\n", "xyzw"[i], "xyzw"[i]);
     {

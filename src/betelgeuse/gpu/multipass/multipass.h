@@ -117,10 +117,8 @@ typedef struct gpu_multipass {
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
 #define GPU_STENCIL_LIVE 0x1u
 #define GPU_STENCIL_HIT 0x2u
-/* One pass of the frame (r->view) with the multipass into out; fills the renderer's statistics. On a
- * failure it frees its own objects, so that the next frame starts from nothing. */
-bg_status bgi_gpu_multipass_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
-                                   const bg_render_settings *settings, const gpu_frame_out *out);
+/* The multipass plan: it renders every frame (it never declines). */
+extern const gpu_plan bgi_gpu_multipass_plan;
 /* Frees every object of the multipass (passes, targets, textures, meshes) and the gpu_multipass. */
 void bgi_gpu_multipass_release(bg_renderer *r);
 

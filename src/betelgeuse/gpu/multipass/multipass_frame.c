@@ -456,9 +456,13 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
 }
 
 /* The paper's frame: ray maps, G-buffer, one pass per object batch, light group and ray set. */
-bg_status bgi_gpu_multipass_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
-                                   const bg_render_settings *settings, const gpu_frame_out *out)
+static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, size_t why_size)
 {
+    const bg_scene_state *state = pf->state;
+    const bg_render_settings *settings = pf->settings;
+    const gpu_frame_out *out = pf->out;
+    if (why_size)
+        why[0] = '\0'; /* the multipass renders every frame */
     if (!r->multipass) {
         r->multipass = bgi_alloc(&r->allocator, sizeof *r->multipass);
         if (!r->multipass)
@@ -478,7 +482,7 @@ bg_status bgi_gpu_multipass_render(bg_renderer *r, const bg_scene *scene, const 
     bgi_gpu_dmax_levels(state, settings, f.dmax);
 
     phase_start(&f);
-    st = prepare(&f, scene, out->width, out->height);
+    st = prepare(&f, pf->scene, out->width, out->height);
     phase_end(&f, BG_PHASE_SETUP);
     /* The camera's shift follows the window and the sample: a uniform, set every frame. */
     if (st == BG_OK)
@@ -534,3 +538,5 @@ void bgi_gpu_multipass_release(bg_renderer *r)
     bgi_free(&r->allocator, m);
     r->multipass = NULL;
 }
+
+const gpu_plan bgi_gpu_multipass_plan = {BG_PLAN_MULTIPASS, "BG_PLAN_MULTIPASS", render, bgi_gpu_multipass_release};

@@ -1,9 +1,9 @@
 /* The passes of a frame that make, count, end and spawn rays (docs/gpu_pipeline.md): camera rays,
  * live-ray marking, the background where rays missed, reflected and refracted children, and the
  * resolve to the output encoding. What they are (background or not, bounces or not, encoding, minimum
- * weight) is read from the renderer's cache key, where frame.c decides it once from the settings:
+ * weight) is read from the renderer's cache key, where multipass_frame.c decides it once from the settings:
  * the passes built and the key that keeps them cannot disagree.
- * Ray-map inputs are bound per ray set by frame.c at the fixed input positions of gpu_internal.h. */
+ * Ray-map inputs are bound per ray set by multipass_frame.c at the fixed input positions of multipass.h. */
 #include <string.h>
 
 #include "multipass.h"
@@ -125,7 +125,7 @@ static bg_status build_mark_pass(bg_renderer *r)
 }
 
 /* Background where a live ray missed every object: the hit bit is clear. Its colour is a plain
- * uniform, set again by frame.c whenever the cached passes are reused. */
+ * uniform, set again by multipass_frame.c whenever the cached passes are reused. */
 static bg_status build_background_pass(bg_renderer *r, const double background[3])
 {
     macs_input_desc in[1] = {{"bg_ray_weight"}};
@@ -204,7 +204,7 @@ static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
 }
 
 /* Secondary rays of one kind: every live hit pixel writes its child into ray set 0's maps, which
- * frame.c rebinds to the child set; the child set's mark pass counts them. */
+ * multipass_frame.c rebinds to the child set; the child set's mark pass counts them. */
 static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *set0)
 {
     macs_pass **out = kind == SPAWN_REFRACT ? &r->multipass->passes.refract : &r->multipass->passes.reflect;
@@ -235,12 +235,12 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
 }
 
 /* The accumulation's radiance and, in bg_alpha, 0 where a mesh walk ran out of steps (the lighting
- * passes counted those hits in its alpha; frame.c then renders the pixel with the CPU reference),
+ * passes counted those hits in its alpha; multipass_frame.c then renders the pixel with the CPU reference),
  * else 1. */
 static const char *const resolve_main = "vec4 bg_a = texture2D(bg_accum, macs_uv);\nvec3 bg_l = bg_a.rgb;\n"
                                         "float bg_alpha = bg_a.a > 0.5 ? 0.0 : 1.0;\n";
 
-/* Resolve to the output encoding, into an RGBA8 target read back by frame.c (or, rebound there, the
+/* Resolve to the output encoding, into an RGBA8 target read back by multipass_frame.c (or, rebound there, the
  * caller's RGBA8 texture). */
 static bg_status build_resolve_pass(bg_renderer *r)
 {

@@ -1,6 +1,8 @@
-/* The tree variant's pixels that ran out of walk steps when the frame ends in the caller's texture
- * (bg_render_gpu_to_texture). The shader marks them with alpha 0 (tree_textures.c); they must still
- * come from the CPU reference, never stay black, while the rest of the frame stays on the GPU.
+/* The CPU reference for the pixels whose walks (the object tree's or a mesh's, in either plan) ran
+ * out of steps: the shaders mark them with alpha 0 (tree_textures.c); they must still come from the
+ * CPU reference, never stay black, while the rest of the frame stays on the GPU.
+ * bgi_gpu_fallback_image renders them into a read-back image; the rest of this file does it for a
+ * frame that ends in the caller's texture (bg_render_gpu_to_texture).
  *
  * One pass packs the marks into an RGBA8 texture of one bit per pixel (bg_tree_marks.glsl: 32
  * pixels of a row to a texel), which is all that is read back: ceil(width / 32) x height x 4 bytes,
@@ -8,6 +10,8 @@
  * as bg_render_gpu's read-back path does, in the target's format, and each run of marked pixels in a
  * row goes up with one glTexSubImage2D (macs_texture_upload_region). Rows are the texture's, bottom
  * first; the image row of texture row y is height - 1 - y. */
+#include <string.h>
+
 #include "../../cpu/cpu_internal.h"
 #include "shared.h"
 

@@ -59,6 +59,29 @@ struct bg_renderer {
     struct gpu_multipass *multipass;
 };
 
+/* ---- the plan interface: what the driver's choice (plan.c) calls, and nothing else does ---- */
+/* One pass of a frame (one sample; r->view is set) as a plan receives it. */
+typedef struct gpu_plan_frame {
+    const bg_scene *scene;              /* the multipass's cache key names it */
+    const bg_scene_state *state;        /* its committed state, read once per frame */
+    const bg_render_settings *settings;
+    const gpu_frame_out *out;
+    bool forced;                        /* the settings name this plan: it may not decline */
+} gpu_plan_frame;
+
+/* A way to render a frame on the GPU. A new plan is one more of these and one more case in the
+ * driver's choice (docs/architecture.md, "Where to add a plan"). */
+typedef struct gpu_plan {
+    bg_gpu_plan id;   /* what stats.plan says after the plan rendered */
+    const char *name; /* for messages */
+    /* Renders f into f->out and fills the statistics (the driver sets plan and programs_compiled).
+     * Unless forced it may decline: BG_OK with the reason in why, nothing rendered; why is "" when
+     * it rendered. A failure frees the plan's own objects, so its next frame starts afresh. */
+    bg_status (*render)(bg_renderer *r, const gpu_plan_frame *f, char *why, size_t why_size);
+    /* Frees every object of the plan. */
+    void (*release)(bg_renderer *r);
+} gpu_plan;
+
 #if defined(__GNUC__)
 #define GPU_PRINTF_(format_arg, first_arg) __attribute__((__format__(__printf__, format_arg, first_arg)))
 #else

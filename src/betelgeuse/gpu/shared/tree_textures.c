@@ -1,5 +1,5 @@
-/* The tree variant of the fused plan (BG_PLAN_FUSED_TREE): its two textures and the pixels it hands
- * to the CPU reference.
+/* The object tree's textures (the fused plan's tree variant, BG_PLAN_FUSED_TREE, walks them) and
+ * the meshes' (every plan walks them).
  *
  * The scene's object tree (common/bvh.h) goes to the GPU as it is, seen from the camera: the GPU's
  * frame is camera-relative (origin.c), so each frame's nodes are the tree's boxes minus the eye,
@@ -15,14 +15,13 @@
  *
  * The shader's walks share one step count per pixel, what llvmpipe's loop limit leaves them; a
  * pixel that runs out (a ray through thousands of overlapping boxes) is marked with alpha 0 and
- * rendered here by the CPU reference, pixel by pixel, on the same tree: never cut short silently
- * (fallback.c does the same for a frame that ends in the caller's texture). */
+ * rendered by the CPU reference, pixel by pixel, on the same tree: never cut short silently
+ * (fallback.c). */
 #include <stdio.h>
 #include <string.h>
 
 #include "../../common/alloc.h"
 #include "../../common/bvh.h"
-#include "../../cpu/cpu_internal.h"
 #include "shared.h"
 
 enum { NODE_TEXELS = 2, OBJECT_TEXELS = 8, WIDEST_ROW = 4096, MESH_TRIANGLE_TEXELS = 6 };
