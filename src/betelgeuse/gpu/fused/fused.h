@@ -10,27 +10,6 @@
  * is a function of the scene's structure alone (gpu_fused_layout), so every value the scene or the
  * settings give lives in a uniform of the list below and a value-only re-commit compiles nothing. */
 
-/* Material parameters the fused shader evaluates at a hit (docs/shading.md 5): id, the GLSL local
- * and uniform suffix, vec3 (true) or float, whether the value is clamped to [0, 1] (true) or to
- * >= 0 after texturing, and which materials have it (a gpu_fused_need). */
-#define GPU_FUSED_PARAMS(X)                                   \
-    X(BASE_C, "base_c", true, true, USED)                     \
-    X(BASE_R, "base_r", false, true, USED)                    \
-    X(BASE_P, "base_p", false, true, ANISO)                   \
-    X(AMBIENT, "ambient", true, false, USED)                  \
-    X(EMISSION, "emission", true, false, USED)                \
-    X(TRANSPARENCY, "transparency", false, true, TRANSPARENT) \
-    X(COAT_C, "coat_c", true, true, COAT)                     \
-    X(COAT_R, "coat_r", false, true, COAT)                    \
-    X(COAT_P, "coat_p", false, true, COAT_ANISO)
-
-typedef enum gpu_fused_param {
-#define GPU_FUSED_PARAM_ENUM_(id, local, color, unit, need) GPU_FUSED_P_##id,
-    GPU_FUSED_PARAMS(GPU_FUSED_PARAM_ENUM_)
-#undef GPU_FUSED_PARAM_ENUM_
-    GPU_FUSED_P_COUNT_
-} gpu_fused_param;
-
 /* When a uniform (or parameter) exists: for every frame, with bounces, with lights, with the object
  * tree; per object unrolled (outside the tree)
  * always, with a tangent, with UVs; per material used, anisotropic, transparent, coated, both. */
@@ -45,10 +24,10 @@ typedef enum gpu_fused_need {
 typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_OBJECT, GPU_FUSED_MATERIAL } gpu_fused_scope;
 
 /* Every uniform of the fused shader besides the material parameters (which follow as rows
- * "bg_m<k>_<local>", one per GPU_FUSED_PARAMS entry): id, scope, GLSL name (%u: the object or
+ * "bg_m<k>_<local>", one per GPU_PARAMS entry): id, scope, GLSL name (%u: the object or
  * material index), type, when it exists, the fused_uniforms.c function that computes its value. The
  * declarations, the uniform budget, the values and the names the generated source uses all come
- * from this list and GPU_FUSED_PARAMS. */
+ * from this list and GPU_PARAMS. */
 #define GPU_FUSED_UNIFORMS(X)                                                   \
     X(SIZE, FRAME, "bg_size", VEC2, ALWAYS, image_size)                         \
     X(SHIFT, FRAME, "bg_shift", VEC2, ALWAYS, pixel_shift)                      \
@@ -85,16 +64,16 @@ typedef enum gpu_fused_uniform {
 
 /* The row of material parameter p in the uniform list (after the GPU_FUSED_UNIFORMS rows). */
 #define GPU_FUSED_PARAM_ROW(p) (GPU_FUSED_U_COUNT_ + (int)(p))
-#define GPU_FUSED_ROW_COUNT (GPU_FUSED_U_COUNT_ + GPU_FUSED_P_COUNT_)
+#define GPU_FUSED_ROW_COUNT (GPU_FUSED_U_COUNT_ + GPU_P_COUNT_)
 
 /* A material as the fused shader specialises it; only used materials get code and uniforms. */
 typedef struct gpu_fused_material {
     bool used, aniso, coat, transparent;
     bool bounce;                          /* may spawn a secondary ray (bgi_gpu_material_may_bounce) */
     bool textured;                        /* some parameter samples a texture: its objects need UVs */
-    uint32_t texture[GPU_FUSED_P_COUNT_]; /* scene texture (1-based) of each parameter, 0 none */
-    int channel[GPU_FUSED_P_COUNT_];      /* the texel channel of a textured scalar */
-    int sampler[GPU_FUSED_P_COUNT_];      /* the shader's sampler of that texture, -1 none */
+    uint32_t texture[GPU_P_COUNT_]; /* scene texture (1-based) of each parameter, 0 none */
+    int channel[GPU_P_COUNT_];      /* the texel channel of a textured scalar */
+    int sampler[GPU_P_COUNT_];      /* the shader's sampler of that texture, -1 none */
 } gpu_fused_material;
 
 typedef struct gpu_fused_object {
@@ -174,8 +153,6 @@ void bgi_gpu_fused_release(bg_renderer *r);
 bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
                             bool tree, gpu_fused_layout *out);
 void bgi_gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
-/* The constant and texture of material parameter p of m (rgb for colours; value in v[0] for scalars). */
-void bgi_gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel);
 /* Whether a material has what a per-material uniform or parameter needs (the "need" columns). */
 bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);
 /* Whether an object of the layout's material samples textures / needs a shading tangent. */

@@ -9,48 +9,6 @@
 #include "../../common/alloc.h"
 #include "fused.h"
 
-static const bool param_is_color[GPU_FUSED_P_COUNT_] = {
-#define COLOR_(id, local, color, unit, need) color,
-    GPU_FUSED_PARAMS(COLOR_)
-#undef COLOR_
-};
-
-void bgi_gpu_fused_param_of(const bg_material *m, gpu_fused_param p, double v[3], uint32_t *texture, int *channel)
-{
-    const bg_color_param *c = NULL;
-    const bg_scalar_param *s = NULL;
-    switch (p) {
-    case GPU_FUSED_P_BASE_C: c = &m->base.reflectance; break;
-    case GPU_FUSED_P_BASE_R: s = &m->base.roughness; break;
-    case GPU_FUSED_P_BASE_P: s = &m->base.isotropy; break;
-    case GPU_FUSED_P_AMBIENT: c = &m->ambient; break;
-    case GPU_FUSED_P_EMISSION: c = &m->emission; break;
-    case GPU_FUSED_P_TRANSPARENCY: s = &m->transparency; break;
-    case GPU_FUSED_P_COAT_C: c = &m->coat.reflectance; break;
-    case GPU_FUSED_P_COAT_R: s = &m->coat.roughness; break;
-    case GPU_FUSED_P_COAT_P: s = &m->coat.isotropy; break;
-    default: break;
-    }
-    v[0] = v[1] = v[2] = 0.0;
-    *texture = 0;
-    *channel = 0;
-    if (c) {
-        v[0] = c->r;
-        v[1] = c->g;
-        v[2] = c->b;
-        *texture = c->texture;
-    } else if (s) {
-        v[0] = s->value;
-        *texture = s->texture;
-        *channel = s->channel & 3;
-    }
-}
-
-static bool layer_aniso(const bg_schlick_layer *l)
-{
-    return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
-}
-
 bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need)
 {
     switch (need) {
@@ -63,9 +21,9 @@ bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need
     }
 }
 
-static const gpu_fused_need param_need[GPU_FUSED_P_COUNT_] = {
+static const gpu_fused_need param_need[GPU_P_COUNT_] = {
 #define NEED_(id, local, color, unit, need) GPU_FUSED_NEED_##need,
-    GPU_FUSED_PARAMS(NEED_)
+    GPU_PARAMS(NEED_)
 #undef NEED_
 };
 
@@ -74,17 +32,17 @@ static void describe_material(const bg_material *src, gpu_fused_material *m, gpu
 {
     m->transparent = src->transparency.value > 0.0;
     m->coat = src->has_coat;
-    m->aniso = layer_aniso(&src->base) || (src->has_coat && layer_aniso(&src->coat));
+    m->aniso = bgi_gpu_material_may_be_aniso(src);
     m->bounce = bgi_gpu_material_may_bounce(src);
-    for (int p = 0; p < GPU_FUSED_P_COUNT_; p++) {
+    for (int p = 0; p < GPU_P_COUNT_; p++) {
         double v[3];
         m->sampler[p] = -1;
         m->texture[p] = 0;
         m->channel[p] = 0;
         if (!bgi_gpu_fused_material_has(m, param_need[p]))
             continue;
-        bgi_gpu_fused_param_of(src, (gpu_fused_param)p, v, &m->texture[p], &m->channel[p]);
-        if (param_is_color[p])
+        bgi_gpu_param_of(src, (gpu_param)p, v, &m->texture[p], &m->channel[p]);
+        if (bgi_gpu_param_is_color((gpu_param)p))
             m->channel[p] = 0;
         if (!m->texture[p])
             continue;

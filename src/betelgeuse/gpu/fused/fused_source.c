@@ -20,28 +20,8 @@
 static const char *const shape_file[BG_SHAPE_COUNT_] = {BG_SHAPES(FILE_OF_)};
 #undef FILE_OF_
 
-/* The library's files per UV mapping and their suffixes (the same table as hit_pass.c's). */
-static const char *const uv_file[BG_UV_COUNT_] = {NULL, "bg_uv_spherical.glsl", "bg_uv_planar.glsl",
-                                                  "bg_uv_box.glsl", "bg_uv_cylindrical.glsl"};
-static const char *const uv_name[BG_UV_COUNT_] = {"none", "spherical", "planar", "box", "cylindrical"};
 
 #define SEEN_CAP 64
-
-static const char *const param_local[GPU_FUSED_P_COUNT_] = {
-#define LOCAL_(id, local, color, unit, need) local,
-    GPU_FUSED_PARAMS(LOCAL_)
-#undef LOCAL_
-};
-static const bool param_color[GPU_FUSED_P_COUNT_] = {
-#define COLOR_(id, local, color, unit, need) color,
-    GPU_FUSED_PARAMS(COLOR_)
-#undef COLOR_
-};
-static const bool param_unit[GPU_FUSED_P_COUNT_] = {
-#define UNIT_(id, local, color, unit, need) unit,
-    GPU_FUSED_PARAMS(UNIT_)
-#undef UNIT_
-};
 
 /* The name of a uniform row for object or material i, in a buffer of the caller's. */
 typedef struct name {
@@ -86,14 +66,15 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         bool mapped = bgi_gpu_fused_object_uv(l, j) || bgi_gpu_fused_object_tangent(l, j);
         if (ok && mapped && !uv_done[o->uv_mapping]) {
             uv_done[o->uv_mapping] = true;
-            ok = uv_file[o->uv_mapping] &&
-                 bgi_gpu_text_snippet_renamed(t, uv_file[o->uv_mapping], uv, uv_name[o->uv_mapping], seen, &n, SEEN_CAP);
+            ok = bgi_gpu_uv_file(o->uv_mapping) &&
+                 bgi_gpu_text_snippet_renamed(t, bgi_gpu_uv_file(o->uv_mapping), uv, bgi_gpu_uv_suffix(o->uv_mapping),
+                                              seen, &n, SEEN_CAP);
         }
     }
     if (ok && l->aniso)
         ok = bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, SEEN_CAP);
     if (ok && (l->tree || l->mesh))
-        ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, SEEN_CAP);
+        ok = bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, SEEN_CAP);
     if (ok && l->mesh)
         ok = bgi_gpu_mesh_library(t, seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
@@ -395,7 +376,7 @@ static void emit_object_attributes(const gpu_fused_layout *l, gpu_text *t, uint3
                     uniform(l, GPU_FUSED_U_ID, j).s, thin, (unsigned)o->material);
     bool want_uv = bgi_gpu_fused_object_uv(l, j), want_tangent = bgi_gpu_fused_object_tangent(l, j);
     if (want_uv || want_tangent)
-        bgi_gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[o->uv_mapping]);
+        bgi_gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", bgi_gpu_uv_suffix(o->uv_mapping));
     if (want_uv)
         bgi_gpu_text_printf(t, "        uv *= %s;\n", uniform(l, GPU_FUSED_U_UV_SCALE, j).s);
     /* An isotropic layer's azimuth factor is exactly 1 whatever the tangent (bg_brdf.glsl). */
@@ -411,20 +392,20 @@ static const char *const channel_lane[4] = {"r", "g", "b", "a"};
 static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
 {
     const gpu_fused_material *m = &l->materials[k];
-    for (int p = 0; p < GPU_FUSED_P_COUNT_; p++) {
+    for (int p = 0; p < GPU_P_COUNT_; p++) {
         if (!bgi_gpu_fused_uniform_present(l, GPU_FUSED_PARAM_ROW(p), k))
             continue;
         char value[160];
         name u = uniform(l, GPU_FUSED_PARAM_ROW(p), k);
         if (m->sampler[p] >= 0)
             snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, uv).%s", u.s, m->sampler[p],
-                     param_color[p] ? "rgb" : channel_lane[m->channel[p] & 3]);
+                     bgi_gpu_param_is_color((gpu_param)p) ? "rgb" : channel_lane[m->channel[p] & 3]);
         else
             snprintf(value, sizeof value, "%s", u.s);
-        if (param_unit[p])
-            bgi_gpu_text_printf(t, "        %s = clamp(%s, 0.0, 1.0);\n", param_local[p], value);
+        if (bgi_gpu_param_is_unit((gpu_param)p))
+            bgi_gpu_text_printf(t, "        %s = clamp(%s, 0.0, 1.0);\n", bgi_gpu_param_local((gpu_param)p), value);
         else
-            bgi_gpu_text_printf(t, "        %s = max(%s, vec3(0.0));\n", param_local[p], value);
+            bgi_gpu_text_printf(t, "        %s = max(%s, vec3(0.0));\n", bgi_gpu_param_local((gpu_param)p), value);
     }
     if (bgi_gpu_fused_uniform_present(l, GPU_FUSED_U_IOR, k))
         bgi_gpu_text_printf(t, "        ior = %s;\n", uniform(l, GPU_FUSED_U_IOR, k).s);
@@ -464,12 +445,12 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
             if (!k->mapping[u])
                 continue;
             if (count == 1)
-                bgi_gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
+                bgi_gpu_text_printf(t, "        uv = bg_uv_map_%s(p_obj, dpdu);\n", bgi_gpu_uv_suffix(u));
             else if (position == count - 1)
-                bgi_gpu_text_printf(t, "        else\n            uv = bg_uv_map_%s(p_obj, dpdu);\n", uv_name[u]);
+                bgi_gpu_text_printf(t, "        else\n            uv = bg_uv_map_%s(p_obj, dpdu);\n", bgi_gpu_uv_suffix(u));
             else
                 bgi_gpu_text_printf(t, "        %sif (meta.z == %d.0)\n            uv = bg_uv_map_%s(p_obj, dpdu);\n",
-                                position ? "else " : "", u, uv_name[u]);
+                                position ? "else " : "", u, bgi_gpu_uv_suffix(u));
             position++;
         }
     }

@@ -1,17 +1,15 @@
-/* The fused shader's uniforms, from one list (GPU_FUSED_UNIFORMS and GPU_FUSED_PARAMS in
+/* The fused shader's uniforms, from one list (GPU_FUSED_UNIFORMS and GPU_PARAMS in
  * fused.h): their declarations, the uniform budget they take, their values per render, and
  * the names the generated source uses. A new uniform is one new row there and, for a row of
  * GPU_FUSED_UNIFORMS, one value function here.
  *
  * Every position is camera-relative (origin.c): the eye is the origin of the GPU's frame. */
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "../../common/alloc.h"
 #include "fused.h"
 
-#define PI 3.14159265358979323846
 
 /* Names are short ("bg_m12_transparency"): this is room for any index. */
 #define NAME_SIZE 40
@@ -24,7 +22,7 @@ typedef struct row {
     macs_uniform_type type;
     gpu_fused_need need;
     value_fn value; /* NULL for a material parameter: param_value */
-    int param;      /* the gpu_fused_param of a parameter row, else -1 */
+    int param;      /* the gpu_param of a parameter row, else -1 */
 } row;
 
 /* ---- values ---- */
@@ -121,73 +119,39 @@ static void tree_node_count(const gpu_fused_values *v, uint32_t i, float *out)
     out[0] = v->tree->node_count;
 }
 
-/* One light packed as bg_light.glsl reads it (the packing of bgi_gpu_set_light_uniforms, for any
- * number of lights). */
-typedef struct packed_light {
-    float pos[4], rad[3], att[3], spot[4], exponent;
-} packed_light;
-
-static packed_light pack_light(const bg_scene_state *state, uint32_t k)
-{
-    const bg_light *l = &state->lights[k];
-    packed_light p;
-    bool directional = l->type == BG_LIGHT_DIRECTIONAL;
-    if (directional) {
-        p.pos[0] = (float)l->direction.x;
-        p.pos[1] = (float)l->direction.y;
-        p.pos[2] = (float)l->direction.z;
-    } else {
-        bgi_gpu_origin_point(state, &l->position, p.pos);
-    }
-    p.pos[3] = directional ? 1.0f : 0.0f;
-    for (int c = 0; c < 3; c++) {
-        p.rad[c] = (float)(l->color[c] * l->intensity);
-        p.att[c] = (float)l->attenuation[c];
-    }
-    double axis[3] = {l->direction.x, l->direction.y, l->direction.z};
-    double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-    bool cone = !directional && l->spot_cutoff_degrees < 180.0 && len > 0.0;
-    for (int c = 0; c < 3; c++)
-        p.spot[c] = cone ? (float)(axis[c] / len) : 0.0f;
-    /* -2: no cone (bg_light.glsl), below every cosine. */
-    p.spot[3] = cone ? (float)cos(l->spot_cutoff_degrees * (PI / 180.0)) : -2.0f;
-    p.exponent = (float)l->spot_exponent;
-    return p;
-}
-
 static void light_position(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
     for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 4 * k, pack_light(v->state, k).pos, 4 * sizeof(float));
+        memcpy(out + 4 * k, bgi_gpu_light_pack(v->state, k).pos, 4 * sizeof(float));
 }
 
 static void light_radiance(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
     for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 3 * k, pack_light(v->state, k).rad, 3 * sizeof(float));
+        memcpy(out + 3 * k, bgi_gpu_light_pack(v->state, k).rad, 3 * sizeof(float));
 }
 
 static void light_attenuation(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
     for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 3 * k, pack_light(v->state, k).att, 3 * sizeof(float));
+        memcpy(out + 3 * k, bgi_gpu_light_pack(v->state, k).att, 3 * sizeof(float));
 }
 
 static void light_spot(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
     for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 4 * k, pack_light(v->state, k).spot, 4 * sizeof(float));
+        memcpy(out + 4 * k, bgi_gpu_light_pack(v->state, k).spot, 4 * sizeof(float));
 }
 
 static void light_exponent(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
     for (uint32_t k = 0; k < v->state->light_count; k++)
-        out[k] = pack_light(v->state, k).exponent;
+        out[k] = bgi_gpu_light_pack(v->state, k).exponent;
 }
 
 /* GL takes matrices column by column; the scene's are row-major. */
@@ -244,14 +208,7 @@ static void material_ior(const gpu_fused_values *v, uint32_t i, float *out)
 /* A parameter's constant; the scene's ambient light folds into the material's ambient colour. */
 static void param_value(const gpu_fused_values *v, int param, uint32_t k, float *out)
 {
-    double c[3];
-    uint32_t texture;
-    int channel;
-    bgi_gpu_fused_param_of(&v->state->materials[k], (gpu_fused_param)param, c, &texture, &channel);
-    if (param == GPU_FUSED_P_AMBIENT)
-        for (int i = 0; i < 3; i++)
-            c[i] *= v->state->ambient[i];
-    copy3(c, out);
+    bgi_gpu_param_value(v->state, &v->state->materials[k], (gpu_param)param, out);
 }
 
 /* ---- the list ---- */
@@ -263,8 +220,8 @@ static const row rows[GPU_FUSED_ROW_COUNT] = {
 #undef FIXED_ROW_
 #define PARAM_ROW_(id, local, color, unit, need) \
     {GPU_FUSED_MATERIAL, "bg_m%u_" local, color ? MACS_UNIFORM_VEC3 : MACS_UNIFORM_FLOAT, GPU_FUSED_NEED_##need, NULL, \
-     GPU_FUSED_P_##id},
-    GPU_FUSED_PARAMS(PARAM_ROW_)
+     GPU_P_##id},
+    GPU_PARAMS(PARAM_ROW_)
 #undef PARAM_ROW_
 };
 
@@ -286,12 +243,6 @@ static uint32_t repeat_index(const gpu_fused_layout *l, const row *w, uint32_t k
 static int array_count(const gpu_fused_layout *l, const row *w)
 {
     return w->scope == GPU_FUSED_LIGHTS ? (int)l->light_count : 0;
-}
-
-/* Storage of one element as old hardware allocates it: every float, vec2 or vec3 a whole vec4. */
-static int components(macs_uniform_type t)
-{
-    return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
 }
 
 void bgi_gpu_fused_uniform_name(const gpu_fused_layout *l, int r, uint32_t i, char *name, size_t size)
@@ -352,7 +303,7 @@ static bool add_components(void *user, int r, uint32_t i)
     (void)i;
     budget *b = user;
     int n = array_count(b->l, &rows[r]);
-    b->components += components(rows[r].type) * (n > 0 ? n : 1);
+    b->components += bgi_gpu_uniform_type_components(rows[r].type) * (n > 0 ? n : 1);
     return true;
 }
 

@@ -14,20 +14,6 @@
  * sphere-and-plane scene the merge it allows is 2-5 % slower (docs/gpu_pipeline.md, Batching). */
 #define PASS_COST_PIXELS 4096.0
 
-/* Uniform storage as old hardware allocates it: every float, vec2 or vec3 takes a whole vec4. */
-static int slots(macs_uniform_type t)
-{
-    return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
-}
-
-int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count)
-{
-    int components = 0;
-    for (int i = 0; i < count; i++)
-        components += slots(u[i].type) * (u[i].count > 0 ? u[i].count : 1);
-    return components;
-}
-
 static bool batching(const bg_renderer *r)
 {
     return !(r->multipass->key.disable_skips & BG_SKIP_BATCH);

@@ -5,11 +5,6 @@
 
 #include "multipass.h"
 
-static bool layer_may_be_aniso(const bg_schlick_layer *l)
-{
-    return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
-}
-
 void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f)
 {
     memset(f, 0, sizeof *f);
@@ -19,7 +14,7 @@ void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_feat
         bool transparent = m->transparency.value > 0.0;
         f->transparent |= transparent;
         f->coat |= m->has_coat;
-        f->aniso |= layer_may_be_aniso(&m->base) || (m->has_coat && layer_may_be_aniso(&m->coat));
+        f->aniso |= bgi_gpu_material_may_be_aniso(m);
         f->bounce |= bgi_gpu_material_may_bounce(m);
     }
     f->mesh = state->mesh_object_count > 0;

@@ -15,9 +15,6 @@
 #include "../../common/shapes.h"
 #include "multipass.h"
 
-static const char *const uv_file[BG_UV_COUNT_] = {NULL, "bg_uv_spherical.glsl", "bg_uv_planar.glsl",
-                                                  "bg_uv_box.glsl", "bg_uv_cylindrical.glsl"};
-static const char *const uv_name[BG_UV_COUNT_] = {"none", "spherical", "planar", "box", "cylindrical"};
 
 /* One material parameter: a uniform constant and an optional texture lane. */
 typedef struct param {
@@ -30,26 +27,38 @@ typedef struct param {
     int sampler;         /* input index of its texture lane, -1 none */
 } param;
 
-enum { P_BASE_C, P_BASE_R, P_BASE_P, P_AMBIENT, P_EMISSION, P_TRANSPARENCY, P_COAT_C, P_COAT_R, P_COAT_P, P_COUNT };
 /* Each parameter samples at most one texture. */
-typedef char every_parameter_textured_fits[P_COUNT <= GPU_HIT_MAX_TEXTURES ? 1 : -1];
+typedef char every_parameter_textured_fits[GPU_P_COUNT_ <= GPU_HIT_MAX_TEXTURES ? 1 : -1];
 
-static void describe(const bg_material *m, const gpu_features *f, param p[P_COUNT])
+/* Whether the pass declares parameter p: base and ambient terms always, the others when the scene's
+ * features have them. */
+static bool param_used(gpu_param p, const gpu_features *f)
 {
-    const char *unit = "clamp(%s, 0.0, 1.0)", *positive = "max(%s, vec3(0.0))";
-    param list[P_COUNT] = {
-        {"base_c", true, m->base.reflectance.texture, 0, unit, true, -1},
-        {"base_r", false, m->base.roughness.texture, m->base.roughness.channel, unit, true, -1},
-        {"base_p", false, m->base.isotropy.texture, m->base.isotropy.channel, unit, true, -1},
-        {"ambient", true, m->ambient.texture, 0, positive, true, -1},
-        {"emission", true, m->emission.texture, 0, positive, true, -1},
-        {"transparency", false, m->transparency.texture, m->transparency.channel, unit, f->transparent, -1},
-        {"coat_c", true, m->has_coat ? m->coat.reflectance.texture : 0, 0, unit, f->coat, -1},
-        {"coat_r", false, m->has_coat ? m->coat.roughness.texture : 0, m->coat.roughness.channel, unit, f->coat, -1},
-        {"coat_p", false, m->has_coat ? m->coat.isotropy.texture : 0, m->coat.isotropy.channel, unit,
-         f->coat && f->aniso, -1},
-    };
-    memcpy(p, list, sizeof list);
+    switch (p) {
+    case GPU_P_TRANSPARENCY: return f->transparent;
+    case GPU_P_COAT_C:
+    case GPU_P_COAT_R: return f->coat;
+    case GPU_P_COAT_P: return f->coat && f->aniso;
+    default: return true;
+    }
+}
+
+static void describe(const bg_material *m, const gpu_features *f, param p[GPU_P_COUNT_])
+{
+    for (int i = 0; i < GPU_P_COUNT_; i++) {
+        gpu_param k = (gpu_param)i;
+        double value[3];
+        param *q = &p[i];
+        q->name = bgi_gpu_param_local(k);
+        q->color = bgi_gpu_param_is_color(k);
+        bgi_gpu_param_of(m, k, value, &q->texture, &q->channel);
+        /* A material without a coat has the constants of no coat (bgi_gpu_param_value), untextured. */
+        if ((k == GPU_P_COAT_C || k == GPU_P_COAT_R || k == GPU_P_COAT_P) && !m->has_coat)
+            q->texture = 0;
+        q->clamp = bgi_gpu_param_is_unit(k) ? "clamp(%s, 0.0, 1.0)" : "max(%s, vec3(0.0))";
+        q->used = param_used(k, f);
+        q->sampler = -1;
+    }
 }
 
 /* Whether a parameter reads a texture lane: its own texture, or in generic mode (every used
@@ -104,15 +113,15 @@ static const macs_uniform_desc shared_uniforms[] = {{"bg_dmax", MACS_UNIFORM_FLO
 /* One object of the pass: its parameters, the textures it samples and the uniforms it declares. */
 typedef struct member {
     uint32_t object;
-    param p[P_COUNT];
+    param p[GPU_P_COUNT_];
     uint32_t textures[GPU_HIT_MAX_TEXTURES]; /* distinct scene textures it samples, 0 the white texel */
     int texture_count;
     bool need_uv; /* it samples some texture */
     bool mesh;    /* a mesh object: its test walks its mesh's tree */
     bool declares[U_COUNT];
     char object_uniform[U_COUNT][UNIFORM_NAME_SIZE];
-    char param_uniform[P_COUNT][UNIFORM_NAME_SIZE];
-    macs_uniform_desc uniforms[U_COUNT + P_COUNT]; /* what it declares, names pointing into the above */
+    char param_uniform[GPU_P_COUNT_][UNIFORM_NAME_SIZE];
+    macs_uniform_desc uniforms[U_COUNT + GPU_P_COUNT_]; /* what it declares, names pointing into the above */
     int uniform_count;
 } member;
 
@@ -132,7 +141,7 @@ static void member_describe(const bg_renderer *r, const bg_scene_state *state, u
     mb->object = object;
     describe(&state->materials[state->objects[object].material], f, mb->p);
     mb->texture_count = 0;
-    for (int i = 0; i < P_COUNT; i++)
+    for (int i = 0; i < GPU_P_COUNT_; i++)
         if (samples_texture(&mb->p[i], f))
             bgi_gpu_hit_texture_lane(mb->textures, &mb->texture_count, mb->p[i].texture);
     mb->need_uv = mb->texture_count > 0;
@@ -150,7 +159,7 @@ static void member_describe(const bg_renderer *r, const bg_scene_state *state, u
             mb->uniforms[mb->uniform_count++] =
                 (macs_uniform_desc){mb->object_uniform[u], object_uniform_row[u].type, 0};
     }
-    for (int i = 0; i < P_COUNT; i++) {
+    for (int i = 0; i < GPU_P_COUNT_; i++) {
         snprintf(mb->param_uniform[i], UNIFORM_NAME_SIZE, "bg_m%d_%s", j, mb->p[i].name);
         if (mb->p[i].used)
             mb->uniforms[mb->uniform_count++] =
@@ -186,7 +195,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
     for (int j = 0; j < count; j++)
         meshes += m[j].mesh ? 1 : 0;
     if (meshes > 0) {
-        ok = ok && bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 48) &&
+        ok = ok && bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, 48) &&
              bgi_gpu_mesh_library(t, seen, &n, 48);
         if (ok)
             bgi_gpu_mesh_pass_walks(meshes, t);
@@ -202,7 +211,8 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
         bg_uv_mapping mapping = state->objects[m[j].object].uv_mapping;
         if (!m[j].mesh && (m[j].need_uv || need_tangent) && !uv_done[mapping]) {
             uv_done[mapping] = true;
-            ok = uv_file[mapping] && bgi_gpu_text_snippet_renamed(t, uv_file[mapping], uv, uv_name[mapping], seen, &n, 48);
+            ok = bgi_gpu_uv_file(mapping) && bgi_gpu_text_snippet_renamed(t, bgi_gpu_uv_file(mapping), uv,
+                                                                          bgi_gpu_uv_suffix(mapping), seen, &n, 48);
         }
     }
     return ok;
@@ -243,33 +253,13 @@ static macs_status set_material_uniforms(macs_pass *pass, const bg_scene_state *
 {
     const bg_material *m = &state->materials[state->objects[mb->object].material];
     const param *p = mb->p;
-    const bg_color_param *colors[P_COUNT] = {&m->base.reflectance, NULL, NULL, &m->ambient, &m->emission, NULL,
-                                             &m->coat.reflectance, NULL, NULL};
-    const bg_scalar_param *scalars[P_COUNT] = {NULL, &m->base.roughness, &m->base.isotropy, NULL, NULL,
-                                               &m->transparency, NULL, &m->coat.roughness, &m->coat.isotropy};
     macs_status ms = MACS_OK;
-    for (int i = 0; i < P_COUNT && !ms; i++) {
+    for (int i = 0; i < GPU_P_COUNT_ && !ms; i++) {
         if (!p[i].used)
             continue;
-        if (p[i].color) {
-            const bg_color_param *c = colors[i];
-            double rgb[3] = {c->r, c->g, c->b};
-            /* The scene's ambient light folds into the material's ambient colour here. */
-            if (i == P_AMBIENT)
-                for (int k = 0; k < 3; k++)
-                    rgb[k] *= state->ambient[k];
-            float v[3] = {(float)rgb[0], (float)rgb[1], (float)rgb[2]};
-            if (i == P_COAT_C && !m->has_coat)
-                v[0] = v[1] = v[2] = 0.0f;
-            ms = macs_pass_set_uniform(pass, mb->param_uniform[i], v);
-        } else {
-            float v = (float)scalars[i]->value;
-            if (i == P_COAT_R && !m->has_coat)
-                v = -1.0f;
-            if (i == P_COAT_P && !m->has_coat)
-                v = 1.0f;
-            ms = macs_pass_set_uniform(pass, mb->param_uniform[i], &v);
-        }
+        float v[3];
+        bgi_gpu_param_value(state, m, (gpu_param)i, v);
+        ms = macs_pass_set_uniform(pass, mb->param_uniform[i], v);
     }
     if (!ms && mb->declares[U_IOR]) {
         float ior = (float)m->ior;
@@ -302,7 +292,7 @@ static void emit_shape_geometry(gpu_text *t, const bg_object_data *obj, const me
                     j, thin);
     bgi_gpu_text_printf(t, "    bg_code = bg_hit_code(bg_index_%d, %s, bg_entering);\n", j, thin);
     if (mb->need_uv || need_tangent)
-        bgi_gpu_text_printf(t, "    vec3 bg_dpdu;\n    vec2 bg_uv = bg_uv_map_%s(bg_po, bg_dpdu);\n", uv_name[obj->uv_mapping]);
+        bgi_gpu_text_printf(t, "    vec3 bg_dpdu;\n    vec2 bg_uv = bg_uv_map_%s(bg_po, bg_dpdu);\n", bgi_gpu_uv_suffix(obj->uv_mapping));
     if (mb->need_uv)
         bgi_gpu_text_printf(t, "    bg_uv *= bg_uv_scale_%d;\n", j);
     if (need_tangent)
@@ -313,7 +303,7 @@ static void emit_shape_geometry(gpu_text *t, const bg_object_data *obj, const me
 static void emit_params(gpu_text *t, const member *mb, bool transparent, bool coat)
 {
     const param *p = mb->p;
-    for (int i = 0; i < P_COUNT; i++) {
+    for (int i = 0; i < GPU_P_COUNT_; i++) {
         if (!p[i].used)
             continue;
         char value[128];
@@ -334,7 +324,7 @@ static void emit_params(gpu_text *t, const member *mb, bool transparent, bool co
     }
     /* A negative coat roughness uniform marks a material without a coat. */
     if (coat)
-        bgi_gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->param_uniform[P_COAT_R]);
+        bgi_gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->param_uniform[GPU_P_COAT_R]);
     if (transparent)
         bgi_gpu_text_printf(t, "    bg_ior = %s;\n", mb->object_uniform[U_IOR]);
 }
@@ -355,7 +345,7 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
  * used parameter samples something, the white texel where the material has no texture. The mesh
  * texture follows them in a pass with a mesh. */
 #define MAX_INPUTS (5 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
-#define MAX_UNIFORMS (SHARED_UNIFORM_COUNT + GPU_BATCH_MAX * (U_COUNT + P_COUNT))
+#define MAX_UNIFORMS (SHARED_UNIFORM_COUNT + GPU_BATCH_MAX * (U_COUNT + GPU_P_COUNT_))
 
 /* Everything a pass description points at while the pass is made. */
 typedef struct hit_pass_parts {
@@ -385,7 +375,7 @@ static void describe_members(const bg_renderer *r, const bg_scene_state *state, 
         member *mb = &hp->members[j];
         member_describe(r, state, first + (uint32_t)j, j, mb);
         hp->meshes += mb->mesh ? 1 : 0;
-        for (int i = 0; i < P_COUNT; i++)
+        for (int i = 0; i < GPU_P_COUNT_; i++)
             if (samples_texture(&mb->p[i], &r->multipass->features))
                 mb->p[i].sampler = bgi_gpu_hit_texture_lane(hp->lane_texture, &hp->lanes, mb->p[i].texture);
     }
@@ -524,7 +514,7 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
     if (need_tangent)
         bgi_gpu_text_append(main, "vec3 bg_tg;\n");
     const param *p0 = hp->members[0].p; /* which parameters are used depends on the features only */
-    for (int i = 0; i < P_COUNT; i++)
+    for (int i = 0; i < GPU_P_COUNT_; i++)
         if (p0[i].used)
             bgi_gpu_text_printf(main, "%s bg_%s;\n", p0[i].color ? "vec3" : "float", p0[i].name);
     if (f->transparent)

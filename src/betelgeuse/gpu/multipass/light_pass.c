@@ -3,13 +3,10 @@
  * each light the object blocks; one lighting pass per group adds the Schlick terms of its lights,
  * unrolled to the group's exact size, into the accumulation texture. Ambient and emission, already
  * weighted in the G-buffer's ONCE slot, are added by a pass of their own. */
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "multipass.h"
-
-#define PI 3.14159265358979323846
 
 static int group_size(const bg_scene_state *state, int group)
 {
@@ -35,27 +32,12 @@ bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
     float pos[4 * GPU_LIGHTS_PER_GROUP], rad[3 * GPU_LIGHTS_PER_GROUP], att[3 * GPU_LIGHTS_PER_GROUP];
     float spot[4 * GPU_LIGHTS_PER_GROUP], ex[GPU_LIGHTS_PER_GROUP];
     for (int i = 0; i < count; i++) {
-        const bg_light *l = &state->lights[first + i];
-        bool dir = l->type == BG_LIGHT_DIRECTIONAL;
-        if (dir) {
-            pos[4 * i + 0] = (float)l->direction.x;
-            pos[4 * i + 1] = (float)l->direction.y;
-            pos[4 * i + 2] = (float)l->direction.z;
-        } else {
-            bgi_gpu_origin_point(state, &l->position, &pos[4 * i]);
-        }
-        pos[4 * i + 3] = dir ? 1.0f : 0.0f;
-        for (int k = 0; k < 3; k++) {
-            rad[3 * i + k] = (float)(l->color[k] * l->intensity);
-            att[3 * i + k] = (float)l->attenuation[k];
-        }
-        double axis[3] = {l->direction.x, l->direction.y, l->direction.z};
-        double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-        bool cone = !dir && l->spot_cutoff_degrees < 180.0 && len > 0.0;
-        for (int k = 0; k < 3; k++)
-            spot[4 * i + k] = cone ? (float)(axis[k] / len) : 0.0f;
-        spot[4 * i + 3] = cone ? (float)cos(l->spot_cutoff_degrees * (PI / 180.0)) : -2.0f;
-        ex[i] = (float)l->spot_exponent;
+        gpu_packed_light p = bgi_gpu_light_pack(state, (uint32_t)(first + i));
+        memcpy(&pos[4 * i], p.pos, sizeof p.pos);
+        memcpy(&rad[3 * i], p.rad, sizeof p.rad);
+        memcpy(&att[3 * i], p.att, sizeof p.att);
+        memcpy(&spot[4 * i], p.spot, sizeof p.spot);
+        ex[i] = p.exponent;
     }
     macs_status ms = macs_pass_set_uniform(pass, "bg_lpos", pos);
     if (!ms)
@@ -213,7 +195,7 @@ static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const sha
     bool ok = bgi_gpu_text_snippet(t, "bg_hit_code.glsl", seen, &n, 32) && bgi_gpu_text_snippet(t, "bg_light.glsl", seen, &n, 32) &&
               bgi_gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
     if (ok && sp->meshes > 0) {
-        ok = bgi_gpu_text_snippet(t, "bg_fused_tree.glsl", seen, &n, 32) &&
+        ok = bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, 32) &&
              bgi_gpu_mesh_library(t, seen, &n, 32);
         if (ok)
             bgi_gpu_mesh_pass_walks(sp->meshes * sp->lights, t);

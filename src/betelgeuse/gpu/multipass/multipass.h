@@ -185,9 +185,6 @@ int bgi_gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state
 /* The camera-ray scissor rectangle of a batch (the union of its objects'); false when unbounded.
  * An empty rectangle means every object is off screen. */
 bool bgi_gpu_batch_scissor(const bg_scene_state *state, const gpu_batch *b, const gpu_view *view, int rect[4]);
-/* Uniform components of the declared uniforms u[0 .. count - 1] as old hardware allocates them
- * (every float, vec2 or vec3 a whole vec4; arrays per element): what batches are planned by. */
-int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count);
 
 /* ---- hit_pass.c ---- */
 /* The intersection pass of objects first .. first + count - 1 (count <= GPU_BATCH_MAX), writing

@@ -11,3 +11,13 @@ bool bgi_gpu_material_may_bounce(const bg_material *m)
 {
     return m->transparency.value > 0.0 || layer_may_reflect(&m->base) || (m->has_coat && layer_may_reflect(&m->coat));
 }
+
+static bool layer_may_be_aniso(const bg_schlick_layer *l)
+{
+    return l->isotropy.value < 1.0 || l->isotropy.texture != 0;
+}
+
+bool bgi_gpu_material_may_be_aniso(const bg_material *m)
+{
+    return layer_may_be_aniso(&m->base) || (m->has_coat && layer_may_be_aniso(&m->coat));
+}

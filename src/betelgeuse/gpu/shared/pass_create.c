@@ -102,3 +102,17 @@ bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *ma
     bgi_gpu_text_free(functions);
     return st;
 }
+
+/* Uniform storage as old hardware allocates it: every float, vec2 or vec3 takes a whole vec4. */
+int bgi_gpu_uniform_type_components(macs_uniform_type t)
+{
+    return t == MACS_UNIFORM_MAT4 ? 16 : t == MACS_UNIFORM_MAT3 ? 12 : 4;
+}
+
+int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count)
+{
+    int components = 0;
+    for (int i = 0; i < count; i++)
+        components += bgi_gpu_uniform_type_components(u[i].type) * (u[i].count > 0 ? u[i].count : 1);
+    return components;
+}

@@ -47,3 +47,18 @@ bool bgi_gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const u
     }
     return ok;
 }
+
+/* The library's file and function suffix per UV mapping (bg_uv_map_<suffix>; none has no file). */
+static const char *const uv_file[BG_UV_COUNT_] = {NULL, "bg_uv_spherical.glsl", "bg_uv_planar.glsl",
+                                                  "bg_uv_box.glsl", "bg_uv_cylindrical.glsl"};
+static const char *const uv_suffix[BG_UV_COUNT_] = {"none", "spherical", "planar", "box", "cylindrical"};
+
+const char *bgi_gpu_uv_file(bg_uv_mapping mapping)
+{
+    return uv_file[mapping];
+}
+
+const char *bgi_gpu_uv_suffix(bg_uv_mapping mapping)
+{
+    return uv_suffix[mapping];
+}

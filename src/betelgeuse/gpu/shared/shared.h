@@ -133,9 +133,56 @@ bool bgi_gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const u
                            const char *stage_file, const char *const *stage_names, const char **seen,
                            int *seen_count, int seen_cap);
 
+/* The glsl110/ file of a UV mapping (NULL for none) and the suffix of its bg_uv_map_ function. */
+const char *bgi_gpu_uv_file(bg_uv_mapping mapping);
+const char *bgi_gpu_uv_suffix(bg_uv_mapping mapping);
+
 /* ---- material_traits.c ---- */
 /* Whether a material can spawn a secondary ray somewhere (mirror share or transparency). */
 bool bgi_gpu_material_may_bounce(const bg_material *m);
+/* Whether some layer of a material may have isotropy < 1 (a tangent is needed). */
+bool bgi_gpu_material_may_be_aniso(const bg_material *m);
+
+/* ---- material_params.c: the material parameters as both plans' shaders read them ---- */
+/* Material parameters a shader evaluates at a hit (docs/shading.md 5): id, the GLSL local and
+ * uniform suffix, vec3 (true) or float, whether the value is clamped to [0, 1] (true) or to >= 0
+ * after texturing, and which materials the fused plan declares it for (a gpu_fused_need). */
+#define GPU_PARAMS(X)                                         \
+    X(BASE_C, "base_c", true, true, USED)                     \
+    X(BASE_R, "base_r", false, true, USED)                    \
+    X(BASE_P, "base_p", false, true, ANISO)                   \
+    X(AMBIENT, "ambient", true, false, USED)                  \
+    X(EMISSION, "emission", true, false, USED)                \
+    X(TRANSPARENCY, "transparency", false, true, TRANSPARENT) \
+    X(COAT_C, "coat_c", true, true, COAT)                     \
+    X(COAT_R, "coat_r", false, true, COAT)                    \
+    X(COAT_P, "coat_p", false, true, COAT_ANISO)
+
+typedef enum gpu_param {
+#define GPU_PARAM_ENUM_(id, local, color, unit, need) GPU_P_##id,
+    GPU_PARAMS(GPU_PARAM_ENUM_)
+#undef GPU_PARAM_ENUM_
+    GPU_P_COUNT_
+} gpu_param;
+
+/* The GLSL local (and uniform suffix) of parameter p, and whether it is a colour (vec3). */
+const char *bgi_gpu_param_local(gpu_param p);
+bool bgi_gpu_param_is_color(gpu_param p);
+/* Whether parameter p is clamped to [0, 1] after texturing (else to >= 0). */
+bool bgi_gpu_param_is_unit(gpu_param p);
+/* The constant and texture of material parameter p of m (rgb for colours; value in v[0] for scalars). */
+void bgi_gpu_param_of(const bg_material *m, gpu_param p, double v[3], uint32_t *texture, int *channel);
+/* The uniform value of parameter p of m: the constant, with the scene's ambient light folded into
+ * the ambient colour, and a material without a coat given the values of no coat (reflectance 0,
+ * roughness -1, isotropy 1). A scalar's value is out[0]. */
+void bgi_gpu_param_value(const bg_scene_state *state, const bg_material *m, gpu_param p, float out[3]);
+
+/* ---- light_pack.c ---- */
+/* One light as bg_light.glsl reads it (the uniforms bg_lpos, bg_lrad, bg_latt, bg_lspot, bg_lexp). */
+typedef struct gpu_packed_light {
+    float pos[4], rad[3], att[3], spot[4], exponent;
+} gpu_packed_light;
+gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
 
 /* ---- texture_upload.c ---- */
 /* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
@@ -162,6 +209,11 @@ bg_status bgi_gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_
  * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
 bg_status bgi_gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
                        macs_pass **out, bool *rejected);
+/* Uniform components of one element of type t, and of the declared uniforms u[0 .. count - 1], as
+ * old hardware allocates them (every float, vec2 or vec3 a whole vec4; arrays per element): the one
+ * count every plan's uniform budget is planned by. */
+int bgi_gpu_uniform_type_components(macs_uniform_type t);
+int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count);
 /* bgi_gpu_pass_try over assembled texts (desc->main already points into main): fails with a message
  * when a text ran out of memory or a glsl110 file was missing (files_found false); frees both. */
 bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
@@ -186,7 +238,7 @@ void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes);
 
 
 /* The tree variant's texture geometry: per texture (items per row, its inverse, 1 / width,
- * 1 / height), as bg_fused_tree.glsl reads it, and the node count. */
+ * 1 / height), as bg_tree_textures.glsl reads it, and the node count. */
 typedef struct gpu_tree_dims {
     float nodes[4], objects[4];
     float node_count;

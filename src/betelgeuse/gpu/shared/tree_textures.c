@@ -4,7 +4,7 @@
  * The scene's object tree (common/bvh.h) goes to the GPU as it is, seen from the camera: the GPU's
  * frame is camera-relative (origin.c), so each frame's nodes are the tree's boxes minus the eye,
  * rounded outward again and ordered near to far (bgi_bvh_view_nodes), with each leaf naming its object. Each object's
- * transforms and kinds go in a second texture, indexed by object (bg_fused_tree.glsl gives both
+ * transforms and kinds go in a second texture, indexed by object (bg_tree_textures.glsl gives both
  * layouts). A frame of the commit they hold touches neither; after another commit both are rebuilt
  * on the host and uploaded only where they differ from what the textures hold, so a commit that
  * changes nothing the tree holds (a material value, a light) uploads nothing but uniforms.
@@ -77,7 +77,7 @@ static bg_status fill_nodes(const bg_scene_state *state, const gpu_tree_textures
     return state->tree ? bgi_bvh_view_nodes(state->tree, origin, state->tree_objects, out) : BG_OK;
 }
 
-/* Object i's texels, as bg_fused_tree.glsl reads them. */
+/* Object i's texels, as bg_tree_textures.glsl reads them. */
 static void fill_object(const bg_scene_state *state, const gpu_tree_textures *t, uint32_t i, float *o)
 {
     const bg_object_data *obj = &state->objects[i];

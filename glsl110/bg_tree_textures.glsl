@@ -1,9 +1,10 @@
 #version 110
 // requires:
-// The object tree of the fused plan's tree variant (docs/gpu_pipeline.md, "Object tree"): reading
-// its nodes and objects from two RGBA32F textures and testing a node's box. The walks themselves
-// are generated per scene (gpu/fused_source.c), since a leaf calls the intersection code of the
-// shapes the tree holds.
+// The renderer's tree textures (gpu/shared/tree_textures.c): reading the object tree's nodes and
+// objects from two RGBA32F textures, which the fused plan's tree variant walks (docs/gpu_pipeline.md,
+// "Object tree"), and testing a box, which the mesh walks of every plan do too (bg_tree_inverse,
+// bg_tree_box). The walks themselves are generated per scene (gpu/fused/fused_source.c,
+// gpu/shared/mesh_source.c), since a leaf calls the intersection code of the shapes the tree holds.
 //
 // The textures come as arguments, since the pass declares its samplers (MACS inputs). The nodes'
 // texture holds two texels per node, {min.xyz, object} and {max.xyz, miss}, camera-relative and
