@@ -9,10 +9,10 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
 {
     const bg_scene_state *state = bgi_scene_committed(scene);
     if (!state)
-        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "%s: the scene was never committed", out->fn);
+        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "the scene was never committed");
     if (!bgi_render_progress(settings, 0.0))
-        return bgi_gpu_fail(r, BG_ERR_CANCELLED, "%s: cancelled by settings.progress before the first pass; the "
-                            "pixels of this frame (of this tile, when tiled) are untouched", out->fn);
+        return bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress before the first pass; the "
+                            "pixels of this frame (of this tile, when tiled) are untouched");
     if (view->samples > 1)
         return bgi_gpu_samples_render(r, scene, state, settings, out, view);
     bgi_gpu_view_for_sample(view, 0, &r->view);

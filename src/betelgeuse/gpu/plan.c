@@ -36,7 +36,7 @@ static const char *multipass_option(const bg_renderer *r, const bg_render_settin
 /* BG_PLAN_AUTO goes to the multipass: says why. */
 static void fall_back(const bg_renderer *r, const char *why)
 {
-    bgi_gpu_log(r, BG_LOG_INFO, "bg_render_gpu: rendering with the multipass plan: %s", why);
+    bgi_gpu_log(r, BG_LOG_INFO, "rendering with the multipass plan: %s", why);
 }
 
 /* The fused plan the settings ask for or BG_PLAN_AUTO would take; NULL for BG_PLAN_MULTIPASS. */
@@ -68,7 +68,7 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
             return BG_OK;
         }
         if (f->forced)
-            return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s: %s cannot render this frame: %s", f->out->fn, fused->name, why);
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s cannot render this frame: %s", fused->name, why);
         fall_back(r, why);
     }
     f->forced = asked == BG_PLAN_MULTIPASS;

@@ -30,7 +30,7 @@ static void choose_half_gbuffer(bg_renderer *r)
     char why[512];
     r->half_gbuffer = bgi_gpu_half_probe(r, why, sizeof why);
     if (!r->half_gbuffer)
-        bgi_gpu_log(r, BG_LOG_WARNING, "bg_renderer_create: RGBA16F G-buffer unsupported (%s); using RGBA32F", why);
+        bgi_gpu_log(r, BG_LOG_WARNING, "RGBA16F G-buffer unsupported (%s); using RGBA32F", why);
 }
 
 bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer, char *message,
@@ -57,6 +57,7 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
     r->allocator = desc->allocator;
     r->logger = desc->logger;
     r->ctx = desc->context;
+    r->entry = "bg_renderer_create";
     macs_context_get_limits(r->ctx, NULL, &r->limits);
     macs_features feats;
     macs_context_get_features(r->ctx, &feats);

@@ -153,7 +153,7 @@ static bg_status textures_prepare(bg_renderer *r, struct gpu_fused *f, const bg_
         return BG_OK;
     f->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *f->textures);
     if (!f->textures)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u textures", state->texture_count);
     memset(f->textures, 0, state->texture_count * sizeof *f->textures);
     f->texture_count = state->texture_count;
     for (int k = 0; k < l->sampler_count; k++) {
@@ -219,10 +219,10 @@ static bg_status program_text_make(bg_renderer *r, const gpu_fused_layout *l, pr
     bgi_gpu_text_init(&p->key, &r->allocator);
     if (!bgi_gpu_fused_source(l, &p->functions, &p->main, &p->output))
         return p->functions.failed || p->main.failed
-                   ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader")
-                   : bgi_gpu_fail(r, BG_ERR_GL, "bg_render_gpu: fused shader: a glsl110/ file is missing");
+                   ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the fused shader")
+                   : bgi_gpu_fail(r, BG_ERR_GL, "fused shader: a glsl110/ file is missing");
     if (!bgi_gpu_fused_uniforms_declare(&r->allocator, l, &p->uniforms, &p->uniform_count, &p->uniform_names))
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory declaring the fused uniforms");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory declaring the fused uniforms");
     bgi_gpu_text_append(&p->key, p->functions.s);
     bgi_gpu_text_append(&p->key, p->main.s);
     bgi_gpu_text_printf(&p->key, "// out %s, samplers %d\n", p->output, l->sampler_count);
@@ -230,7 +230,7 @@ static bg_status program_text_make(bg_renderer *r, const gpu_fused_layout *l, pr
         bgi_gpu_text_printf(&p->key, "// uniform %s %d %d\n", p->uniforms[i].name, (int)p->uniforms[i].type,
                         p->uniforms[i].count);
     if (p->key.failed)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the fused shader");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the fused shader");
     return BG_OK;
 }
 
@@ -243,7 +243,7 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
     int n = input_count(l);
     macs_input_desc *inputs = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * (sizeof *inputs + NAME));
     if (!inputs)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory creating the fused pass");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory creating the fused pass");
     char *names = (char *)(inputs + (n ? n : 1));
     for (int k = 0; k < l->sampler_count; k++) {
         snprintf(names + k * NAME, NAME, "bg_tex%d", k);
@@ -321,7 +321,7 @@ static bg_status pass_prepare(bg_renderer *r, struct gpu_fused *f, gpu_fused_lay
     if (!same) {
         char *key = bgi_strdup(&r->allocator, p->key.s);
         if (!key)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory caching the fused program");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory caching the fused program");
         bgi_free(&r->allocator, f->key);
         f->key = key;
     }
@@ -436,12 +436,12 @@ static bg_status render_variant(bg_renderer *r, const gpu_plan_frame *f, bool tr
     if (!r->fused) {
         r->fused = bgi_alloc(&r->allocator, sizeof *r->fused);
         if (!r->fused)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the fused plan");
         memset(r->fused, 0, sizeof *r->fused);
     }
     gpu_fused_layout l;
     if (!bgi_gpu_fused_layout_build(&r->allocator, f->state, f->settings, tree, &l))
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the fused plan's layout");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the fused plan's layout");
     bg_status st = BG_OK;
     if (fits(r, f->state, &l, f->forced, why, why_size)) {
         why[0] = '\0';

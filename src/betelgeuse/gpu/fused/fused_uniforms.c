@@ -389,7 +389,7 @@ bg_status bgi_gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_
     size_t n = 16 + 4 * (size_t)l->light_count;
     setting s = {pass, l, v, bgi_alloc(&r->allocator, n * sizeof(float)), MACS_OK};
     if (!s.scratch)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory setting the fused pass's uniforms");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory setting the fused pass's uniforms");
     memset(s.scratch, 0, n * sizeof(float));
     each_uniform(l, set_one, &s);
     bgi_free(&r->allocator, s.scratch);

@@ -591,11 +591,11 @@ bg_status bgi_gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, ui
     if (rejected)
         *rejected = false;
     if (count < 1 || count > GPU_BATCH_MAX)
-        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: intersection batch of %d objects", count);
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "intersection batch of %d objects", count);
     hit_pass_parts hp;
     hp.members = bgi_alloc(&r->allocator, (size_t)count * sizeof *hp.members);
     if (!hp.members)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building an intersection pass");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building an intersection pass");
     hp.count = count;
     describe_members(r, state, first, &hp);
     add_inputs(r, &hp);

@@ -232,7 +232,7 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     if (rejected)
         *rejected = false;
     if (count < 1 || count > GPU_BATCH_MAX)
-        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: shadow batch of %d objects", count);
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "shadow batch of %d objects", count);
     shadow_pass_parts sp;
     sp.casters = casters;
     sp.blocks = blocks;
@@ -366,7 +366,7 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     desc.blend = MACS_BLEND_ADD;
 
     const char *files[] = {"bg_hit_code.glsl", "bg_stage_light.glsl", NULL};
-    bg_status st = main.failed ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building a light shader")
+    bg_status st = main.failed ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building a light shader")
                                : bgi_gpu_pass_create(r, "light pass", files, NULL, &desc, out);
     bgi_gpu_text_free(&main);
     if (st != BG_OK)

@@ -398,7 +398,7 @@ static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
     if (!r->multipass->meshes) {
         r->multipass->meshes = bgi_alloc(&r->allocator, sizeof *r->multipass->meshes);
         if (!r->multipass->meshes)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh texture");
         memset(r->multipass->meshes, 0, sizeof *r->multipass->meshes);
     }
     return bgi_gpu_tree_textures_prepare(r, r->multipass->meshes, state, false);
@@ -466,7 +466,7 @@ static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, siz
     if (!r->multipass) {
         r->multipass = bgi_alloc(&r->allocator, sizeof *r->multipass);
         if (!r->multipass)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the multipass plan");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the multipass plan");
         memset(r->multipass, 0, sizeof *r->multipass);
     }
     bg_status st = BG_OK;

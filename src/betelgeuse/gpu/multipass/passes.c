@@ -88,7 +88,7 @@ static bg_status allocate_pass_lists(bg_renderer *r, const bg_scene_state *state
     p->caster_blocks = bgi_alloc(&r->allocator, n_shadow * sizeof *p->caster_blocks);
     p->light = bgi_alloc(&r->allocator, (size_t)(groups ? groups : 1) * sizeof *p->light);
     if (!p->hit || !p->shadow || !p->casters || !p->caster_blocks || !p->light)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u objects", state->object_count);
     memset(p->light, 0, (size_t)(groups ? groups : 1) * sizeof *p->light);
     return BG_OK;
 }
@@ -101,7 +101,7 @@ static bg_status build_hit_batches(bg_renderer *r, const bg_scene_state *state)
     int n = (int)state->object_count;
     gpu_batch *plan = bgi_alloc(&r->allocator, (size_t)(n ? n : 1) * sizeof *plan);
     if (!plan)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u objects", state->object_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u objects", state->object_count);
     int planned = bgi_gpu_batch_plan_hits(r, state, plan);
     bg_status st = BG_OK;
     for (int b = 0; b < planned && st == BG_OK; b++) {
@@ -169,7 +169,7 @@ static bg_status build_shadow_batches(bg_renderer *r, const bg_scene_state *stat
 {
     gpu_batch *plan = bgi_alloc(&r->allocator, (size_t)n * sizeof *plan);
     if (!plan)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for shadow passes");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for shadow passes");
     int planned = bgi_gpu_batch_plan_shadows(r, state, g, first, n, plan);
     bg_status st = BG_OK;
     for (int b = 0; b < planned && st == BG_OK; b++)

@@ -222,7 +222,7 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
     spawn_main(r, kind, &main);
     bg_status st;
     if (main.failed)
-        st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the spawn shader");
+        st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the spawn shader");
     else
         st = simple_pass(r, kind == SPAWN_REFRACT ? "refraction pass" : "reflection pass", files, main.s, in, ni,
                          in_tex, u, 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);

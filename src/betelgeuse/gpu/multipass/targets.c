@@ -144,7 +144,7 @@ bg_status bgi_gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
         size_t old = (size_t)r->multipass->set_count * sizeof *r->multipass->sets, need = (size_t)(index + 1) * sizeof *r->multipass->sets;
         gpu_ray_set *grown = bgi_realloc(&r->allocator, r->multipass->sets, old, need);
         if (!grown)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for ray set %d", index);
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for ray set %d", index);
         memset((char *)grown + old, 0, need - old);
         r->multipass->sets = grown;
         r->multipass->set_count = index + 1;
@@ -187,7 +187,7 @@ bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *s
         return BG_OK;
     r->multipass->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *r->multipass->textures);
     if (!r->multipass->textures)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for %u textures", state->texture_count);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u textures", state->texture_count);
     memset(r->multipass->textures, 0, state->texture_count * sizeof *r->multipass->textures);
     r->multipass->texture_count = state->texture_count;
     for (uint32_t i = 0; i < state->texture_count; i++) {

@@ -78,7 +78,7 @@ static bg_status marks_read(bg_renderer *r, gpu_tree_textures *t, macs_texture *
     if (!ms)
         ms = macs_texture_read(t->marks, buffer, 0);
     if (ms)
-        return bgi_gpu_fail_macs(r, ms, "bg_render_gpu_to_texture: finding the pixels the tree walks left");
+        return bgi_gpu_fail_macs(r, ms, "finding the pixels the tree walks left");
     *marks = buffer;
     *row = buffer + mark_bytes;
     return BG_OK;
@@ -117,7 +117,7 @@ bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const b
                                     row + (size_t)(x - first) * texel);
             macs_status ms = macs_texture_upload_region(target, first, y, x - first, 1, row, 0);
             if (ms)
-                return bgi_gpu_fail_macs(r, ms, "bg_render_gpu_to_texture: uploading the CPU reference's pixels");
+                return bgi_gpu_fail_macs(r, ms, "uploading the CPU reference's pixels");
             *count += (uint64_t)(x - first);
         }
     }

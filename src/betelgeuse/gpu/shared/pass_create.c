@@ -32,14 +32,14 @@ bg_status bgi_gpu_pass_create(bg_renderer *r, const char *what, const char *cons
     for (int i = 0; files && files[i]; i++) {
         if (!bgi_gpu_text_snippet(&t, files[i], seen, &n, 32)) {
             bgi_gpu_text_free(&t);
-            return bgi_gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: shader file %s (or one it requires) is missing", what,
+            return bgi_gpu_fail(r, BG_ERR_GL, "%s: shader file %s (or one it requires) is missing", what,
                             files[i]);
         }
     }
     bgi_gpu_text_append(&t, extra);
     if (t.failed) {
         bgi_gpu_text_free(&t);
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory assembling the %s", what);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory assembling the %s", what);
     }
     desc->functions = t.s;
     macs_status ms = macs_pass_create(r->ctx, desc, out);
@@ -80,7 +80,7 @@ bg_status bgi_gpu_pass_try(bg_renderer *r, const char *what, const char *functio
     if (st == BG_OK && refused != MACS_OK) {
         /* The longer shader of a batch is beyond this GL: the caller falls back to smaller passes. */
         bgi_gpu_log(r, BG_LOG_WARNING,
-                "bg_render_gpu: %s: the batched shader was refused (%s), falling back to one object per pass: %s",
+                "%s: the batched shader was refused (%s), falling back to one object per pass: %s",
                 what, macs_status_string(refused), why);
         if (rejected)
             *rejected = true;
@@ -93,9 +93,9 @@ bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *ma
 {
     bg_status st;
     if (main->failed || functions->failed)
-        st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory building the %s shader", what);
+        st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the %s shader", what);
     else if (!files_found)
-        st = bgi_gpu_fail(r, BG_ERR_GL, "bg_render_gpu: %s: a glsl110 file its shader needs is missing", what);
+        st = bgi_gpu_fail(r, BG_ERR_GL, "%s: a glsl110 file its shader needs is missing", what);
     else
         st = bgi_gpu_pass_try(r, what, functions->s, desc, trial, out, rejected);
     bgi_gpu_text_free(main);

@@ -12,7 +12,7 @@ void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes)
     r->readback = bgi_alloc(&r->allocator, bytes);
     r->readback_size = r->readback ? bytes : 0;
     if (!r->readback)
-        bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the read-back buffer (%zu bytes)", bytes);
+        bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the read-back buffer (%zu bytes)", bytes);
     return r->readback;
 }
 

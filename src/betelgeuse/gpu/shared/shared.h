@@ -33,7 +33,6 @@ typedef struct gpu_frame_out {
     macs_texture *texture; /* bg_render_gpu_to_texture; NULL for an image */
     int width, height;
     bool as_float;         /* RGBA32F image, RGBA32F or RGBA16F texture: linear radiance; else RGBA8 */
-    const char *fn;        /* the entry point, for messages */
 } gpu_frame_out;
 
 struct gpu_fused;     /* fused/fused.h: the fused plan's cached program and targets */
@@ -49,6 +48,7 @@ struct bg_renderer {
     bool float_depth;
     bool half_gbuffer; /* asked for and found renderable at creation (bgi_gpu_half_probe) */
     bg_render_stats stats;
+    const char *entry; /* the public call running (set at its start): every message of it begins so */
 
     float *readback; /* read_back.c's buffer */
     size_t readback_size;
@@ -93,6 +93,9 @@ typedef struct gpu_plan {
 bg_status bgi_gpu_fail(bg_renderer *r, bg_status status, const char *format, ...) GPU_PRINTF_(3, 4);
 /* Turns a MACS failure into a renderer error carrying MACS's message. */
 bg_status bgi_gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
+/* Records a message of the argument checks the CPU renderer shares (common/render_args.c,
+ * render_settings.c, render_view.c), which begin with the entry's name themselves. */
+bg_status bgi_gpu_fail_checked(bg_renderer *r, bg_status status, const char *message);
 /* Logs a diagnostic that is not an error (a warning: something worked around; info: a choice made). */
 void bgi_gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...) GPU_PRINTF_(3, 4);
 

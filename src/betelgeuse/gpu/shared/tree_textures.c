@@ -127,13 +127,13 @@ static bg_status texture_prepare(bg_renderer *r, const gpu_tree_textures *tree, 
         t->held = bgi_alloc(&r->allocator, floats * sizeof(float));
         t->scratch = bgi_alloc(&r->allocator, floats * sizeof(float));
         if (!t->held || !t->scratch)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the %s (%zu floats)", what,
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the %s (%zu floats)", what,
                             floats);
         t->floats = floats;
     }
     memset(t->scratch, 0, floats * sizeof(float));
     if (fill(state, tree, t->scratch) != BG_OK)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the %s", what);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory ordering the %s", what);
     if (t->texture && memcmp(t->scratch, t->held, floats * sizeof(float)) == 0)
         return BG_OK;
     macs_status ms = MACS_OK;
@@ -392,14 +392,14 @@ static bg_status meshes_upload(bg_renderer *r, gpu_tree_textures *t, const bg_sc
     t->dims.meshes[3] = 1.0f / (float)h_nodes;
     bool held = false;
     if (!meshes_held(r, t, state, first, &held))
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh textures' keys");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh textures' keys");
     if (held)
         return BG_OK;
     size_t node_floats = (size_t)w * (size_t)h_nodes * 4, floats = node_floats + (size_t)w * (size_t)h_tris * 4;
     float *data = bgi_alloc(&r->allocator, floats * sizeof *data);
     if (!data) {
         t->mesh_key_count = 0;
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh textures (%zu floats)",
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh textures (%zu floats)",
                             floats);
     }
     memset(data, 0, floats * sizeof *data);
@@ -428,12 +428,12 @@ static bg_status meshes_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_s
         t->mesh_base_count = 0;
         t->mesh_base = bgi_alloc(&r->allocator, 2 * (size_t)state->object_count * sizeof *t->mesh_base);
         if (!t->mesh_base)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory for the mesh texture's bases");
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh texture's bases");
         t->mesh_base_count = state->object_count;
     }
     uint32_t *first = mesh_firsts(&r->allocator, state);
     if (!first)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "bg_render_gpu: out of memory ordering the meshes");
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory ordering the meshes");
     bg_status st = meshes_upload(r, t, state, first);
     bgi_free(&r->allocator, first);
     return st;
@@ -449,7 +449,7 @@ bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, co
         if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
             /* The unrolled plan checked this before it took the frame, so only the multipass, the
              * last plan, gets here. */
-            return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: no plan can render these meshes: %s", why);
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "no plan can render these meshes: %s", why);
         bg_status st = meshes_prepare(r, t, state);
         if (st == BG_OK) {
             t->serial = state->serial;
@@ -458,7 +458,7 @@ bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, co
         return st;
     }
     if (!bgi_gpu_tree_textures_fit(r, state, why, sizeof why))
-        return bgi_gpu_fail(r, BG_ERR_LIMIT, "bg_render_gpu: BG_PLAN_FUSED_TREE: %s", why);
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "BG_PLAN_FUSED_TREE: %s", why);
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
     int k, w, h;
     geometry(r->limits.max_texture_size, nodes, NODE_TEXELS, &k, &w, &h);
