@@ -1,15 +1,15 @@
-/* The fused shader's uniforms, from one list (GPU_FUSED_UNIFORMS and GPU_PARAMS in
- * fused.h): their declarations, the uniform budget they take, their values per render, and
+/* The fused shader's uniforms, from one list (GPU_FUSED_UNIFORMS in fused.h and GPU_PARAMS in
+ * shared/shared.h): their declarations, the uniform budget they take, their values per render, and
  * the names the generated source uses. A new uniform is one new row there and, for a row of
  * GPU_FUSED_UNIFORMS, one value function here.
  *
  * Every position is camera-relative (origin.c): the eye is the origin of the GPU's frame. */
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "../../common/alloc.h"
 #include "fused.h"
-
 
 /* Names are short ("bg_m12_transparency"): this is room for any index. */
 #define NAME_SIZE 40
@@ -119,39 +119,44 @@ static void tree_node_count(const gpu_fused_values *v, uint32_t i, float *out)
     out[0] = v->tree->node_count;
 }
 
+/* Field `offset` of gpu_packed_light, n floats, for every light one after another: the array
+ * uniforms of the light rows. */
+static void light_rows(const gpu_fused_values *v, size_t offset, size_t n, float *out)
+{
+    for (uint32_t k = 0; k < v->state->light_count; k++) {
+        gpu_packed_light p = bgi_gpu_light_pack(v->state, k);
+        memcpy(out + n * k, (const char *)&p + offset, n * sizeof(float));
+    }
+}
+
 static void light_position(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 4 * k, bgi_gpu_light_pack(v->state, k).pos, 4 * sizeof(float));
+    light_rows(v, offsetof(gpu_packed_light, pos), 4, out);
 }
 
 static void light_radiance(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 3 * k, bgi_gpu_light_pack(v->state, k).rad, 3 * sizeof(float));
+    light_rows(v, offsetof(gpu_packed_light, rad), 3, out);
 }
 
 static void light_attenuation(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 3 * k, bgi_gpu_light_pack(v->state, k).att, 3 * sizeof(float));
+    light_rows(v, offsetof(gpu_packed_light, att), 3, out);
 }
 
 static void light_spot(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    for (uint32_t k = 0; k < v->state->light_count; k++)
-        memcpy(out + 4 * k, bgi_gpu_light_pack(v->state, k).spot, 4 * sizeof(float));
+    light_rows(v, offsetof(gpu_packed_light, spot), 4, out);
 }
 
 static void light_exponent(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    for (uint32_t k = 0; k < v->state->light_count; k++)
-        out[k] = bgi_gpu_light_pack(v->state, k).exponent;
+    light_rows(v, offsetof(gpu_packed_light, exponent), 1, out);
 }
 
 /* GL takes matrices column by column; the scene's are row-major. */
