@@ -20,8 +20,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/cpu/cpu_internal.h"
-#include "betelgeuse/gpu/driver.h"
+#include "betelgeuse/common/encoding.h"
 #include "betelgeuse/gpu/driver.h"
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
@@ -113,7 +112,7 @@ static void check_scene(scene_id id)
     for (size_t i = 0; i < (size_t)W * H; i++)
         for (int c = 0; c < 3; c++) {
             float v = linear[4 * i + c];
-            int want = bgi_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            int want = bgi_encode_channel(v, BG_ENCODING_SRGB);
             if (v < 0.0f || abs(want - fused[4 * i + c]) > 1 || linear[4 * i + 3] != 1.0f)
                 fail_msg("%s: pixel %zu channel %d: float %g encodes to %d, RGBA8 output %d", name, i, c, (double)v,
                          want, fused[4 * i + c]);

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "../common/alloc.h"
-#include "../cpu/cpu_internal.h"
+#include "../common/encoding.h"
 #include "driver.h"
 
 void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out)
@@ -45,7 +45,7 @@ static bg_status write_out(bg_renderer *r, const bg_render_settings *settings, c
                 memcpy(dst + (size_t)x * 16, px, sizeof px);
             } else {
                 for (int i = 0; i < 3; i++)
-                    dst[(size_t)x * 4 + (size_t)i] = bgi_cpu_encode_channel(rgb[i], settings->encoding);
+                    dst[(size_t)x * 4 + (size_t)i] = bgi_encode_channel(rgb[i], settings->encoding);
                 dst[(size_t)x * 4 + 3] = 255;
             }
         }

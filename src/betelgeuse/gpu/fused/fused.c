@@ -46,7 +46,6 @@ struct gpu_fused {
     gpu_tree_textures tree;     /* the tree variant's textures */
 };
 
-
 /* ---- what the fused plan can render ---- */
 
 /* The program's textures: the scene's, then the object tree's two where it walks one, then the

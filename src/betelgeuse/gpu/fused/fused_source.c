@@ -20,7 +20,6 @@
 static const char *const shape_file[BG_SHAPE_COUNT_] = {BG_SHAPES(FILE_OF_)};
 #undef FILE_OF_
 
-
 #define SEEN_CAP 64
 
 /* The name of a uniform row for object or material i, in a buffer of the caller's. */
@@ -85,7 +84,6 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
 }
 
 /* ---- generated functions ---- */
-
 
 static bool tree_casts(const gpu_fused_layout *l)
 {

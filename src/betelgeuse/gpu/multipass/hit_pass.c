@@ -15,7 +15,6 @@
 #include "../../common/shapes.h"
 #include "multipass.h"
 
-
 /* One material parameter: a uniform constant and an optional texture lane. */
 typedef struct param {
     const char *name;    /* GLSL local and uniform suffix */

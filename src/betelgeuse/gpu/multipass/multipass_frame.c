@@ -401,6 +401,11 @@ static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
             return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh texture");
         memset(r->multipass->meshes, 0, sizeof *r->multipass->meshes);
     }
+    char why[160];
+    if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
+        /* The fused plans checked this before they took the frame, so only the multipass, the last
+         * plan, can find it here. */
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "no plan can render these meshes: %s", why);
     return bgi_gpu_tree_textures_prepare(r, r->multipass->meshes, state, false);
 }
 

@@ -277,7 +277,9 @@ bool bgi_gpu_tree_textures_fit(const bg_renderer *r, const bg_scene_state *state
 /* False, with the reason, when the scene's meshes do not fit the mesh textures (part of _fits). */
 bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
 /* Makes the textures hold the committed scene's tree and objects, as seen from its camera (with
- * walks: the layout walks the tree), and the meshes' nodes and triangles where it has meshes. */
+ * walks: the layout walks the tree), and the meshes' nodes and triangles where it has meshes. The
+ * caller has checked that they fit (bgi_gpu_tree_textures_fit with walks, else bgi_gpu_meshes_fit):
+ * each plan checks once, before it takes the frame. */
 bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state, bool walks);
 void bgi_gpu_tree_textures_release(const bg_allocator *a, gpu_tree_textures *t);
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;

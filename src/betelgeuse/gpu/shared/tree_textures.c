@@ -444,12 +444,7 @@ bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, co
     if (t->serial != 0 && t->serial == state->serial && t->walks == walks)
         return BG_OK; /* the same commit: the textures hold it, nothing to build or compare */
     t->serial = 0;
-    char why[160];
     if (!walks) {
-        if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
-            /* The unrolled plan checked this before it took the frame, so only the multipass, the
-             * last plan, gets here. */
-            return bgi_gpu_fail(r, BG_ERR_LIMIT, "no plan can render these meshes: %s", why);
         bg_status st = meshes_prepare(r, t, state);
         if (st == BG_OK) {
             t->serial = state->serial;
@@ -457,8 +452,6 @@ bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, co
         }
         return st;
     }
-    if (!bgi_gpu_tree_textures_fit(r, state, why, sizeof why))
-        return bgi_gpu_fail(r, BG_ERR_LIMIT, "BG_PLAN_FUSED_TREE: %s", why);
     uint32_t nodes = state->tree ? state->tree->node_count : 0;
     int k, w, h;
     geometry(r->limits.max_texture_size, nodes, NODE_TEXELS, &k, &w, &h);
