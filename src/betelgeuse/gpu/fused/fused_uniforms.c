@@ -129,35 +129,19 @@ static void light_rows(const gpu_fused_values *v, size_t offset, size_t n, float
     }
 }
 
-static void light_position(const gpu_fused_values *v, uint32_t i, float *out)
-{
-    (void)i;
-    light_rows(v, offsetof(gpu_packed_light, pos), 4, out);
-}
-
-static void light_radiance(const gpu_fused_values *v, uint32_t i, float *out)
-{
-    (void)i;
-    light_rows(v, offsetof(gpu_packed_light, rad), 3, out);
-}
-
-static void light_attenuation(const gpu_fused_values *v, uint32_t i, float *out)
-{
-    (void)i;
-    light_rows(v, offsetof(gpu_packed_light, att), 3, out);
-}
-
-static void light_spot(const gpu_fused_values *v, uint32_t i, float *out)
-{
-    (void)i;
-    light_rows(v, offsetof(gpu_packed_light, spot), 4, out);
-}
-
-static void light_exponent(const gpu_fused_values *v, uint32_t i, float *out)
-{
-    (void)i;
-    light_rows(v, offsetof(gpu_packed_light, exponent), 1, out);
-}
+/* The value functions of the light rows, one field each. */
+#define LIGHT_ROW_(fn, field, n)                                            \
+    static void fn(const gpu_fused_values *v, uint32_t i, float *out)       \
+    {                                                                       \
+        (void)i;                                                            \
+        light_rows(v, offsetof(gpu_packed_light, field), n, out);           \
+    }
+LIGHT_ROW_(light_position, pos, 4)
+LIGHT_ROW_(light_radiance, rad, 3)
+LIGHT_ROW_(light_attenuation, att, 3)
+LIGHT_ROW_(light_spot, spot, 4)
+LIGHT_ROW_(light_exponent, exponent, 1)
+#undef LIGHT_ROW_
 
 /* GL takes matrices column by column; the scene's are row-major. */
 static void column_major3(const double *m, float *out)
