@@ -39,8 +39,9 @@ MACS_SHADERS := $(sort $(wildcard glsl110/macs_*))
 BG_SHADERS   := $(sort $(filter-out $(MACS_SHADERS),$(wildcard glsl110/*)))
 
 MACS_SRC := $(sort $(wildcard src/macs/*.c))
-# Betelgeuse has one folder per part (docs/architecture.md): common, scene, cpu, gpu, io.
-BG_SRC   := $(sort $(wildcard src/betelgeuse/*/*.c))
+# Betelgeuse has one folder per part (docs/architecture.md): common, scene, cpu, gpu, io; gpu/ has
+# rooms of its own (gpu/shared, gpu/fused, gpu/multipass).
+BG_SRC   := $(sort $(wildcard src/betelgeuse/*/*.c src/betelgeuse/*/*/*.c))
 # ar keeps members by file name, so two sources with one name would silently drop one object.
 BG_DUP_NAMES := $(shell printf '%s\n' $(notdir $(BG_SRC)) | sort | uniq -d)
 $(if $(BG_DUP_NAMES),$(error src/betelgeuse: file names used twice: $(BG_DUP_NAMES)))
@@ -121,7 +122,7 @@ FORCE:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
   $(BUILD)/betelgeuse_scenefile.pc $(CLI_BIN)
 
-$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/scenefile/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
+$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/betelgeuse/*/*/*.h src/scenefile/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 

@@ -1,7 +1,7 @@
 /* The GPU renderer's error paths and edge cases: bad arguments, uncommitted scenes, image sizes
  * beyond the GL limits, bad settings, the sticky first error, empty and unlit scenes, GPU out of
- * memory (injected through a GL loader wrapper), no leak over many renderers on one context, and a
- * reason for every failed creation. */
+ * memory (injected through a GL loader wrapper), no leak over many renderers on one context, a
+ * reason for every failed creation, and each entry point's name at the start of its messages. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -578,6 +578,68 @@ static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
     macs_context_destroy(ctx);
 }
 
+/* Every message of a failed call begins with that call's name, once, however deep the failure: GPU
+ * memory running out inside a plan reads "bg_render_gpu: ..." under bg_render_gpu and
+ * "bg_render_gpu_to_texture: ..." under bg_render_gpu_to_texture (the renderer's sink writes the
+ * name the entry point gave it). */
+static void assert_named_once(const bg_renderer *r, const char *entry)
+{
+    const char *message = bg_renderer_error_message(r);
+    size_t n = strlen(entry);
+    if (strncmp(message, entry, n) != 0 || strncmp(message + n, ": ", 2) != 0)
+        fail_msg("a failure of %s reads: %s", entry, message);
+    if (strstr(message + n, "bg_render_gpu:") || strstr(message + n, "bg_render_gpu_to_texture:"))
+        fail_msg("a failure of %s names an entry point twice: %s", entry, message);
+}
+
+static void each_entry_point_names_itself(void **state)
+{
+    enum { W = 16, H = 16 };
+    macs_context *ctx = util_oom_context(*state);
+    bg_scene *s = small_scene();
+    bg_render_settings set = bg_render_settings_init();
+    unsigned char px[W * H * 4];
+    bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
+    macs_texture_desc td = {0};
+    td.width = W;
+    td.height = H;
+    macs_texture *target = NULL;
+    assert_int_equal(macs_texture_create(ctx, &td, &target), MACS_OK);
+
+    bg_renderer *r = util_renderer(ctx);
+    util_oom_start(-1);
+    bg_status st = bg_render_gpu(r, s, &set, &img);
+    util_oom_stop();
+    assert_int_equal(st, BG_ERR_GPU_OUT_OF_MEMORY);
+    assert_named_once(r, "bg_render_gpu");
+    bg_renderer_destroy(r);
+    macs_context_clear_error(ctx);
+
+    /* The fused plan writes the caller's texture without a texture of its own: the multipass's
+     * targets run out. */
+    set.gpu_plan = BG_PLAN_MULTIPASS;
+    r = util_renderer(ctx);
+    util_oom_start(-1);
+    st = bg_render_gpu_to_texture(r, s, &set, target);
+    util_oom_stop();
+    assert_int_equal(st, BG_ERR_GPU_OUT_OF_MEMORY);
+    assert_named_once(r, "bg_render_gpu_to_texture");
+    bg_renderer_clear_error(r);
+    macs_context_clear_error(ctx);
+
+    /* The same renderer, and a failure the entry point's own checks find. */
+    assert_int_equal(bg_render_gpu(r, s, &set, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_named_once(r, "bg_render_gpu");
+    bg_renderer_clear_error(r);
+    assert_int_equal(bg_render_gpu_to_texture(r, s, &set, NULL), BG_ERR_INVALID_ARGUMENT);
+    assert_named_once(r, "bg_render_gpu_to_texture");
+
+    bg_renderer_destroy(r);
+    macs_texture_destroy(target);
+    bg_scene_destroy(s);
+    macs_context_destroy(ctx);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -593,6 +655,7 @@ int main(void)
         cmocka_unit_test(creation_failures_say_why),
         cmocka_unit_test(no_current_context),
         cmocka_unit_test(gpu_out_of_memory_is_reported_and_recoverable),
+        cmocka_unit_test(each_entry_point_names_itself),
     };
     return cmocka_run_group_tests(tests, util_group_setup, util_group_teardown);
 }

@@ -20,9 +20,8 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/cpu/cpu_internal.h"
-#include "betelgeuse/gpu/gpu_internal.h"
-#include "betelgeuse/scene/scene_internal.h"
+#include "betelgeuse/common/encoding.h"
+#include "betelgeuse/gpu/driver.h"
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
 #include "scenes/scenes.h"
@@ -113,7 +112,7 @@ static void check_scene(scene_id id)
     for (size_t i = 0; i < (size_t)W * H; i++)
         for (int c = 0; c < 3; c++) {
             float v = linear[4 * i + c];
-            int want = bgi_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            int want = bgi_encode_channel(v, BG_ENCODING_SRGB);
             if (v < 0.0f || abs(want - fused[4 * i + c]) > 1 || linear[4 * i + 3] != 1.0f)
                 fail_msg("%s: pixel %zu channel %d: float %g encodes to %d, RGBA8 output %d", name, i, c, (double)v,
                          want, fused[4 * i + c]);
@@ -237,14 +236,14 @@ static void value_recommits(bg_gpu_plan plan)
     assert_true(plan_render_count(r, s, &img, plan, "glass first render") >= 1);
 
     /* The multipass keeps its uploaded scene textures too (its renderer holds them). */
-    assert_true(plan != BG_PLAN_MULTIPASS || (ss->texture_count > 0 && r->textures && r->textures[0]));
-    const macs_texture *uploaded = plan == BG_PLAN_MULTIPASS ? r->textures[0] : NULL;
+    assert_true(plan != BG_PLAN_MULTIPASS || (ss->texture_count > 0 && r->multipass->textures && r->multipass->textures[0]));
+    const macs_texture *uploaded = plan == BG_PLAN_MULTIPASS ? r->multipass->textures[0] : NULL;
     bg_camera cam = ss->camera.camera;
     cam.position = bg_vec3_make(0.8, 1.9, 5.2);
     assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
     assert_int_equal(plan_render_count(r, s, &img, plan, "glass camera moved"), 0);
-    if (plan == BG_PLAN_MULTIPASS && r->textures[0] != uploaded)
+    if (plan == BG_PLAN_MULTIPASS && r->multipass->textures[0] != uploaded)
         fail_msg("the multipass uploaded its scene textures again after a camera move");
 
     /* The last material is the mirror sphere's (scenes.c adds floor, glass, chrome). */

@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
+#include "betelgeuse/common/encoding.h"
 #include "betelgeuse/cpu/cpu_internal.h"
 #include "betelgeuse/scene/scene_internal.h"
 #include "gpu_thresholds.h"
@@ -130,7 +131,7 @@ static void check_scene(scene_id id)
     for (int i = 0; i < W * H; i++)
         for (int c = 0; c < 3; c++) {
             float v = gpuf[4 * i + c];
-            int want = bgi_cpu_encode_channel(v, BG_ENCODING_SRGB);
+            int want = bgi_encode_channel(v, BG_ENCODING_SRGB);
             if (v < 0.0f || abs(want - gpu[4 * i + c]) > 1)
                 fail_msg("%s: pixel (%d, %d) channel %d: float %g encodes to %d, RGBA8 output %d", name, i % W,
                          i / W, c, (double)v, want, gpu[4 * i + c]);

@@ -16,7 +16,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
-#include "betelgeuse/gpu/gpu_internal.h"
+#include "betelgeuse/gpu/shared/shared.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"

@@ -17,7 +17,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse/cpu/cpu_internal.h"
-#include "betelgeuse/gpu/gpu_internal.h"
+#include "betelgeuse/gpu/shared/shared.h"
 #include "scenes/meshes.h"
 #include "scenes/ply_mesh.h"
 #include "util_gl.h"

@@ -37,7 +37,7 @@
  *   4). Timed: the whole build (embree_peer_build_ms) and its rtcCommitScene calls alone
  *   (embree_peer_commit_ms); Embree's memory through its device memory monitor.
  * - Shading is the reference's per-hit code (bgi_cpu_hit_attributes, bgi_cpu_surface_eval, bgi_cpu_brdf,
- *   bgi_cpu_mirror_weight, bgi_cpu_fresnel, bgi_cpu_encode_channel), chosen over a float rewrite so that
+ *   bgi_cpu_mirror_weight, bgi_cpu_fresnel, bgi_encode_channel), chosen over a float rewrite so that
  *   "the same BRDF" holds to the last bit: only the order of each pixel's sum differs (level by level
  *   instead of depth first), and the images match the reference byte for byte in every analytic scene
  *   of bench_embree. Mesh scenes differ in the few pixels where Embree's float hit or shadow test

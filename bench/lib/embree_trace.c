@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "betelgeuse/common/encoding.h"
 #include "betelgeuse/common/image.h"
 
 #define PEER_PI 3.14159265358979323846264338327950288
@@ -301,7 +302,7 @@ static void write_tile(const render_job *job, const peer_worker *w, int x0, int 
                 memcpy(row + x * sizeof px, px, sizeof px);
             } else {
                 for (int i = 0; i < 3; i++)
-                    row[4 * x + (size_t)i] = bgi_cpu_encode_channel(rgb[i], job->settings->encoding);
+                    row[4 * x + (size_t)i] = bgi_encode_channel(rgb[i], job->settings->encoding);
                 row[4 * x + 3] = 255;
             }
         }

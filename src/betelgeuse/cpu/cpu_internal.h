@@ -275,7 +275,4 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
 void bgi_cpu_render_pixel(const bg_scene_state *state, const bg_render_settings *settings,
                          const bgi_render_view *view, const bg_image *image, size_t stride, int x, int y);
 
-/* An 8-bit channel: floor(clamp(x, 0, 1) * 255 + 0.5) after the encoding. */
-uint8_t bgi_cpu_encode_channel(double linear, bg_output_encoding encoding);
-
 #endif

@@ -10,18 +10,9 @@
 #include "../common/render_args.h"
 #include "../common/render_settings.h"
 #include "../common/render_view.h"
-#include "../common/srgb.h"
+#include "../common/encoding.h"
 
 #define MAX_THREADS BG_MAX_THREADS
-
-uint8_t bgi_cpu_encode_channel(double linear, bg_output_encoding encoding)
-{
-    double x = linear < 0.0 ? 0.0 : (linear > 1.0 ? 1.0 : linear);
-    if (encoding == BG_ENCODING_SRGB)
-        x = bgi_linear_to_srgb(x);
-    double y = floor(x * 255.0 + 0.5);
-    return (uint8_t)(y < 0.0 ? 0.0 : (y > 255.0 ? 255.0 : y));
-}
 
 typedef struct job {
     const bg_scene_state *state;
@@ -62,7 +53,7 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
     } else {
         unsigned char *px = texel;
         for (int i = 0; i < 3; i++)
-            px[i] = bgi_cpu_encode_channel(rgb[i], settings->encoding);
+            px[i] = bgi_encode_channel(rgb[i], settings->encoding);
         px[3] = 255;
     }
 }

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "../common/alloc.h"
-#include "gpu_internal.h"
+#include "driver.h"
 
 /* Before the renderer exists its failures go to the caller's buffer and the desc's logger, as
  * macs_context_create's do. */
@@ -30,7 +30,7 @@ static void choose_half_gbuffer(bg_renderer *r)
     char why[512];
     r->half_gbuffer = bgi_gpu_half_probe(r, why, sizeof why);
     if (!r->half_gbuffer)
-        bgi_gpu_log(r, BG_LOG_WARNING, "bg_renderer_create: RGBA16F G-buffer unsupported (%s); using RGBA32F", why);
+        bgi_gpu_log(r, BG_LOG_WARNING, "RGBA16F G-buffer unsupported (%s); using RGBA32F", why);
 }
 
 bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_renderer, char *message,
@@ -57,6 +57,7 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
     r->allocator = desc->allocator;
     r->logger = desc->logger;
     r->ctx = desc->context;
+    r->entry = "bg_renderer_create";
     macs_context_get_limits(r->ctx, NULL, &r->limits);
     macs_features feats;
     macs_context_get_features(r->ctx, &feats);
@@ -69,16 +70,10 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
 
 void bgi_gpu_release_all(bg_renderer *r)
 {
-    bgi_gpu_passes_release(r);
-    bgi_gpu_targets_release(r);
-    bgi_gpu_scene_textures_release(r);
-    bgi_gpu_fused_release(r);
-    if (r->meshes) {
-        bgi_gpu_fused_tree_release(&r->allocator, r->meshes);
-        bgi_free(&r->allocator, r->meshes);
-        r->meshes = NULL;
-    }
-    memset(&r->key, 0, sizeof r->key);
+    bgi_gpu_plans_release(r);
+    bgi_free(&r->allocator, r->readback);
+    r->readback = NULL;
+    r->readback_size = 0;
 }
 
 void bg_renderer_destroy(bg_renderer *renderer)

@@ -7,8 +7,8 @@
 #include <string.h>
 
 #include "../common/alloc.h"
-#include "../cpu/cpu_internal.h"
-#include "gpu_internal.h"
+#include "../common/encoding.h"
+#include "driver.h"
 
 void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out)
 {
@@ -45,7 +45,7 @@ static bg_status write_out(bg_renderer *r, const bg_render_settings *settings, c
                 memcpy(dst + (size_t)x * 16, px, sizeof px);
             } else {
                 for (int i = 0; i < 3; i++)
-                    dst[(size_t)x * 4 + (size_t)i] = bgi_cpu_encode_channel(rgb[i], settings->encoding);
+                    dst[(size_t)x * 4 + (size_t)i] = bgi_encode_channel(rgb[i], settings->encoding);
                 dst[(size_t)x * 4 + 3] = 255;
             }
         }
@@ -53,11 +53,12 @@ static bg_status write_out(bg_renderer *r, const bg_render_settings *settings, c
     if (out->image)
         return BG_OK;
     macs_status ms = macs_texture_upload(out->texture, scratch, 0);
-    return ms ? bgi_gpu_fail_macs(r, ms, "bg_render_gpu_to_texture: uploading the averaged samples") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "uploading the averaged samples") : BG_OK;
 }
 
-bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
-                                 const gpu_frame_out *out, const bgi_render_view *view)
+bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                                 const bg_render_settings *settings, const gpu_frame_out *out,
+                                 const bgi_render_view *view)
 {
     int w = out->width, h = out->height, n = view->samples;
     size_t bytes = (size_t)w * (size_t)h * 16;
@@ -68,18 +69,18 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_rende
         bgi_free(&r->allocator, pass);
         bgi_free(&r->allocator, sum);
         bgi_free(&r->allocator, scratch);
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "%s: out of memory for %d samples (%zu bytes of host buffers)",
-                            out->fn, n, 3 * bytes);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %d samples (%zu bytes of host buffers)",
+                            n, 3 * bytes);
     }
     bg_image image = {w, h, BG_PIXEL_RGBA32F, (size_t)w * 16, pass};
-    gpu_frame_out one = {&image, image.stride, NULL, w, h, true, out->fn};
+    gpu_frame_out one = {&image, image.stride, NULL, w, h, true};
     bg_status st = BG_OK;
     uint64_t fallback = 0;
     int compiled = 0;
     size_t floats = (size_t)w * (size_t)h * 4;
     for (int s = 0; s < n && st == BG_OK; s++) {
         bgi_gpu_view_for_sample(view, s, &r->view);
-        st = bgi_gpu_frame_pass(r, scene, settings, &one);
+        st = bgi_gpu_plan_render(r, scene, state, settings, &one);
         if (st != BG_OK)
             break;
         fallback += r->stats.fallback_pixels;
@@ -87,8 +88,8 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, bg_scene *scene, const bg_rende
         for (size_t i = 0; i < floats; i++)
             sum[i] = s == 0 ? pass[i] : sum[i] + pass[i];
         if (s + 1 < n && !bgi_render_progress(settings, (double)(s + 1) / n))
-            st = bgi_gpu_fail(r, BG_ERR_CANCELLED, "%s: cancelled by settings.progress after %d of %d sample passes; "
-                              "the pixels of this %s (of this tile, when tiled) are untouched", out->fn, s + 1, n,
+            st = bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress after %d of %d sample passes; "
+                              "the pixels of this %s (of this tile, when tiled) are untouched", s + 1, n,
                               out->image ? "image" : "texture");
     }
     if (st == BG_OK) {

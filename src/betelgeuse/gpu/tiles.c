@@ -5,7 +5,7 @@
  * piece's. GPU memory then follows the tile: every target is made at the tile's size. */
 #include <math.h>
 
-#include "gpu_internal.h"
+#include "driver.h"
 
 #define DEFAULT_BUDGET (1024.0 * 1024.0 * 1024.0)
 
@@ -68,8 +68,8 @@ bg_status bgi_gpu_tiles_render(bg_renderer *r, bg_scene *scene, const bg_render_
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
             if (tp.cancel)
-                return bgi_gpu_fail(r, BG_ERR_CANCELLED, "%s: cancelled by settings.progress after %d of %d tiles; "
-                                    "the finished tiles are written, the others untouched", out->fn, tp.done,
+                return bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress after %d of %d tiles; "
+                                    "the finished tiles are written, the others untouched", tp.done,
                                     tp.count);
             /* Every tile has the same size, so targets and passes are made once: the last column and
              * row move back to end at the image's edge, overlapping their neighbours, whose pixels

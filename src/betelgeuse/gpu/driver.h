@@ -1,0 +1,47 @@
+/* The driver of the GPU renderer: the entry points (bg_render_gpu, bg_render_gpu_to_texture), the
+ * renderer object, tiles, the frame, samples and the plan choice. Calls go one way, entry -> tiles ->
+ * frame -> (samples ->) plan choice -> a plan, and down into fused/ and multipass/ (and shared/);
+ * nothing there calls back up. */
+#ifndef BG_GPU_DRIVER_H
+#define BG_GPU_DRIVER_H
+
+#include "fused/fused.h"
+#include "multipass/multipass.h"
+
+/* ---- renderer.c ---- */
+/* Frees every GPU object (both plans' and the shared ones) so the next render starts afresh. */
+void bgi_gpu_release_all(bg_renderer *r);
+
+/* ---- frame.c ---- */
+/* One frame of the committed scene into out (whose arguments the entry point checked, view their
+ * window and samples): progress at 0, the one pass of a single sample, or samples.c's passes,
+ * progress at 1; fills the renderer's statistics. */
+bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                               const gpu_frame_out *out, const bgi_render_view *view);
+
+/* ---- tiles.c ---- */
+/* bg_render_gpu's frame into out->image: in one piece through bgi_gpu_frame_render, or as tiles of
+ * the frame when the image exceeds max_texture_size or the settings' GPU memory budget; sets
+ * stats.tiles. */
+bg_status bgi_gpu_tiles_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
+                               const gpu_frame_out *out, const bgi_render_view *view);
+
+/* ---- samples.c ---- */
+/* The gpu_view of sample s of view: that one sample, and its camera shift (docs/shading.md 1.1). */
+void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out);
+/* A frame of view->samples > 1: one pass per sample into a float image on the host, summed there in
+ * sample order and divided by the count, then encoded into out's image or uploaded into its
+ * texture; progress after each pass, cancelling between passes leaves out untouched. */
+bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                                 const bg_render_settings *settings, const gpu_frame_out *out,
+                                 const bgi_render_view *view);
+
+/* ---- plan.c ---- */
+/* One pass of the frame for r->view (one sample) by the plan the settings ask for, or under
+ * BG_PLAN_AUTO the one that takes it; resets and fills the renderer's statistics. */
+bg_status bgi_gpu_plan_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                              const bg_render_settings *settings, const gpu_frame_out *out);
+/* Frees every plan's objects. */
+void bgi_gpu_plans_release(bg_renderer *r);
+
+#endif

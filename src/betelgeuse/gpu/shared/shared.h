@@ -1,0 +1,321 @@
+/* Services both plans use (the fused plan in fused/, the multipass in multipass/): the renderer
+ * object's shared part and its error sink, shader text assembly, pass creation, the camera-relative
+ * origin, the read-back, the phase clock, the object tree's and the meshes' textures, and the CPU
+ * reference for the pixels a walk could not finish. Every pass is a MACS render pass; only MACS
+ * touches GL. This room includes nothing of gpu/ outside itself. */
+#ifndef BG_GPU_SHARED_H
+#define BG_GPU_SHARED_H
+
+#include "../../../macs/first_error.h"
+#include "../../scene/scene_internal.h"
+#include "../../common/render_view.h"
+
+/* llvmpipe ends a shader invocation silently after 65535 loop iterations in all: the fused plan's
+ * trace loop and every pass's tree walks stay within it (a pixel that could need more goes to the
+ * multipass or to the CPU reference). */
+#define GPU_MAX_LOOP 65535
+
+/* The pixels one pass computes: the window of the frame and the sample (pixels.sample_first, one
+ * sample per pass), and what the camera stage adds to gl_FragCoord.xy for it (docs/shading.md 1.1):
+ * the window's offset in the frame in GL's bottom-up rows plus the sample's offset from the pixel
+ * centre, all multiples of 2^-BGI_SAMPLE_BITS, so the sum is exact in float and a window's rays are
+ * bit for bit the full frame's. */
+typedef struct gpu_view {
+    bgi_render_view pixels;
+    float shift[2];
+} gpu_view;
+
+/* Where a frame ends: the caller's image, read back with its rows flipped to top-down (image set), or
+ * the caller's texture, written on the GPU with GL's rows, bottom row first (texture set). */
+typedef struct gpu_frame_out {
+    bg_image *image;       /* bg_render_gpu; NULL for a texture */
+    size_t stride;         /* the image's checked row stride */
+    macs_texture *texture; /* bg_render_gpu_to_texture; NULL for an image */
+    int width, height;
+    bool as_float;         /* RGBA32F image, RGBA32F or RGBA16F texture: linear radiance; else RGBA8 */
+} gpu_frame_out;
+
+struct gpu_fused;     /* fused/fused.h: the fused plan's cached program and targets */
+struct gpu_multipass; /* multipass/multipass.h: the multipass's targets, passes and cache key */
+
+struct bg_renderer {
+    bg_allocator allocator;
+    bg_logger logger;
+    macs_first_error error; /* status is a bg_status; fail.c records it */
+
+    macs_context *ctx;
+    macs_limits limits; /* effective */
+    bool float_depth;
+    bool half_gbuffer; /* asked for and found renderable at creation (bgi_gpu_half_probe) */
+    bg_render_stats stats;
+    const char *entry; /* the public call running (set at its start): every message of it begins so */
+
+    float *readback; /* read_back.c's buffer */
+    size_t readback_size;
+    gpu_view view; /* of the pass being rendered (the driver sets it) */
+
+    /* Each plan's own objects, NULL until the plan first runs; each plan frees only its own. */
+    struct gpu_fused *fused;
+    struct gpu_multipass *multipass;
+};
+
+/* ---- the plan interface: what the driver's choice (plan.c) calls, and nothing else does ---- */
+/* One pass of a frame (one sample; r->view is set) as a plan receives it. */
+typedef struct gpu_plan_frame {
+    const bg_scene *scene;              /* the multipass's cache key names it */
+    const bg_scene_state *state;        /* its committed state, read once per frame */
+    const bg_render_settings *settings;
+    const gpu_frame_out *out;
+    bool forced;                        /* the settings name this plan: it may not decline */
+} gpu_plan_frame;
+
+/* A way to render a frame on the GPU. A new plan is one more of these and one more case in the
+ * driver's choice (docs/architecture.md, "Where to add a plan"). */
+typedef struct gpu_plan {
+    bg_gpu_plan id;   /* what stats.plan says after the plan rendered */
+    const char *name; /* for messages */
+    /* Renders f into f->out and fills the statistics (the driver sets plan and programs_compiled).
+     * Unless forced it may decline: BG_OK with the reason in why, nothing rendered; why is "" when
+     * it rendered. A failure frees the plan's own objects, so its next frame starts afresh. */
+    bg_status (*render)(bg_renderer *r, const gpu_plan_frame *f, char *why, size_t why_size);
+    /* Frees every object of the plan. */
+    void (*release)(bg_renderer *r);
+} gpu_plan;
+
+#if defined(__GNUC__)
+#define GPU_PRINTF_(format_arg, first_arg) __attribute__((__format__(__printf__, format_arg, first_arg)))
+#else
+#define GPU_PRINTF_(format_arg, first_arg)
+#endif
+
+/* ---- fail.c: the error sink; calls nothing else in gpu/ ---- */
+/* Records the first error with a message and logs it; returns status. */
+bg_status bgi_gpu_fail(bg_renderer *r, bg_status status, const char *format, ...) GPU_PRINTF_(3, 4);
+/* Turns a MACS failure into a renderer error carrying MACS's message. */
+bg_status bgi_gpu_fail_macs(bg_renderer *r, macs_status ms, const char *what);
+/* Records a message of the argument checks the CPU renderer shares (common/render_args.c,
+ * render_settings.c, render_view.c), which begin with the entry's name themselves. */
+bg_status bgi_gpu_fail_checked(bg_renderer *r, bg_status status, const char *message);
+/* Logs a diagnostic that is not an error (a warning: something worked around; info: a choice made). */
+void bgi_gpu_log(const bg_renderer *r, bg_log_level level, const char *format, ...) GPU_PRINTF_(3, 4);
+
+/* ---- origin.c ---- */
+/* Every position the GPU sees is relative to the camera (float bits stay near the scene, not near
+ * the world origin): the object's to_object for such points, column-major, and a moved point. */
+void bgi_gpu_origin_to_object(const bg_scene_state *state, uint32_t object, float m16[16]);
+void bgi_gpu_origin_point(const bg_scene_state *state, const bg_vec3 *p, float out[3]);
+
+/* ---- shader_source.c ---- */
+/* A growing string built through the renderer's allocator; a failed append leaves it failed. */
+typedef struct gpu_text {
+    const bg_allocator *allocator;
+    char *s;
+    size_t len, cap;
+    bool failed;
+} gpu_text;
+void bgi_gpu_text_init(gpu_text *t, const bg_allocator *a);
+void bgi_gpu_text_append(gpu_text *t, const char *s);
+void bgi_gpu_text_printf(gpu_text *t, const char *format, ...);
+/* Appends a glsl110/ library file with everything its "// requires:" line names first (each file
+ * once per text, tracked in seen), without the #version lines. False if a file is missing. */
+bool bgi_gpu_text_snippet(gpu_text *t, const char *file, const char **seen, int *seen_count, int seen_cap);
+void bgi_gpu_text_free(gpu_text *t);
+/* Like bgi_gpu_text_snippet, with each name in the NULL-terminated list renamed to name_suffix by
+ * #define around the file, which is then forgotten by seen so that the next suffix inlines it again:
+ * one program can hold several shapes' copies of a function (hit_pass.c, shadow batches). */
+bool bgi_gpu_text_snippet_renamed(gpu_text *t, const char *file, const char *const *names, const char *suffix,
+                              const char **seen, int *seen_count, int seen_cap);
+
+/* ---- shape_source.c ---- */
+/* The suffix of a shape's functions in a pass (bg_hit_root_sphere): its name in common/shapes.h. */
+const char *bgi_gpu_shape_suffix(bg_shape shape);
+/* Appends, once per distinct shape of objects[0 .. count - 1] (indices into state->objects), the
+ * shape's bg_shape_*.glsl and then stage_file, both with bg_shape_span and the NULL-terminated
+ * stage_names renamed by the shape's suffix. False if a file is missing. */
+bool bgi_gpu_text_shape_stages(gpu_text *t, const bg_scene_state *state, const uint32_t *objects, int count,
+                           const char *stage_file, const char *const *stage_names, const char **seen,
+                           int *seen_count, int seen_cap);
+
+/* The glsl110/ file of a UV mapping (NULL for none) and the suffix of its bg_uv_map_ function. */
+const char *bgi_gpu_uv_file(bg_uv_mapping mapping);
+const char *bgi_gpu_uv_suffix(bg_uv_mapping mapping);
+
+/* ---- material_traits.c ---- */
+/* Whether a material can spawn a secondary ray somewhere (mirror share or transparency). */
+bool bgi_gpu_material_may_bounce(const bg_material *m);
+/* Whether some layer of a material may have isotropy < 1 (a tangent is needed). */
+bool bgi_gpu_material_may_be_aniso(const bg_material *m);
+
+/* ---- material_params.c: the material parameters as both plans' shaders read them ---- */
+/* Material parameters a shader evaluates at a hit (docs/shading.md 5): id, the GLSL local and
+ * uniform suffix, vec3 (true) or float, whether the value is clamped to [0, 1] (true) or to >= 0
+ * after texturing, and which materials the fused plan declares it for (a gpu_fused_need). */
+#define GPU_PARAMS(X)                                         \
+    X(BASE_C, "base_c", true, true, USED)                     \
+    X(BASE_R, "base_r", false, true, USED)                    \
+    X(BASE_P, "base_p", false, true, ANISO)                   \
+    X(AMBIENT, "ambient", true, false, USED)                  \
+    X(EMISSION, "emission", true, false, USED)                \
+    X(TRANSPARENCY, "transparency", false, true, TRANSPARENT) \
+    X(COAT_C, "coat_c", true, true, COAT)                     \
+    X(COAT_R, "coat_r", false, true, COAT)                    \
+    X(COAT_P, "coat_p", false, true, COAT_ANISO)
+
+typedef enum gpu_param {
+#define GPU_PARAM_ENUM_(id, local, color, unit, need) GPU_P_##id,
+    GPU_PARAMS(GPU_PARAM_ENUM_)
+#undef GPU_PARAM_ENUM_
+    GPU_P_COUNT_
+} gpu_param;
+
+/* The GLSL local (and uniform suffix) of parameter p, and whether it is a colour (vec3). */
+const char *bgi_gpu_param_local(gpu_param p);
+bool bgi_gpu_param_is_color(gpu_param p);
+/* Whether parameter p is clamped to [0, 1] after texturing (else to >= 0). */
+bool bgi_gpu_param_is_unit(gpu_param p);
+/* The constant and texture of material parameter p of m (rgb for colours; value in v[0] for scalars). */
+void bgi_gpu_param_of(const bg_material *m, gpu_param p, double v[3], uint32_t *texture, int *channel);
+/* The uniform value of parameter p of m: the constant, with the scene's ambient light folded into
+ * the ambient colour, and a material without a coat given the values of no coat (reflectance 0,
+ * roughness -1, isotropy 1). A scalar's value is out[0]. */
+void bgi_gpu_param_value(const bg_scene_state *state, const bg_material *m, gpu_param p, float out[3]);
+
+/* ---- light_pack.c ---- */
+/* One light as bg_light.glsl reads it (the uniforms bg_lpos, bg_lrad, bg_latt, bg_lspot, bg_lexp). */
+typedef struct gpu_packed_light {
+    float pos[4], rad[3], att[3], spot[4], exponent;
+} gpu_packed_light;
+gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
+
+/* ---- texture_upload.c ---- */
+/* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
+bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what);
+/* Uploads one scene texture as the samplers read it (RGBA32F, GL_LINEAR, its wrap). */
+bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
+
+/* ---- pass_create.c: making one pass; calls only shader_source.c and fail.c ---- */
+/* Fills the parts of a pass description every pass sets; depth, stencil, blend and colour mask stay
+ * zero (off, default) for the caller to set. */
+void bgi_gpu_pass_desc_init(macs_pass_desc *d, const char *main, const macs_input_desc *inputs,
+                        macs_texture *const *input_tex, int input_count, const macs_uniform_desc *uniforms,
+                        int uniform_count, const macs_output_desc *outputs, macs_texture *const *output_tex,
+                        int output_count);
+/* Creates one pass whose functions are the listed glsl110/ files (plus extra text); reports errors. */
+bg_status bgi_gpu_pass_create(bg_renderer *r, const char *what, const char *const *files, const char *extra,
+                          macs_pass_desc *desc, macs_pass **out);
+/* Creates a pass. With trial, a program GL refuses (compile or link) on a context with no earlier
+ * error is not an error: *out stays NULL, *refused gets the status and why GL's message, and the
+ * MACS error is forgotten; a caller then takes another way and says so. */
+bg_status bgi_gpu_pass_create_trial(bg_renderer *r, const char *what, macs_pass_desc *desc, bool trial, macs_pass **out,
+                                macs_status *refused, char *why, size_t why_size);
+/* Creates a pass from assembled functions. With trial, a shader GL refuses (compile or link) is
+ * logged as a warning and forgotten: *out stays NULL, *rejected true, BG_OK returned. */
+bg_status bgi_gpu_pass_try(bg_renderer *r, const char *what, const char *functions, macs_pass_desc *desc, bool trial,
+                       macs_pass **out, bool *rejected);
+/* Uniform components of one element of type t, and of the declared uniforms u[0 .. count - 1], as
+ * old hardware allocates them (every float, vec2 or vec3 a whole vec4; arrays per element): the one
+ * count every plan's uniform budget is planned by. */
+int bgi_gpu_uniform_type_components(macs_uniform_type t);
+int bgi_gpu_uniform_components(const macs_uniform_desc *u, int count);
+/* bgi_gpu_pass_try over assembled texts (desc->main already points into main): fails with a message
+ * when a text ran out of memory or a glsl110 file was missing (files_found false); frees both. */
+bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *main, gpu_text *functions, bool files_found,
+                              macs_pass_desc *desc, bool trial, macs_pass **out, bool *rejected);
+
+/* ---- phase_clock.c ---- */
+/* Milliseconds of a monotonic clock. */
+double bgi_gpu_now_ms(void);
+/* With timing, drains the GPU and starts *clock; without, does nothing. */
+void bgi_gpu_phase_start(bg_renderer *r, bool timing, double *clock);
+/* With timing, drains the GPU, adds the time since *clock to the phase and restarts *clock. */
+void bgi_gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase);
+
+/* ---- read_back.c ---- */
+/* Copies a finished RGBA8 or RGBA32F texture of the image's size into the caller's image, rows
+ * flipped to top-down; with opaque, alpha 1 for float images (else the texture's, for the caller to
+ * read and then set). */
+bg_status bgi_gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque);
+/* The renderer's read-back buffer, grown to at least bytes; NULL (the failure reported) when out of
+ * memory. */
+void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes);
+
+
+/* The tree variant's texture geometry: per texture (items per row, its inverse, 1 / width,
+ * 1 / height), as bg_tree_textures.glsl reads it, and the node count. */
+typedef struct gpu_tree_dims {
+    float nodes[4], objects[4];
+    float node_count;
+    float meshes[4]; /* the mesh textures' (texels per row, its inverse, 1 / triangle rows, 1 / node rows) */
+} gpu_tree_dims;
+
+/* ---- tree_textures.c ---- */
+/* One texture of the tree variant with the host copy of what it holds (held) and room to build the
+ * next frame's (scratch), so that only a change is uploaded. */
+typedef struct gpu_held_texture {
+    macs_texture *texture;
+    float *held, *scratch;
+    size_t floats;
+} gpu_held_texture;
+
+typedef struct gpu_tree_textures {
+    gpu_held_texture nodes, objects;
+    gpu_held_texture mesh_nodes; /* every distinct mesh's tree (tree_textures.c); none without meshes */
+    gpu_held_texture mesh_tris;  /* and its triangles */
+    float *mesh_base;              /* per object: 2 floats, its mesh's root node and first triangle texel */
+    uint32_t mesh_base_count;      /* objects mesh_base has room for */
+    uint64_t *mesh_keys;           /* the serials of the distinct meshes the mesh textures hold, in order */
+    uint32_t mesh_key_count, mesh_key_room;
+    gpu_tree_dims dims; /* of the prepared textures */
+    uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
+    bool walks;               /* whether they were made for a layout that walks the tree */
+    macs_texture *marks;      /* fallback.c: a frame's marked pixels, 32 to an RGBA8 texel */
+    macs_pass *mark_pass;     /* writes marks from a frame of the marks' height */
+} gpu_tree_textures;
+
+/* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
+bool bgi_gpu_tree_textures_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
+/* False, with the reason, when the scene's meshes do not fit the mesh textures (part of _fits). */
+bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
+/* Makes the textures hold the committed scene's tree and objects, as seen from its camera (with
+ * walks: the layout walks the tree), and the meshes' nodes and triangles where it has meshes. The
+ * caller has checked that they fit (bgi_gpu_tree_textures_fit with walks, else bgi_gpu_meshes_fit):
+ * each plan checks once, before it takes the frame. */
+bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state, bool walks);
+void bgi_gpu_tree_textures_release(const bg_allocator *a, gpu_tree_textures *t);
+/* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
+ * returns how many there were. */
+uint64_t bgi_gpu_fallback_image(const bg_scene_state *state, const bg_render_settings *settings,
+                                 const bgi_render_view *view, const bg_image *image, size_t stride);
+
+/* ---- fallback.c ---- */
+/* The same for a frame that ended in the caller's texture: finds the marked pixels from a one-bit-a-
+ * pixel read-back, renders them with the CPU reference and uploads them into target; *count gets
+ * how many there were. */
+bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state,
+                                          const bg_render_settings *settings, macs_texture *target, uint64_t *count);
+/* Frees the marks texture and its pass. */
+void bgi_gpu_marks_release(gpu_tree_textures *t);
+
+/* ---- mesh_source.c ---- */
+/* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10). */
+#define GPU_MESH_OFFSET_ULPS 256.0
+/* The fused plans' mesh code for layouts with meshes: the globals a mesh hit leaves
+ * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
+ * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
+ * which turns a spawned ray into one leaving the triangle. */
+void bgi_gpu_mesh_walks(int walk_budget, gpu_text *t);
+/* The mesh slot's w where a walk of the pixel ran out of steps: the multipass marks the pixel for
+ * the CPU reference (multipass_frame.c). */
+#define GPU_MESH_SHORT (-2.0)
+/* What a multipass pass that walks `walks` meshes per pixel leaves its walks of llvmpipe's loop
+ * limit (each walk's loop ends take 3 iterations). */
+int bgi_gpu_mesh_pass_budget(int walks);
+/* The step count the walks share and the flag of one that ran out (set by the caller's main). */
+void bgi_gpu_walk_globals(gpu_text *t);
+/* The walk globals and the mesh walks of a multipass pass with `walks` mesh walks per pixel. */
+void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t);
+/* bg_triangle.glsl and bg_mesh.glsl into t. */
+bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap);
+
+
+#endif

@@ -1,0 +1,32 @@
+/* Textures both plans make: a target created on first use, and a scene texture as the samplers
+ * read it. */
+#include <string.h>
+
+#include "shared.h"
+
+bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
+{
+    if (*out)
+        return BG_OK;
+    macs_texture_desc d;
+    memset(&d, 0, sizeof d);
+    d.width = w;
+    d.height = h;
+    d.format = format;
+    macs_status ms = macs_texture_create(r->ctx, &d, out);
+    return ms ? bgi_gpu_fail_macs(r, ms, what) : BG_OK;
+}
+
+bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
+{
+    macs_texture_desc d;
+    memset(&d, 0, sizeof d);
+    d.width = t->width;
+    d.height = t->height;
+    d.format = MACS_FORMAT_RGBA32F;
+    d.filter = t->filter == BG_FILTER_NEAREST ? MACS_FILTER_NEAREST : MACS_FILTER_LINEAR; /* no mipmaps: docs/shading.md 5 */
+    d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
+    d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
+    macs_status ms = macs_texture_create(r->ctx, &d, out);
+    return ms ? bgi_gpu_fail_macs(r, ms, "scene texture") : BG_OK;
+}
