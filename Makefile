@@ -349,7 +349,7 @@ FUZZ_SF_OBJ  := $(SF_SRC:%.c=$(FUZZ_OBJ_DIR)/%.o)
 FUZZ_A       := $(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a $(FUZZ_OBJ_DIR)/libbetelgeuse.a $(FUZZ_OBJ_DIR)/libmacs.a
 FUZZ_BIN     := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 
-$(FUZZ_OBJ_DIR)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/scenefile/*.h) $(FUZZ_HDR)
+$(FUZZ_OBJ_DIR)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/betelgeuse/*/*/*.h src/scenefile/*.h) $(FUZZ_HDR)
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_WARN) $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_OBJ_DIR)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
