@@ -43,7 +43,8 @@ struct gpu_fused {
     macs_texture **textures; /* per scene texture (handle - 1), those some sampler reads */
     uint32_t texture_count;
     uint64_t texture_hash;   /* of what textures hold */
-    gpu_tree_textures tree;     /* the tree variant's textures */
+    gpu_tree_textures tree;  /* the tree variant's textures (tree_textures.c) */
+    gpu_marks marks;         /* the marks of a texture frame's short walks (shared/fallback.c) */
 };
 
 /* ---- what the fused plan can render ---- */
@@ -339,8 +340,11 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     const gpu_fused_layout *l = &f->layout;
     bool walks = bgi_gpu_fused_layout_walks(l);
     bg_status st = textures_prepare(r, f, state, l);
+    /* The meshes first: the tree's objects texture holds their bases. */
     if (st == BG_OK && (walks || l->mesh))
-        st = bgi_gpu_tree_textures_prepare(r, &f->tree, state, walks);
+        st = bgi_gpu_meshes_prepare(r, state);
+    if (st == BG_OK && walks)
+        st = bgi_gpu_tree_textures_prepare(r, &f->tree, state);
     if (st == BG_OK)
         st = output_for(r, f, o, out);
     if (st != BG_OK)
@@ -353,14 +357,14 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     if (!ms && walks)
         ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
     if (!ms && l->mesh)
-        ms = macs_pass_set_input(f->pass, mesh_input(l), f->tree.mesh_nodes.texture);
+        ms = macs_pass_set_input(f->pass, mesh_input(l), r->meshes.nodes);
     if (!ms && l->mesh)
-        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, f->tree.mesh_tris.texture);
+        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, r->meshes.triangles);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "binding the fused pass");
-    gpu_fused_values v = {state, settings, l->tree || l->mesh ? &f->tree.dims : NULL, f->tree.mesh_base,
+    gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, &r->meshes,
                           o->width, o->height, o->as_float, &r->view};
     return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
@@ -375,13 +379,13 @@ static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_f
 }
 
 /* The frame's end: the image read back, or the texture as the pass left it. Either way the pixels
- * the tree walks marked are then rendered by the CPU reference (tree_textures.c, fallback.c). */
+ * the tree walks marked are then rendered by the CPU reference (tree_textures.c, shared/fallback.c). */
 static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                         const gpu_frame_out *o, macs_texture *out)
 {
     bool walks = bgi_gpu_fused_layout_budgeted(&r->fused->layout);
     if (o->texture)
-        return walks ? bgi_gpu_fallback_texture(r, &r->fused->tree, state, settings, o->texture,
+        return walks ? bgi_gpu_fallback_texture(r, &r->fused->marks, state, settings, o->texture,
                                                      &r->stats.fallback_pixels)
                      : BG_OK;
     bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
@@ -476,6 +480,7 @@ void bgi_gpu_fused_release(bg_renderer *r)
     outputs_release(f);
     textures_release(r, f);
     bgi_gpu_tree_textures_release(&r->allocator, &f->tree);
+    bgi_gpu_marks_release(&f->marks);
     bgi_gpu_fused_layout_free(&r->allocator, &f->layout);
     bgi_free(&r->allocator, f->key);
     bgi_free(&r->allocator, f->refused);

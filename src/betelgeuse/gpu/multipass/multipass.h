@@ -110,7 +110,7 @@ typedef struct gpu_multipass {
     macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
     gpu_passes passes;
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
-    gpu_tree_textures *meshes; /* the mesh textures and marks (shared/tree_textures.c); NULL until used */
+    gpu_marks marks;    /* of a texture frame's short mesh walks (shared/fallback.c) */
 } gpu_multipass;
 
 /* ---- multipass_frame.c ---- */

@@ -369,14 +369,14 @@ static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
 /* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the
  * encoding first. Into a texture: a resolve pass writes it, encoded or (a float target) as it is.
  * With meshes, the pixels a walk could not finish (alpha 0) are then rendered by the CPU reference,
- * as in the fused plans (tree_textures.c, fallback.c). */
+ * as in the fused plans (shared/fallback.c). */
 static bg_status finish(frame *f, const gpu_frame_out *o)
 {
     bg_status st = finish_gpu(f, o);
     if (st != BG_OK || !f->r->multipass->features.mesh)
         return st;
     if (o->texture)
-        return bgi_gpu_fallback_texture(f->r, f->r->multipass->meshes, f->state, f->settings, o->texture,
+        return bgi_gpu_fallback_texture(f->r, &f->r->multipass->marks, f->state, f->settings, o->texture,
                                                    &f->r->stats.fallback_pixels);
     if (o->as_float)
         float_marks(o->image, o->stride);
@@ -392,21 +392,15 @@ static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
            a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
 }
 
-/* The mesh textures of the passes (tree_textures.c: the same layout and upload rule as the fused plans'). */
+/* The mesh textures of the passes: the fused plans' (shared/meshes.c). */
 static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
 {
-    if (!r->multipass->meshes) {
-        r->multipass->meshes = bgi_alloc(&r->allocator, sizeof *r->multipass->meshes);
-        if (!r->multipass->meshes)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh texture");
-        memset(r->multipass->meshes, 0, sizeof *r->multipass->meshes);
-    }
     char why[160];
     if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
         /* The fused plans checked this before they took the frame, so only the multipass, the last
          * plan, can find it here. */
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "no plan can render these meshes: %s", why);
-    return bgi_gpu_tree_textures_prepare(r, r->multipass->meshes, state, false);
+    return bgi_gpu_meshes_prepare(r, state);
 }
 
 static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
@@ -536,10 +530,7 @@ void bgi_gpu_multipass_release(bg_renderer *r)
     bgi_gpu_passes_release(r);
     bgi_gpu_targets_release(r);
     bgi_gpu_scene_textures_release(r);
-    if (m->meshes) {
-        bgi_gpu_tree_textures_release(&r->allocator, m->meshes);
-        bgi_free(&r->allocator, m->meshes);
-    }
+    bgi_gpu_marks_release(&m->marks);
     bgi_free(&r->allocator, m);
     r->multipass = NULL;
 }
