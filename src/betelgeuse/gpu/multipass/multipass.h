@@ -82,6 +82,7 @@ typedef struct gpu_cache_key {
     uint64_t commit_count;
     uint64_t fingerprint; /* bgi_gpu_scene_fingerprint of the committed state */
     uint64_t textures;    /* bgi_gpu_textures_fingerprint of it */
+    uint64_t mesh_uploads; /* r->meshes.uploads: the passes bind the mesh textures when they are built */
     int width, height;
     unsigned disable_skips;
     bg_output_encoding encoding;

@@ -389,13 +389,16 @@ static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
     return a->valid && a->scene == b->scene && a->commit_count == b->commit_count &&
            a->fingerprint == b->fingerprint && a->width == b->width &&
            a->height == b->height && a->disable_skips == b->disable_skips && a->encoding == b->encoding &&
-           a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
+           a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight &&
+           a->mesh_uploads == b->mesh_uploads;
 }
 
 /* The mesh textures of the passes: the fused plans' (shared/meshes.c). */
 static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
 {
     char why[160];
+    if (state->mesh_object_count == 0 || r->meshes.serial == state->serial)
+        return BG_OK; /* nothing to check: they hold this commit */
     if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
         /* The fused plans checked this before they took the frame, so only the multipass, the last
          * plan, can find it here. */
@@ -411,6 +414,12 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
     memset(&key, 0, sizeof key);
     key.scene = scene;
     key.commit_count = f->state->commit_count;
+    /* The mesh textures are the plans' one copy: brought to this commit before the key is compared,
+     * since another plan may have remade them after this plan's passes bound them. */
+    bg_status st = meshes_prepare(r, f->state);
+    if (st != BG_OK)
+        return st;
+    key.mesh_uploads = f->state->mesh_object_count > 0 ? r->meshes.uploads : 0;
     key.textures = bgi_gpu_textures_fingerprint(f->state);
     key.fingerprint = bgi_gpu_scene_fingerprint(f->state, key.textures);
     key.width = width;
@@ -436,15 +445,12 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
     bgi_gpu_passes_retire(r);
     memset(&r->multipass->key, 0, sizeof r->multipass->key);
     bgi_gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->multipass->features);
-    bg_status st = BG_OK;
     if (new_textures || !r->multipass->white)
         st = bgi_gpu_scene_textures_prepare(r, f->state);
     r->multipass->key = key;
     r->multipass->key.valid = false;
     if (st == BG_OK)
         st = bgi_gpu_targets_prepare(r, width, height);
-    if (st == BG_OK && r->multipass->features.mesh)
-        st = meshes_prepare(r, f->state);
     if (st == BG_OK)
         st = bgi_gpu_passes_build(r, f->state, s);
     bgi_gpu_passes_release_retired(r);

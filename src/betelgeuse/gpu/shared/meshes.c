@@ -255,6 +255,7 @@ static bg_status meshes_upload(bg_renderer *r, gpu_meshes *m, const bg_scene_sta
     }
     memset(data, 0, floats * sizeof *data);
     fill_meshes(state, first, m, data, data + node_floats);
+    m->uploads++;
     bg_status st = mesh_texture_upload(r, &m->nodes, w, h_nodes, data);
     if (st == BG_OK)
         st = mesh_texture_upload(r, &m->triangles, w, h_tris, data + node_floats);
@@ -267,6 +268,8 @@ static bg_status meshes_upload(bg_renderer *r, gpu_meshes *m, const bg_scene_sta
 /* The textures go with the last mesh: a scene without meshes keeps no mesh data on the GPU. */
 static void textures_release(gpu_meshes *m)
 {
+    if (m->nodes || m->triangles)
+        m->uploads++;
     macs_texture_destroy(m->nodes);
     macs_texture_destroy(m->triangles);
     m->nodes = m->triangles = NULL;
@@ -309,5 +312,7 @@ void bgi_gpu_meshes_release(bg_renderer *r)
     textures_release(m);
     bgi_free(&r->allocator, m->base);
     bgi_free(&r->allocator, m->keys);
+    uint64_t uploads = m->uploads;
     memset(m, 0, sizeof *m);
+    m->uploads = uploads;
 }

@@ -51,6 +51,8 @@ typedef struct gpu_meshes {
     uint64_t *keys;          /* the serials of the distinct meshes the textures hold, in order */
     uint32_t key_count, key_room;
     uint64_t serial;         /* the commit (bg_scene_state.serial) they were made for; 0 none */
+    uint64_t uploads;        /* grows whenever the textures are remade or written: a pass that bound them
+                              * when it was another value (the multipass's) binds stale ones */
 } gpu_meshes;
 
 /* The marks of a frame's pixels whose walks ran out of steps, for a frame that ended in the
