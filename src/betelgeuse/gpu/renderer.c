@@ -72,6 +72,7 @@ void bgi_gpu_release_all(bg_renderer *r)
 {
     bgi_gpu_plans_release(r);
     bgi_gpu_meshes_release(r);
+    bgi_gpu_scene_textures_release(r);
     bgi_free(&r->allocator, r->readback);
     r->readback = NULL;
     r->readback_size = 0;

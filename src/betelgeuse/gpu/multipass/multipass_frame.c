@@ -390,7 +390,7 @@ static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
            a->fingerprint == b->fingerprint && a->width == b->width &&
            a->height == b->height && a->disable_skips == b->disable_skips && a->encoding == b->encoding &&
            a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight &&
-           a->mesh_uploads == b->mesh_uploads;
+           a->texture_uploads == b->texture_uploads && a->mesh_uploads == b->mesh_uploads;
 }
 
 /* The mesh textures of the passes: the fused plans' (shared/meshes.c). */
@@ -414,13 +414,16 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
     memset(&key, 0, sizeof key);
     key.scene = scene;
     key.commit_count = f->state->commit_count;
-    /* The mesh textures are the plans' one copy: brought to this commit before the key is compared,
-     * since another plan may have remade them after this plan's passes bound them. */
-    bg_status st = meshes_prepare(r, f->state);
+    /* The scene's and the mesh textures are the plans' one copy: brought to this commit before the
+     * key is compared, since another plan may have remade them after this plan's passes bound them. */
+    bg_status st = bgi_gpu_scene_textures_prepare(r, f->state);
+    if (st == BG_OK)
+        st = meshes_prepare(r, f->state);
     if (st != BG_OK)
         return st;
+    key.texture_uploads = f->state->texture_count > 0 ? r->scene_textures.uploads : 0;
     key.mesh_uploads = f->state->mesh_object_count > 0 ? r->meshes.uploads : 0;
-    key.textures = bgi_gpu_textures_fingerprint(f->state);
+    key.textures = r->scene_textures.key;
     key.fingerprint = bgi_gpu_scene_fingerprint(f->state, key.textures);
     key.width = width;
     key.height = height;
@@ -440,13 +443,11 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
         }
         return BG_OK;
     }
-    /* Scene textures are uploaded again only when what they hold changed, not on every commit. */
-    bool new_textures = !r->multipass->key.valid || r->multipass->key.textures != key.textures;
     bgi_gpu_passes_retire(r);
     memset(&r->multipass->key, 0, sizeof r->multipass->key);
     bgi_gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->multipass->features);
-    if (new_textures || !r->multipass->white)
-        st = bgi_gpu_scene_textures_prepare(r, f->state);
+    r->multipass->textures = r->scene_textures.texture;
+    st = bgi_gpu_white_prepare(r);
     r->multipass->key = key;
     r->multipass->key.valid = false;
     if (st == BG_OK)
@@ -535,7 +536,7 @@ void bgi_gpu_multipass_release(bg_renderer *r)
         return;
     bgi_gpu_passes_release(r);
     bgi_gpu_targets_release(r);
-    bgi_gpu_scene_textures_release(r);
+    macs_texture_destroy(m->white);
     bgi_gpu_marks_release(&m->marks);
     bgi_free(&r->allocator, m);
     r->multipass = NULL;

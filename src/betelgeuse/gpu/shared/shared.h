@@ -1,6 +1,6 @@
 /* Services both plans use (the fused plan in fused/, the multipass in multipass/): the renderer
  * object's shared part and its error sink, shader text assembly, pass creation, the camera-relative
- * origin, the read-back, the phase clock, the meshes' textures, and the CPU
+ * origin, the read-back, the phase clock, the scene's and the meshes' textures, and the CPU
  * reference for the pixels a walk could not finish. Every pass is a MACS render pass; only MACS
  * touches GL. This room includes nothing of gpu/ outside itself. */
 #ifndef BG_GPU_SHARED_H
@@ -55,6 +55,17 @@ typedef struct gpu_meshes {
                               * when it was another value (the multipass's) binds stale ones */
 } gpu_meshes;
 
+/* The scene's textures (scene_textures.c), one copy that every plan samples. */
+typedef struct gpu_scene_textures {
+    macs_texture **texture; /* per scene texture (handle - 1) */
+    uint32_t count;
+    uint64_t key;           /* what they hold: a hash of the textures' sizes, modes and texels */
+    bool held;              /* they hold key's textures (an upload that failed leaves it false) */
+    uint64_t serial;        /* the last commit found to hold key's textures; 0 none */
+    uint64_t uploads;       /* grows whenever they are remade: a pass that bound them when it was
+                             * another value (the multipass's) binds stale ones */
+} gpu_scene_textures;
+
 /* The marks of a frame's pixels whose walks ran out of steps, for a frame that ended in the
  * caller's texture (fallback.c): each plan that walks keeps its own. */
 typedef struct gpu_marks {
@@ -81,7 +92,8 @@ struct bg_renderer {
     size_t readback_size;
     gpu_view view; /* of the pass being rendered (the driver sets it) */
 
-    gpu_meshes meshes; /* meshes.c: both plans read it; the driver frees it */
+    gpu_meshes meshes;                 /* meshes.c: both plans read it; the driver frees it */
+    gpu_scene_textures scene_textures; /* scene_textures.c: likewise */
 
     /* Each plan's own objects, NULL until the plan first runs; each plan frees only its own. */
     struct gpu_fused *fused;
@@ -215,6 +227,14 @@ typedef struct gpu_packed_light {
     float pos[4], rad[3], att[3], spot[4], exponent;
 } gpu_packed_light;
 gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
+
+/* ---- scene_textures.c ---- */
+/* Makes r->scene_textures hold the committed scene's textures, uploading them only when what they
+ * hold changed. */
+bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
+void bgi_gpu_scene_textures_release(bg_renderer *r);
+/* One step of the hash that keys them, which the multipass's cache key mixes with too. */
+uint64_t bgi_gpu_hash_mix(uint64_t h, uint64_t v);
 
 /* ---- texture_upload.c ---- */
 /* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
