@@ -1,6 +1,6 @@
 #version 110
 // requires:
-// The renderer's tree textures (gpu/shared/tree_textures.c): reading the object tree's nodes and
+// The renderer's tree textures (gpu/fused/tree_textures.c): reading the object tree's nodes and
 // objects from two RGBA32F textures, which the fused plan's tree variant walks (docs/gpu_pipeline.md,
 // "Object tree"), and testing a box, which the mesh walks of every plan do too (bg_tree_inverse,
 // bg_tree_box). The walks themselves are generated per scene (gpu/fused/fused_source.c,

@@ -40,10 +40,8 @@ struct gpu_fused {
     gpu_fused_layout layout; /* of the cached pass */
     int width, height;       /* of the pass and its outputs */
     macs_texture *out_bytes, *out_float;
-    macs_texture **textures; /* per scene texture (handle - 1), those some sampler reads */
-    uint32_t texture_count;
-    uint64_t texture_hash;   /* of what textures hold */
-    gpu_tree_textures tree;     /* the tree variant's textures */
+    gpu_tree_textures tree;  /* the tree variant's textures (tree_textures.c) */
+    gpu_marks marks;         /* the marks of a texture frame's short walks (shared/fallback.c) */
 };
 
 /* ---- what the fused plan can render ---- */
@@ -94,75 +92,6 @@ static bool fits(const bg_renderer *r, const bg_scene_state *state, const gpu_fu
     else
         return true;
     return false;
-}
-
-/* ---- textures ---- */
-
-/* Mixes n bytes into h eight at a time (splitmix64's finaliser per word): a frame hashes every
- * sampled texel, so this runs at memory speed rather than a byte at a time. */
-static uint64_t hash_bytes(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *b = p;
-    for (size_t i = 0; i < n; i += 8) {
-        uint64_t w = 0;
-        memcpy(&w, b + i, n - i < 8 ? n - i : 8);
-        uint64_t z = h ^ (w + 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        h = z ^ (z >> 31);
-    }
-    return h;
-}
-
-/* What the sampled textures hold. The scene and commit count cannot say it: a scene freed and
- * another made can land at one address with one count (fingerprint.c hashes texels for the same
- * reason). */
-static uint64_t texture_hash(const bg_scene_state *state, const gpu_fused_layout *l)
-{
-    uint64_t h = 1469598103934665603ull;
-    for (int k = 0; k < l->sampler_count; k++) {
-        const bg_texture_data *t = &state->textures[l->samplers[k] - 1];
-        int head[4] = {t->width, t->height, (int)t->wrap, (int)t->filter};
-        h = hash_bytes(h, &l->samplers[k], sizeof l->samplers[k]);
-        h = hash_bytes(h, head, sizeof head);
-        h = hash_bytes(h, t->texels, (size_t)t->width * (size_t)t->height * 4 * sizeof(float));
-    }
-    return h;
-}
-
-static void textures_release(bg_renderer *r, struct gpu_fused *f)
-{
-    for (uint32_t i = 0; i < f->texture_count; i++)
-        macs_texture_destroy(f->textures[i]);
-    bgi_free(&r->allocator, f->textures);
-    f->textures = NULL;
-    f->texture_count = 0;
-    f->texture_hash = 0;
-}
-
-/* Uploads the textures the samplers read, unless they already hold the same texels. */
-static bg_status textures_prepare(bg_renderer *r, struct gpu_fused *f, const bg_scene_state *state,
-                                  const gpu_fused_layout *l)
-{
-    uint64_t h = texture_hash(state, l);
-    if (f->textures && f->texture_count == state->texture_count && f->texture_hash == h)
-        return BG_OK;
-    textures_release(r, f);
-    if (state->texture_count == 0)
-        return BG_OK;
-    f->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *f->textures);
-    if (!f->textures)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u textures", state->texture_count);
-    memset(f->textures, 0, state->texture_count * sizeof *f->textures);
-    f->texture_count = state->texture_count;
-    for (int k = 0; k < l->sampler_count; k++) {
-        uint32_t i = l->samplers[k] - 1;
-        bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &f->textures[i]);
-        if (st != BG_OK)
-            return st;
-    }
-    f->texture_hash = h;
-    return BG_OK;
 }
 
 /* ---- the pass ---- */
@@ -338,29 +267,32 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     struct gpu_fused *f = r->fused;
     const gpu_fused_layout *l = &f->layout;
     bool walks = bgi_gpu_fused_layout_walks(l);
-    bg_status st = textures_prepare(r, f, state, l);
+    bg_status st = bgi_gpu_scene_textures_prepare(r, state);
+    /* The meshes first: the tree's objects texture holds their bases. */
     if (st == BG_OK && (walks || l->mesh))
-        st = bgi_gpu_tree_textures_prepare(r, &f->tree, state, walks);
+        st = bgi_gpu_meshes_prepare(r, state);
+    if (st == BG_OK && walks)
+        st = bgi_gpu_tree_textures_prepare(r, &f->tree, state);
     if (st == BG_OK)
         st = output_for(r, f, o, out);
     if (st != BG_OK)
         return st;
     macs_status ms = MACS_OK;
     for (int k = 0; k < l->sampler_count && !ms; k++)
-        ms = macs_pass_set_input(f->pass, k, f->textures[l->samplers[k] - 1]);
+        ms = macs_pass_set_input(f->pass, k, r->scene_textures.texture[l->samplers[k] - 1]);
     if (!ms && walks)
         ms = macs_pass_set_input(f->pass, l->sampler_count, f->tree.nodes.texture);
     if (!ms && walks)
         ms = macs_pass_set_input(f->pass, l->sampler_count + 1, f->tree.objects.texture);
     if (!ms && l->mesh)
-        ms = macs_pass_set_input(f->pass, mesh_input(l), f->tree.mesh_nodes.texture);
+        ms = macs_pass_set_input(f->pass, mesh_input(l), r->meshes.nodes);
     if (!ms && l->mesh)
-        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, f->tree.mesh_tris.texture);
+        ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, r->meshes.triangles);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "binding the fused pass");
-    gpu_fused_values v = {state, settings, l->tree || l->mesh ? &f->tree.dims : NULL, f->tree.mesh_base,
+    gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, &r->meshes,
                           o->width, o->height, o->as_float, &r->view};
     return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
 }
@@ -375,13 +307,13 @@ static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_f
 }
 
 /* The frame's end: the image read back, or the texture as the pass left it. Either way the pixels
- * the tree walks marked are then rendered by the CPU reference (tree_textures.c, fallback.c). */
+ * the tree walks marked are then rendered by the CPU reference (tree_textures.c, shared/fallback.c). */
 static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                         const gpu_frame_out *o, macs_texture *out)
 {
     bool walks = bgi_gpu_fused_layout_budgeted(&r->fused->layout);
     if (o->texture)
-        return walks ? bgi_gpu_fallback_texture(r, &r->fused->tree, state, settings, o->texture,
+        return walks ? bgi_gpu_fallback_texture(r, &r->fused->marks, state, settings, o->texture,
                                                      &r->stats.fallback_pixels)
                      : BG_OK;
     bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
@@ -474,8 +406,8 @@ void bgi_gpu_fused_release(bg_renderer *r)
         return;
     macs_pass_destroy(f->pass);
     outputs_release(f);
-    textures_release(r, f);
     bgi_gpu_tree_textures_release(&r->allocator, &f->tree);
+    bgi_gpu_marks_release(&f->marks);
     bgi_gpu_fused_layout_free(&r->allocator, &f->layout);
     bgi_free(&r->allocator, f->key);
     bgi_free(&r->allocator, f->refused);

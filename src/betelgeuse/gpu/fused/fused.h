@@ -5,7 +5,37 @@
 
 #include "../shared/shared.h"
 
-/* ---- fused.c ---- (with fused_layout.c, fused_uniforms.c, fused_source.c) */
+/* ---- tree_textures.c ---- */
+/* The tree variant's texture geometry: per texture (items per row, its inverse, 1 / width,
+ * 1 / height), as bg_tree_textures.glsl reads it, and the node count. */
+typedef struct gpu_tree_dims {
+    float nodes[4], objects[4];
+    float node_count;
+} gpu_tree_dims;
+
+/* One texture of the tree variant with the host copy of what it holds (held) and room to build the
+ * next frame's (scratch), so that only a change is uploaded. */
+typedef struct gpu_held_texture {
+    macs_texture *texture;
+    float *held, *scratch;
+    size_t floats;
+} gpu_held_texture;
+
+typedef struct gpu_tree_textures {
+    gpu_held_texture nodes, objects;
+    gpu_tree_dims dims; /* of the prepared textures */
+    uint64_t serial;    /* the commit (bg_scene_state.serial) they hold; 0 none */
+} gpu_tree_textures;
+
+/* False, with the reason, when the scene's tree, objects or meshes do not fit the GL's texture size. */
+bool bgi_gpu_tree_textures_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
+/* Makes the textures hold the committed scene's tree and objects, as seen from its camera. The
+ * objects' texels hold their meshes' bases: r->meshes is prepared for the same commit first. The
+ * caller has checked that they fit (bgi_gpu_tree_textures_fit) before it took the frame. */
+bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state);
+void bgi_gpu_tree_textures_release(const bg_allocator *a, gpu_tree_textures *t);
+
+/* ---- fused.c ---- (with fused_layout.c, fused_uniforms.c, fused_source.c, tree_textures.c) */
 /* The fused plan (BG_PLAN_FUSED): one fragment pass per frame computes the whole image. Its program
  * is a function of the scene's structure alone (gpu_fused_layout), so every value the scene or the
  * settings give lives in a uniform of the list below and a value-only re-commit compiles nothing. */
@@ -132,8 +162,8 @@ typedef struct gpu_fused_layout {
 typedef struct gpu_fused_values {
     const bg_scene_state *state;
     const bg_render_settings *settings;
-    const gpu_tree_dims *tree; /* NULL without the tree and the meshes */
-    const float *mesh_base;          /* per object: its mesh's root and first triangle texel (meshes only) */
+    const gpu_tree_dims *tree;   /* NULL without the tree */
+    const gpu_meshes *meshes;    /* the mesh textures' geometry and every mesh object's bases */
     int width, height;
     bool float_output;
     const gpu_view *view; /* the frame size, the window and the sample */

@@ -143,7 +143,7 @@ static int shape_count(const bool present[BG_SHAPE_COUNT_])
  * of the pixel's bg_tree_left steps, so the pixel's walks together stay within what llvmpipe's loop
  * limit leaves them (gpu_fused_layout.walk_budget); the inner loop is at most 255 long, the limit
  * of one loop on SM3-class hardware. A walk that stops before its end without having found what it
- * looks for marks the pixel (bg_tree_short), which the CPU reference then renders (tree_textures.c). */
+ * looks for marks the pixel (bg_tree_short), which the CPU reference then renders (shared/fallback.c). */
 static void emit_walk(const gpu_fused_layout *l, gpu_text *t, const char *origin, const char *direction,
                       const char *t_max, const char *found, const char *leaf_test, gpu_text *leaf)
 {
@@ -626,7 +626,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
         emit_tree(l, t);
     /* The output encoding (docs/shading.md 10) is a uniform: RGBA8 in either encoding and RGBA32F
      * share the program. */
-    /* Alpha 0 marks a pixel whose tree walks ran out of steps (tree_textures.c renders it again). */
+    /* Alpha 0 marks a pixel whose tree walks ran out of steps (shared/fallback.c renders it again). */
     bgi_gpu_text_printf(t, "float bg_alpha = %s;\nvec4 bg_out = vec4(bg_radiance, bg_alpha);\n"
                        "if (bg_output.x > 0.5)\n    bg_out = vec4(bg_encode(bg_radiance, bg_output.y > 0.5), bg_alpha);\n",
                     bgi_gpu_fused_layout_budgeted(l) ? "1.0 - bg_tree_short" : "1.0");

@@ -110,7 +110,7 @@ static void tree_object_dims(const gpu_fused_values *v, uint32_t i, float *out)
 static void tree_mesh_dims(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    memcpy(out, v->tree->meshes, sizeof v->tree->meshes);
+    memcpy(out, v->meshes->dims, sizeof v->meshes->dims);
 }
 
 static void tree_node_count(const gpu_fused_values *v, uint32_t i, float *out)
@@ -185,8 +185,8 @@ static void object_uv_scale(const gpu_fused_values *v, uint32_t i, float *out)
 
 static void object_mesh_base(const gpu_fused_values *v, uint32_t i, float *out)
 {
-    out[0] = v->mesh_base[2 * (size_t)i];
-    out[1] = v->mesh_base[2 * (size_t)i + 1];
+    out[0] = v->meshes->base[2 * (size_t)i];
+    out[1] = v->meshes->base[2 * (size_t)i + 1];
 }
 
 static void material_ior(const gpu_fused_values *v, uint32_t i, float *out)

@@ -1,8 +1,8 @@
 /* A fingerprint of everything in a committed scene that the GPU renderer bakes into passes and
  * uploaded textures. The scene pointer and commit count alone cannot tell scenes apart: a scene
  * freed and another created can land at the same address with the same count. Fields are hashed
- * one by one (never raw structs, whose padding is undefined); texels are hashed too, since a
- * texture buffer can be reused by the allocator with other contents. */
+ * one by one (never raw structs, whose padding is undefined); the textures come in as the key of
+ * the shared copy (shared/scene_textures.c), which hashes their texels. */
 #include <string.h>
 
 #include "multipass.h"
@@ -13,11 +13,7 @@ typedef struct hasher {
 
 static void mix(hasher *s, uint64_t v)
 {
-    /* splitmix64 finaliser over a running state: cheap and well spread. */
-    uint64_t z = s->h ^ (v + 0x9e3779b97f4a7c15ull + (s->h << 6) + (s->h >> 2));
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    s->h = z ^ (z >> 31);
+    s->h = bgi_gpu_hash_mix(s->h, v);
 }
 
 static void mix_double(hasher *s, double d)
@@ -110,26 +106,5 @@ uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t texture
         mix_double(&s, l->spot_exponent);
     }
     mix(&s, textures);
-    return s.h;
-}
-
-uint64_t bgi_gpu_textures_fingerprint(const bg_scene_state *state)
-{
-    hasher s = {0x13198a2e03707344ull};
-    mix(&s, state->texture_count);
-    for (uint32_t i = 0; i < state->texture_count; i++) {
-        const bg_texture_data *t = &state->textures[i];
-        mix(&s, (uint64_t)t->width);
-        mix(&s, (uint64_t)t->height);
-        mix(&s, (uint64_t)t->wrap);
-        mix(&s, (uint64_t)t->filter);
-        size_t n = (size_t)t->width * (size_t)t->height * 4;
-        for (size_t k = 0; k + 1 < n; k += 2) {
-            uint32_t a, b;
-            memcpy(&a, &t->texels[k], sizeof a);
-            memcpy(&b, &t->texels[k + 1], sizeof b);
-            mix(&s, ((uint64_t)a << 32) | b);
-        }
-    }
     return s.h;
 }

@@ -218,7 +218,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
 }
 
 /* Sets a member's object constants (those it declares) into the pass. */
-static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const gpu_tree_textures *meshes,
+static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *state, const gpu_meshes *meshes,
                                        const member *mb)
 {
     const bg_object_data *obj = &state->objects[mb->object];
@@ -243,7 +243,7 @@ static macs_status set_object_uniforms(macs_pass *pass, const bg_scene_state *st
         ms = macs_pass_set_uniform(pass, mb->object_uniform[U_UV_SCALE], uv);
     }
     if (!ms && mb->declares[U_MESH_BASE])
-        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_MESH_BASE], &meshes->mesh_base[2 * (size_t)mb->object]);
+        ms = macs_pass_set_uniform(pass, mb->object_uniform[U_MESH_BASE], &meshes->base[2 * (size_t)mb->object]);
     return ms;
 }
 
@@ -397,9 +397,9 @@ static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
     }
     if (hp->meshes > 0) {
         hp->inputs[hp->input_count].name = "bg_mesh_nodes";
-        hp->input_tex[hp->input_count++] = r->multipass->meshes->mesh_nodes.texture;
+        hp->input_tex[hp->input_count++] = r->meshes.nodes;
         hp->inputs[hp->input_count].name = "bg_mesh_tris";
-        hp->input_tex[hp->input_count++] = r->multipass->meshes->mesh_tris.texture;
+        hp->input_tex[hp->input_count++] = r->meshes.triangles;
     }
 }
 
@@ -574,9 +574,9 @@ static bg_status set_members_uniforms(bg_renderer *r, macs_pass *pass, const bg_
 {
     macs_status ms = MACS_OK;
     if (hp->meshes > 0)
-        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->multipass->meshes->dims.meshes);
+        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->meshes.dims);
     for (int j = 0; j < hp->count && !ms; j++) {
-        ms = set_object_uniforms(pass, state, r->multipass->meshes, &hp->members[j]);
+        ms = set_object_uniforms(pass, state, &r->meshes, &hp->members[j]);
         if (!ms)
             ms = set_material_uniforms(pass, state, &hp->members[j]);
     }

@@ -215,10 +215,10 @@ static bg_status set_shadow_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
         if (!ms)
             ms = macs_pass_set_uniform(pass, sp->names[j][C_TO_OBJECT], m16);
         if (!ms && sp->mesh[j])
-            ms = macs_pass_set_uniform(pass, sp->names[j][C_MESH_BASE], &r->multipass->meshes->mesh_base[2 * (size_t)sp->casters[j]]);
+            ms = macs_pass_set_uniform(pass, sp->names[j][C_MESH_BASE], &r->meshes.base[2 * (size_t)sp->casters[j]]);
     }
     if (!ms && sp->meshes > 0)
-        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->multipass->meshes->dims.meshes);
+        ms = macs_pass_set_uniform(pass, "bg_mesh_dims", r->meshes.dims);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "shadow pass uniforms");
     return bgi_gpu_set_light_uniforms(r, pass, state, sp->group * GPU_LIGHTS_PER_GROUP, sp->lights);
@@ -255,8 +255,8 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
 
     macs_input_desc inputs[5] = {{"bg_g_hit"}, {"bg_g_normal"}, {"bg_g_mesh"}, {"bg_mesh_nodes"}, {"bg_mesh_tris"}};
     macs_texture *input_tex[5] = {r->multipass->gbuffer[GPU_SLOT_HIT], r->multipass->gbuffer[GPU_SLOT_NORMAL], r->multipass->gbuffer[GPU_SLOT_MESH],
-                                  r->multipass->meshes ? r->multipass->meshes->mesh_nodes.texture : NULL,
-                                  r->multipass->meshes ? r->multipass->meshes->mesh_tris.texture : NULL};
+                                  r->meshes.nodes,
+                                  r->meshes.triangles};
     int input_count = sp.meshes > 0 ? 5 : sp.on_meshes ? 3 : 2;
     macs_output_desc output = {"visibility", "bg_vis"};
     macs_texture *output_tex[1] = {r->multipass->vis};

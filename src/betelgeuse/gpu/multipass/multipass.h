@@ -81,7 +81,9 @@ typedef struct gpu_cache_key {
     const bg_scene *scene;
     uint64_t commit_count;
     uint64_t fingerprint; /* bgi_gpu_scene_fingerprint of the committed state */
-    uint64_t textures;    /* bgi_gpu_textures_fingerprint of it */
+    uint64_t textures;    /* r->scene_textures.key: what the scene's textures hold */
+    uint64_t texture_uploads; /* r->scene_textures.uploads: the passes bind the textures when built */
+    uint64_t mesh_uploads; /* r->meshes.uploads: the passes bind the mesh textures when they are built */
     int width, height;
     unsigned disable_skips;
     bg_output_encoding encoding;
@@ -105,12 +107,12 @@ typedef struct gpu_multipass {
     /* Scene-dependent objects. */
     gpu_cache_key key;
     gpu_features features;
-    macs_texture **textures; /* the scene's textures on the GPU */
-    uint32_t texture_count;
+    macs_texture **textures; /* the scene's textures as the passes bind them: the plans' one copy
+                              * (r->scene_textures.texture) when the passes were built */
     macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
     gpu_passes passes;
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
-    gpu_tree_textures *meshes; /* the mesh textures and marks (shared/tree_textures.c); NULL until used */
+    gpu_marks marks;    /* of a texture frame's short mesh walks (shared/fallback.c) */
 } gpu_multipass;
 
 /* ---- multipass_frame.c ---- */
@@ -127,11 +129,9 @@ void bgi_gpu_multipass_release(bg_renderer *r);
 void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_features *f);
 
 /* ---- fingerprint.c ---- */
-/* A hash of every committed value the renderer's passes and textures depend on. */
+/* A hash of every committed value the renderer's passes depend on; textures is the key of the
+ * scene's textures (r->scene_textures.key), which hashes their texels. */
 uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t textures);
-/* The part of it that the uploaded scene textures depend on (sizes, modes, texels), which the
- * fingerprint takes as its textures argument: a commit that leaves it alone keeps the uploads. */
-uint64_t bgi_gpu_textures_fingerprint(const bg_scene_state *state);
 
 /* ---- bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
@@ -150,10 +150,9 @@ bool bgi_gpu_half_probe(bg_renderer *r, char *why, size_t why_size);
 macs_format bgi_gpu_slot_format(const bg_renderer *r, gpu_slot slot);
 /* Ray set number index from the pool, creating it when needed. */
 bg_status bgi_gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out);
-/* Uploads the scene's textures (and the white texel) for the hit passes. */
-bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
+/* Makes the white texel of the hit passes unless it exists. */
+bg_status bgi_gpu_white_prepare(bg_renderer *r);
 void bgi_gpu_targets_release(bg_renderer *r);
-void bgi_gpu_scene_textures_release(bg_renderer *r);
 
 /* ---- ray_passes.c: the passes that make, count, end and spawn rays ---- */
 /* The camera, mark, background, reflection, refraction and resolve passes, as the renderer's key

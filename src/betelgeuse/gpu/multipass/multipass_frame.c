@@ -369,14 +369,14 @@ static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
 /* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the
  * encoding first. Into a texture: a resolve pass writes it, encoded or (a float target) as it is.
  * With meshes, the pixels a walk could not finish (alpha 0) are then rendered by the CPU reference,
- * as in the fused plans (tree_textures.c, fallback.c). */
+ * as in the fused plans (shared/fallback.c). */
 static bg_status finish(frame *f, const gpu_frame_out *o)
 {
     bg_status st = finish_gpu(f, o);
     if (st != BG_OK || !f->r->multipass->features.mesh)
         return st;
     if (o->texture)
-        return bgi_gpu_fallback_texture(f->r, f->r->multipass->meshes, f->state, f->settings, o->texture,
+        return bgi_gpu_fallback_texture(f->r, &f->r->multipass->marks, f->state, f->settings, o->texture,
                                                    &f->r->stats.fallback_pixels);
     if (o->as_float)
         float_marks(o->image, o->stride);
@@ -389,24 +389,21 @@ static bool same_key(const gpu_cache_key *a, const gpu_cache_key *b)
     return a->valid && a->scene == b->scene && a->commit_count == b->commit_count &&
            a->fingerprint == b->fingerprint && a->width == b->width &&
            a->height == b->height && a->disable_skips == b->disable_skips && a->encoding == b->encoding &&
-           a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight;
+           a->bounces == b->bounces && a->background_on == b->background_on && a->min_weight == b->min_weight &&
+           a->texture_uploads == b->texture_uploads && a->mesh_uploads == b->mesh_uploads;
 }
 
-/* The mesh textures of the passes (tree_textures.c: the same layout and upload rule as the fused plans'). */
+/* The mesh textures of the passes: the fused plans' (shared/meshes.c). */
 static bg_status meshes_prepare(bg_renderer *r, const bg_scene_state *state)
 {
-    if (!r->multipass->meshes) {
-        r->multipass->meshes = bgi_alloc(&r->allocator, sizeof *r->multipass->meshes);
-        if (!r->multipass->meshes)
-            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh texture");
-        memset(r->multipass->meshes, 0, sizeof *r->multipass->meshes);
-    }
     char why[160];
+    if (state->mesh_object_count == 0 || r->meshes.serial == state->serial)
+        return BG_OK; /* nothing to check: they hold this commit */
     if (!bgi_gpu_meshes_fit(r, state, why, sizeof why))
         /* The fused plans checked this before they took the frame, so only the multipass, the last
          * plan, can find it here. */
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "no plan can render these meshes: %s", why);
-    return bgi_gpu_tree_textures_prepare(r, r->multipass->meshes, state, false);
+    return bgi_gpu_meshes_prepare(r, state);
 }
 
 static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
@@ -417,7 +414,16 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
     memset(&key, 0, sizeof key);
     key.scene = scene;
     key.commit_count = f->state->commit_count;
-    key.textures = bgi_gpu_textures_fingerprint(f->state);
+    /* The scene's and the mesh textures are the plans' one copy: brought to this commit before the
+     * key is compared, since another plan may have remade them after this plan's passes bound them. */
+    bg_status st = bgi_gpu_scene_textures_prepare(r, f->state);
+    if (st == BG_OK)
+        st = meshes_prepare(r, f->state);
+    if (st != BG_OK)
+        return st;
+    key.texture_uploads = f->state->texture_count > 0 ? r->scene_textures.uploads : 0;
+    key.mesh_uploads = f->state->mesh_object_count > 0 ? r->meshes.uploads : 0;
+    key.textures = r->scene_textures.key;
     key.fingerprint = bgi_gpu_scene_fingerprint(f->state, key.textures);
     key.width = width;
     key.height = height;
@@ -437,20 +443,15 @@ static bg_status prepare(frame *f, const bg_scene *scene, int width, int height)
         }
         return BG_OK;
     }
-    /* Scene textures are uploaded again only when what they hold changed, not on every commit. */
-    bool new_textures = !r->multipass->key.valid || r->multipass->key.textures != key.textures;
     bgi_gpu_passes_retire(r);
     memset(&r->multipass->key, 0, sizeof r->multipass->key);
     bgi_gpu_features_detect(f->state, (s->gpu_disable_skips & BG_SKIP_SPECIALIZE) != 0, &r->multipass->features);
-    bg_status st = BG_OK;
-    if (new_textures || !r->multipass->white)
-        st = bgi_gpu_scene_textures_prepare(r, f->state);
+    r->multipass->textures = r->scene_textures.texture;
+    st = bgi_gpu_white_prepare(r);
     r->multipass->key = key;
     r->multipass->key.valid = false;
     if (st == BG_OK)
         st = bgi_gpu_targets_prepare(r, width, height);
-    if (st == BG_OK && r->multipass->features.mesh)
-        st = meshes_prepare(r, f->state);
     if (st == BG_OK)
         st = bgi_gpu_passes_build(r, f->state, s);
     bgi_gpu_passes_release_retired(r);
@@ -535,11 +536,8 @@ void bgi_gpu_multipass_release(bg_renderer *r)
         return;
     bgi_gpu_passes_release(r);
     bgi_gpu_targets_release(r);
-    bgi_gpu_scene_textures_release(r);
-    if (m->meshes) {
-        bgi_gpu_tree_textures_release(&r->allocator, m->meshes);
-        bgi_free(&r->allocator, m->meshes);
-    }
+    macs_texture_destroy(m->white);
+    bgi_gpu_marks_release(&m->marks);
     bgi_free(&r->allocator, m);
     r->multipass = NULL;
 }

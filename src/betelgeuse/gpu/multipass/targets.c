@@ -1,6 +1,7 @@
-/* GPU memory of the renderer: size-dependent targets (G-buffer, accumulation, visibility, encoded
- * output, depth/stencil, ray-set pool) and the scene's textures. Everything is made on demand and
- * kept while the size (or the scene) stays the same. */
+/* GPU memory of the multipass: size-dependent targets (G-buffer, accumulation, visibility, encoded
+ * output, depth/stencil, ray-set pool) and the white texel of untextured parameters (the scene's
+ * textures are the plans' one copy, shared/scene_textures.c). Everything is made on demand and kept
+ * while the size stays the same. */
 #include <stdio.h>
 #include <string.h>
 
@@ -159,20 +160,10 @@ bg_status bgi_gpu_ray_set_get(bg_renderer *r, int index, gpu_ray_set **out)
     return st;
 }
 
-void bgi_gpu_scene_textures_release(bg_renderer *r)
+bg_status bgi_gpu_white_prepare(bg_renderer *r)
 {
-    for (uint32_t i = 0; i < r->multipass->texture_count; i++)
-        macs_texture_destroy(r->multipass->textures[i]);
-    bgi_free(&r->allocator, r->multipass->textures);
-    r->multipass->textures = NULL;
-    r->multipass->texture_count = 0;
-    macs_texture_destroy(r->multipass->white);
-    r->multipass->white = NULL;
-}
-
-bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state)
-{
-    bgi_gpu_scene_textures_release(r);
+    if (r->multipass->white)
+        return BG_OK;
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     macs_texture_desc d;
     memset(&d, 0, sizeof d);
@@ -181,19 +172,5 @@ bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *s
     d.filter = MACS_FILTER_NEAREST; /* exactly 1.0, so constant x white is the constant */
     d.data = white;
     macs_status ms = macs_texture_create(r->ctx, &d, &r->multipass->white);
-    if (ms)
-        return bgi_gpu_fail_macs(r, ms, "white texture");
-    if (state->texture_count == 0)
-        return BG_OK;
-    r->multipass->textures = bgi_alloc(&r->allocator, state->texture_count * sizeof *r->multipass->textures);
-    if (!r->multipass->textures)
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u textures", state->texture_count);
-    memset(r->multipass->textures, 0, state->texture_count * sizeof *r->multipass->textures);
-    r->multipass->texture_count = state->texture_count;
-    for (uint32_t i = 0; i < state->texture_count; i++) {
-        bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &r->multipass->textures[i]);
-        if (st != BG_OK)
-            return st;
-    }
-    return BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, "white texture") : BG_OK;
 }

@@ -1,5 +1,5 @@
 /* The CPU reference for the pixels whose walks (the object tree's or a mesh's, in either plan) ran
- * out of steps: the shaders mark them with alpha 0 (tree_textures.c); they must still come from the
+ * out of steps: the shaders mark them with alpha 0 (bg_tree_short); they must still come from the
  * CPU reference, never stay black, while the rest of the frame stays on the GPU.
  * bgi_gpu_fallback_image renders them into a read-back image; the rest of this file does it for a
  * frame that ends in the caller's texture (bg_render_gpu_to_texture).
@@ -31,11 +31,11 @@ static bg_status mark_pass_create(bg_renderer *r, macs_texture *marks, macs_pass
 
 /* Makes the marks texture and its pass fit a width x height frame. The new pass is made before the
  * old one goes, so that MACS's program cache hands the program over instead of compiling it again. */
-static bg_status marks_prepare(bg_renderer *r, gpu_tree_textures *t, int width, int height)
+static bg_status marks_prepare(bg_renderer *r, gpu_marks *m, int width, int height)
 {
     int mw = (width + PIXELS_PER_TEXEL - 1) / PIXELS_PER_TEXEL, have_w = 0, have_h = 0;
-    macs_texture_size(t->marks, &have_w, &have_h);
-    if (t->marks && t->mark_pass && have_w == mw && have_h == height)
+    macs_texture_size(m->texture, &have_w, &have_h);
+    if (m->texture && m->pass && have_w == mw && have_h == height)
         return BG_OK;
     macs_texture *marks = NULL;
     macs_pass *pass = NULL;
@@ -46,37 +46,37 @@ static bg_status marks_prepare(bg_renderer *r, gpu_tree_textures *t, int width, 
         macs_texture_destroy(marks);
         return st;
     }
-    bgi_gpu_marks_release(t);
-    t->marks = marks;
-    t->mark_pass = pass;
+    bgi_gpu_marks_release(m);
+    m->texture = marks;
+    m->pass = pass;
     return BG_OK;
 }
 
 /* Runs the mark pass over target and reads the marks into the read-back buffer, followed by room
  * for one row of target texels; *marks and *row point into it. */
-static bg_status marks_read(bg_renderer *r, gpu_tree_textures *t, macs_texture *target, int width, int height,
+static bg_status marks_read(bg_renderer *r, gpu_marks *m, macs_texture *target, int width, int height,
                             const unsigned char **marks, unsigned char **row)
 {
-    bg_status st = marks_prepare(r, t, width, height);
+    bg_status st = marks_prepare(r, m, width, height);
     if (st != BG_OK)
         return st;
     int mw = 0;
-    macs_texture_size(t->marks, &mw, NULL);
+    macs_texture_size(m->texture, &mw, NULL);
     size_t mark_bytes = (size_t)mw * (size_t)height * 4;
     unsigned char *buffer = bgi_gpu_read_back_buffer(r, mark_bytes + (size_t)width * 16);
     if (!buffer)
         return BG_ERR_OUT_OF_MEMORY;
     float size[2] = {(float)width, (float)height};
-    macs_status ms = macs_pass_set_input(t->mark_pass, 0, target);
+    macs_status ms = macs_pass_set_input(m->pass, 0, target);
     if (!ms)
-        ms = macs_pass_set_uniform(t->mark_pass, "bg_size", size);
+        ms = macs_pass_set_uniform(m->pass, "bg_size", size);
     if (!ms)
-        ms = macs_pass_run(t->mark_pass, NULL);
+        ms = macs_pass_run(m->pass, NULL);
     /* The pass keeps no hold on the caller's texture between frames. */
     if (!ms)
-        ms = macs_pass_set_input(t->mark_pass, 0, NULL);
+        ms = macs_pass_set_input(m->pass, 0, NULL);
     if (!ms)
-        ms = macs_texture_read(t->marks, buffer, 0);
+        ms = macs_texture_read(m->texture, buffer, 0);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "finding the pixels the tree walks left");
     *marks = buffer;
@@ -89,7 +89,7 @@ static bool marked(const unsigned char *mark_row, int x)
     return (mark_row[x / 8] >> (x % 8)) & 1u;
 }
 
-bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state,
+bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_marks *m, const bg_scene_state *state,
                                           const bg_render_settings *settings, macs_texture *target, uint64_t *count)
 {
     *count = 0;
@@ -97,7 +97,7 @@ bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const b
     macs_texture_size(target, &width, &height);
     const unsigned char *marks = NULL;
     unsigned char *row = NULL;
-    bg_status st = marks_read(r, t, target, width, height, &marks, &row);
+    bg_status st = marks_read(r, m, target, width, height, &marks, &row);
     if (st != BG_OK)
         return st;
     bg_pixel_format format = macs_texture_format(target) == MACS_FORMAT_RGBA8 ? BG_PIXEL_RGBA8 : BG_PIXEL_RGBA32F;
@@ -124,12 +124,12 @@ bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const b
     return BG_OK;
 }
 
-void bgi_gpu_marks_release(gpu_tree_textures *t)
+void bgi_gpu_marks_release(gpu_marks *m)
 {
-    macs_pass_destroy(t->mark_pass);
-    macs_texture_destroy(t->marks);
-    t->mark_pass = NULL;
-    t->marks = NULL;
+    macs_pass_destroy(m->pass);
+    macs_texture_destroy(m->texture);
+    m->pass = NULL;
+    m->texture = NULL;
 }
 
 uint64_t bgi_gpu_fallback_image(const bg_scene_state *state, const bg_render_settings *settings,

@@ -1,6 +1,6 @@
 /* The mesh code of the fused plans (docs/gpu_pipeline.md, "Meshes"): when the object tree's walk
  * reaches a mesh object's leaf, or the unrolled code a mesh object, the ray goes into the object's
- * space and walks the mesh's own tree, stackless, from the mesh textures (tree_textures.c): interior
+ * space and walks the mesh's own tree, stackless, from the mesh textures (meshes.c): interior
  * nodes in the object tree's format, leaves holding their triangle's corners, which go through
  * bg_triangle.glsl. Every node step of both levels spends one of the
  * pixel's walk steps (bg_tree_left); a mesh walk that runs out marks the pixel (bg_tree_short) for

@@ -1,6 +1,6 @@
 /* Services both plans use (the fused plan in fused/, the multipass in multipass/): the renderer
  * object's shared part and its error sink, shader text assembly, pass creation, the camera-relative
- * origin, the read-back, the phase clock, the object tree's and the meshes' textures, and the CPU
+ * origin, the read-back, the phase clock, the scene's and the meshes' textures, and the CPU
  * reference for the pixels a walk could not finish. Every pass is a MACS render pass; only MACS
  * touches GL. This room includes nothing of gpu/ outside itself. */
 #ifndef BG_GPU_SHARED_H
@@ -35,6 +35,44 @@ typedef struct gpu_frame_out {
     bool as_float;         /* RGBA32F image, RGBA32F or RGBA16F texture: linear radiance; else RGBA8 */
 } gpu_frame_out;
 
+/* A row of a data texture (the meshes' here, the object tree's in fused/tree_textures.c) holds at
+ * most this many texels, and a node of a tree as the walks read it (common/bvh.h's BG_BVH_NODE_FLOATS)
+ * takes two: one rule for both, since bg_tree_textures.glsl and bg_mesh.glsl read both alike. */
+enum { GPU_WIDEST_ROW = 4096, GPU_NODE_TEXELS = 2 };
+
+/* The meshes' textures (meshes.c), one copy that every plan reads: every distinct mesh's own tree
+ * in one texture, its triangles in the other, each addressed by texel index (bg_mesh.glsl). */
+typedef struct gpu_meshes {
+    macs_texture *nodes;     /* every distinct mesh's tree; NULL without meshes */
+    macs_texture *triangles; /* and its triangles */
+    float dims[4];           /* (texels per row, its inverse, 1 / triangle rows, 1 / node rows): bg_mesh_dims */
+    float *base;             /* per object: 2 floats, its mesh's root node and first triangle texel */
+    uint32_t base_count;     /* objects base has room for */
+    uint64_t *keys;          /* the serials of the distinct meshes the textures hold, in order */
+    uint32_t key_count, key_room;
+    uint64_t serial;         /* the commit (bg_scene_state.serial) they were made for; 0 none */
+    uint64_t uploads;        /* grows whenever the textures are remade or written: a pass that bound them
+                              * when it was another value (the multipass's) binds stale ones */
+} gpu_meshes;
+
+/* The scene's textures (scene_textures.c), one copy that every plan samples. */
+typedef struct gpu_scene_textures {
+    macs_texture **texture; /* per scene texture (handle - 1) */
+    uint32_t count;
+    uint64_t key;           /* what they hold: a hash of the textures' sizes, modes and texels */
+    bool held;              /* they hold key's textures (an upload that failed leaves it false) */
+    uint64_t serial;        /* the last commit found to hold key's textures; 0 none */
+    uint64_t uploads;       /* grows whenever they are remade: a pass that bound them when it was
+                             * another value (the multipass's) binds stale ones */
+} gpu_scene_textures;
+
+/* The marks of a frame's pixels whose walks ran out of steps, for a frame that ended in the
+ * caller's texture (fallback.c): each plan that walks keeps its own. */
+typedef struct gpu_marks {
+    macs_texture *texture; /* a frame's marked pixels, 32 to an RGBA8 texel */
+    macs_pass *pass;       /* writes texture from a frame of its height */
+} gpu_marks;
+
 struct gpu_fused;     /* fused/fused.h: the fused plan's cached program and targets */
 struct gpu_multipass; /* multipass/multipass.h: the multipass's targets, passes and cache key */
 
@@ -53,6 +91,9 @@ struct bg_renderer {
     float *readback; /* read_back.c's buffer */
     size_t readback_size;
     gpu_view view; /* of the pass being rendered (the driver sets it) */
+
+    gpu_meshes meshes;                 /* meshes.c: both plans read it; the driver frees it */
+    gpu_scene_textures scene_textures; /* scene_textures.c: likewise */
 
     /* Each plan's own objects, NULL until the plan first runs; each plan frees only its own. */
     struct gpu_fused *fused;
@@ -187,6 +228,14 @@ typedef struct gpu_packed_light {
 } gpu_packed_light;
 gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
 
+/* ---- scene_textures.c ---- */
+/* Makes r->scene_textures hold the committed scene's textures, uploading them only when what they
+ * hold changed. */
+bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state);
+void bgi_gpu_scene_textures_release(bg_renderer *r);
+/* One step of the hash that keys them, which the multipass's cache key mixes with too. */
+uint64_t bgi_gpu_hash_mix(uint64_t h, uint64_t v);
+
 /* ---- texture_upload.c ---- */
 /* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
 bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what);
@@ -240,48 +289,15 @@ bg_status bgi_gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *ima
 void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes);
 
 
-/* The tree variant's texture geometry: per texture (items per row, its inverse, 1 / width,
- * 1 / height), as bg_tree_textures.glsl reads it, and the node count. */
-typedef struct gpu_tree_dims {
-    float nodes[4], objects[4];
-    float node_count;
-    float meshes[4]; /* the mesh textures' (texels per row, its inverse, 1 / triangle rows, 1 / node rows) */
-} gpu_tree_dims;
-
-/* ---- tree_textures.c ---- */
-/* One texture of the tree variant with the host copy of what it holds (held) and room to build the
- * next frame's (scratch), so that only a change is uploaded. */
-typedef struct gpu_held_texture {
-    macs_texture *texture;
-    float *held, *scratch;
-    size_t floats;
-} gpu_held_texture;
-
-typedef struct gpu_tree_textures {
-    gpu_held_texture nodes, objects;
-    gpu_held_texture mesh_nodes; /* every distinct mesh's tree (tree_textures.c); none without meshes */
-    gpu_held_texture mesh_tris;  /* and its triangles */
-    float *mesh_base;              /* per object: 2 floats, its mesh's root node and first triangle texel */
-    uint32_t mesh_base_count;      /* objects mesh_base has room for */
-    uint64_t *mesh_keys;           /* the serials of the distinct meshes the mesh textures hold, in order */
-    uint32_t mesh_key_count, mesh_key_room;
-    gpu_tree_dims dims; /* of the prepared textures */
-    uint64_t serial;          /* the commit (bg_scene_state.serial) they hold; 0 none */
-    bool walks;               /* whether they were made for a layout that walks the tree */
-    macs_texture *marks;      /* fallback.c: a frame's marked pixels, 32 to an RGBA8 texel */
-    macs_pass *mark_pass;     /* writes marks from a frame of the marks' height */
-} gpu_tree_textures;
-
-/* False, with the reason, when the scene's tree or objects do not fit the GL's texture size. */
-bool bgi_gpu_tree_textures_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
-/* False, with the reason, when the scene's meshes do not fit the mesh textures (part of _fits). */
+/* ---- meshes.c: the meshes' textures ---- */
+/* False, with the reason, when the scene's meshes do not fit the mesh textures. */
 bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size);
-/* Makes the textures hold the committed scene's tree and objects, as seen from its camera (with
- * walks: the layout walks the tree), and the meshes' nodes and triangles where it has meshes. The
- * caller has checked that they fit (bgi_gpu_tree_textures_fit with walks, else bgi_gpu_meshes_fit):
- * each plan checks once, before it takes the frame. */
-bg_status bgi_gpu_tree_textures_prepare(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state, bool walks);
-void bgi_gpu_tree_textures_release(const bg_allocator *a, gpu_tree_textures *t);
+/* Makes r->meshes hold the committed scene's distinct meshes and every mesh object's bases. The
+ * caller has checked that they fit (bgi_gpu_meshes_fit, or the fused tree's fit, which includes
+ * it): each plan checks once, before it takes the frame. */
+bg_status bgi_gpu_meshes_prepare(bg_renderer *r, const bg_scene_state *state);
+void bgi_gpu_meshes_release(bg_renderer *r);
+
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
  * returns how many there were. */
 uint64_t bgi_gpu_fallback_image(const bg_scene_state *state, const bg_render_settings *settings,
@@ -291,10 +307,10 @@ uint64_t bgi_gpu_fallback_image(const bg_scene_state *state, const bg_render_set
 /* The same for a frame that ended in the caller's texture: finds the marked pixels from a one-bit-a-
  * pixel read-back, renders them with the CPU reference and uploads them into target; *count gets
  * how many there were. */
-bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_tree_textures *t, const bg_scene_state *state,
+bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_marks *m, const bg_scene_state *state,
                                           const bg_render_settings *settings, macs_texture *target, uint64_t *count);
 /* Frees the marks texture and its pass. */
-void bgi_gpu_marks_release(gpu_tree_textures *t);
+void bgi_gpu_marks_release(gpu_marks *m);
 
 /* ---- mesh_source.c ---- */
 /* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10). */

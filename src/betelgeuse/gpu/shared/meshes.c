@@ -1,0 +1,318 @@
+/* The meshes' textures, one copy that every plan reads (r->meshes): every distinct mesh's own tree
+ * in one texture, its triangles in the other, each addressed by texel index (bg_mesh.glsl gives the
+ * layout), and per mesh object the texels its mesh starts at, which the plans pass as a uniform (the
+ * fused tree in its objects texture); mesh_source.c walks them. A mesh's serial names its contents
+ * for good, so a commit that keeps the meshes uploads nothing here, whichever plan renders it. */
+#include <stdio.h>
+#include <string.h>
+
+#include "../../common/alloc.h"
+#include "../../common/bvh.h"
+#include "shared.h"
+
+enum { MESH_TRIANGLE_TEXELS = 6 };
+/* A mesh tree's leaf holds its triangle's corners, one texel each, in place of its box (bg_mesh.glsl):
+ * the walk reads three texels at a leaf instead of the box's two and the triangle's three. */
+enum { MESH_LEAF_TEXELS = 3 };
+/* The most texels of each mesh texture. llvmpipe (Mesa 22.3) reads texels past the first 2^23 of
+ * one RGBA32F texture wrongly, though they upload and read back intact (measured: a terrain of
+ * 845,000 triangles, 8.45 million texels in one texture, lost its nearest rows; 720,000 rendered
+ * right). Nodes and triangles therefore have a texture each (bg_mesh.glsl), which also keeps every
+ * texel index a whole float. */
+#define MESH_TEXTURE_TEXELS (1ull << 23)
+
+/* The texels the distinct meshes take in each mesh texture. */
+typedef struct mesh_texels {
+    uint64_t nodes; /* mesh_tree_texels of each tree */
+    uint64_t tris;  /* MESH_TRIANGLE_TEXELS per triangle */
+} mesh_texels;
+
+/* For every object, the first object that shows the same mesh (itself when it is the first; the
+ * texture holds each mesh once, in the order of the objects that first show them), found through a
+ * hash of the mesh pointers: linear in the objects, which may be thousands of instances. NULL when
+ * out of memory; the caller frees it. */
+static uint32_t *mesh_firsts(const bg_allocator *a, const bg_scene_state *state)
+{
+    size_t room = 2;
+    while (room < 2 * (size_t)state->mesh_object_count)
+        room *= 2;
+    uint32_t *first = bgi_alloc(a, ((size_t)state->object_count + 1) * sizeof *first);
+    uint32_t *slot = bgi_alloc(a, room * sizeof *slot); /* an object index + 1, 0 empty */
+    if (!first || !slot) {
+        bgi_free(a, first);
+        bgi_free(a, slot);
+        return NULL;
+    }
+    memset(slot, 0, room * sizeof *slot);
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_mesh_data *m = state->objects[i].mesh;
+        first[i] = i;
+        if (!m)
+            continue;
+        size_t h = (size_t)(((uint64_t)(uintptr_t)m >> 4) * 0x9e3779b97f4a7c15ull >> 17) & (room - 1);
+        while (slot[h] != 0 && state->objects[slot[h] - 1].mesh != m)
+            h = (h + 1) & (room - 1);
+        if (slot[h] == 0)
+            slot[h] = i + 1;
+        else
+            first[i] = slot[h] - 1;
+    }
+    bgi_free(a, slot);
+    return first;
+}
+
+/* The texels of a mesh tree over `triangles` (> 0) triangles, one per leaf: GPU_NODE_TEXELS per interior
+ * node, MESH_LEAF_TEXELS per leaf. Also the span of a subtree over that many triangles. */
+static uint64_t mesh_tree_texels(uint64_t triangles)
+{
+    return (uint64_t)GPU_NODE_TEXELS * (triangles - 1) + (uint64_t)MESH_LEAF_TEXELS * triangles;
+}
+
+/* The texels every distinct mesh takes; also the texel bases of each mesh object into base when it
+ * is not NULL (its mesh's root node in the node texture, its first triangle in the triangle texture). */
+static mesh_texels mesh_layout(const bg_scene_state *state, const uint32_t *first, float *base)
+{
+    mesh_texels at = {0, 0};
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_mesh_data *m = state->objects[i].mesh;
+        if (!m)
+            continue;
+        if (first[i] != i) {
+            if (base) {
+                base[2 * (size_t)i] = base[2 * (size_t)first[i]];
+                base[2 * (size_t)i + 1] = base[2 * (size_t)first[i] + 1];
+            }
+            continue;
+        }
+        if (base) {
+            base[2 * (size_t)i] = (float)at.nodes;
+            base[2 * (size_t)i + 1] = (float)at.tris;
+        }
+        at.nodes += mesh_tree_texels(m->triangle_count);
+        at.tris += (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
+    }
+    return at;
+}
+
+/* The texture's width: the widest power of two rows may have. */
+static int mesh_width(int max_size)
+{
+    int cap = max_size < GPU_WIDEST_ROW ? max_size : GPU_WIDEST_ROW, w = 1;
+    while (2 * w <= cap)
+        w *= 2;
+    return w;
+}
+
+bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char *why, size_t size)
+{
+    if (state->mesh_object_count == 0)
+        return true;
+    uint32_t *first = mesh_firsts(&r->allocator, state);
+    if (!first) {
+        snprintf(why, size, "out of memory ordering the %u mesh objects", state->mesh_object_count);
+        return false;
+    }
+    mesh_texels texels = mesh_layout(state, first, NULL);
+    bgi_free(&r->allocator, first);
+    int w = mesh_width(r->limits.max_texture_size);
+    uint64_t most = MESH_TEXTURE_TEXELS / (uint64_t)w;
+    if (most > (uint64_t)r->limits.max_texture_size)
+        most = (uint64_t)r->limits.max_texture_size;
+    most *= (uint64_t)w;
+    const char *what = texels.nodes > most ? "nodes of their trees" : "triangles";
+    uint64_t need = texels.nodes > most ? texels.nodes : texels.tris;
+    if (need > most) {
+        snprintf(why, size, "the meshes' %s need %llu texels, more than the %llu of a mesh texture (at most %llu "
+                 "texels, %d rows of %d)", what, (unsigned long long)need, (unsigned long long)most,
+                 (unsigned long long)MESH_TEXTURE_TEXELS, r->limits.max_texture_size, w);
+        return false;
+    }
+    return true;
+}
+
+/* Every distinct mesh once: its tree in common/bvh.h's pre-order into nodes, interior nodes as
+ * their two texels with the miss links turned into texel indices of the node texture, each leaf as
+ * its triangle's corners {v0, triangle}, {v1, miss}, {v2, 0}; and its triangles' attributes into tris
+ * (docs/gpu_pipeline.md, "Meshes"). A subtree over k triangles has 2k - 1 nodes and takes
+ * mesh_tree_texels(k) texels, which turns a miss link's node span into a texel span. */
+static void fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_meshes *m, float *nodes,
+                        float *tris)
+{
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_mesh_data *mesh = state->objects[i].mesh;
+        if (!mesh || first[i] != i)
+            continue;
+        uint64_t at = (uint64_t)m->base[2 * (size_t)i];
+        for (uint32_t k = 0; k < mesh->tree.node_count; k++) {
+            const float *node = mesh->tree.nodes + (size_t)k * BG_BVH_NODE_FLOATS;
+            float *o = nodes + (size_t)at * 4;
+            uint64_t span = (uint64_t)node[BG_BVH_NODE_MISS] - k; /* nodes in the subtree */
+            uint64_t miss = at + mesh_tree_texels((span + 1) / 2);
+            float prim = node[BG_BVH_NODE_PRIM];
+            if (prim < 0.0f) {
+                memcpy(o, node, BG_BVH_NODE_FLOATS * sizeof *o);
+                o[BG_BVH_NODE_MISS] = (float)miss;
+                at += GPU_NODE_TEXELS;
+                continue;
+            }
+            const uint32_t *corner = mesh->indices + 3 * (size_t)prim;
+            for (int c = 0; c < 3; c++)
+                memcpy(o + 4 * c, &mesh->positions[3 * (size_t)corner[c]], 3 * sizeof *o);
+            o[3] = prim;
+            o[7] = (float)miss;
+            o[11] = 0.0f;
+            at += MESH_LEAF_TEXELS;
+        }
+        float *o = tris + (size_t)m->base[2 * (size_t)i + 1] * 4;
+        for (uint32_t k = 0; k < mesh->triangle_count; k++) {
+            for (int c = 0; c < 3; c++) {
+                uint32_t v = mesh->indices[3 * (size_t)k + (size_t)c];
+                float *p = o + 4 * c, *n = o + 12 + 4 * c;
+                memcpy(p, &mesh->positions[3 * (size_t)v], 3 * sizeof *p);
+                if (mesh->normals)
+                    memcpy(n, &mesh->normals[3 * (size_t)v], 3 * sizeof *n);
+                if (mesh->uvs) {
+                    p[3] = mesh->uvs[2 * (size_t)v];
+                    n[3] = mesh->uvs[2 * (size_t)v + 1];
+                }
+            }
+            o += MESH_TRIANGLE_TEXELS * 4;
+        }
+    }
+}
+
+/* Whether the mesh textures already hold the scene's distinct meshes in their order (a mesh's
+ * serial names its contents for good, so a commit that only moves the camera or objects keeps them,
+ * and the ten million texels of a million triangles need neither a rebuild nor a comparison);
+ * otherwise records them as what they are about to hold. False when out of memory for the record. */
+static bool meshes_held(bg_renderer *r, gpu_meshes *m, const bg_scene_state *state, const uint32_t *first, bool *held)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < state->object_count; i++)
+        n += state->objects[i].mesh && first[i] == i ? 1 : 0;
+    bool same = m->nodes && m->keys && n == m->key_count;
+    for (uint32_t i = 0, k = 0; i < state->object_count && same; i++)
+        if (state->objects[i].mesh && first[i] == i)
+            same = m->keys[k++] == state->objects[i].mesh->serial;
+    *held = same;
+    if (same)
+        return true;
+    if (m->key_room < n) {
+        bgi_free(&r->allocator, m->keys);
+        m->key_room = 0;
+        m->keys = bgi_alloc(&r->allocator, (size_t)n * sizeof *m->keys);
+        if (!m->keys)
+            return false;
+        m->key_room = n;
+    }
+    m->key_count = 0;
+    for (uint32_t i = 0; i < state->object_count; i++)
+        if (state->objects[i].mesh && first[i] == i)
+            m->keys[m->key_count++] = state->objects[i].mesh->serial;
+    return true;
+}
+
+/* Makes a mesh texture w x h hold `data` (h rows of w texels); w is the same for every scene on a
+ * GL, so only another height makes a new texture. */
+static bg_status mesh_texture_upload(bg_renderer *r, macs_texture **t, int w, int h, const float *data)
+{
+    int have_w = 0, have_h = 0;
+    macs_texture_size(*t, &have_w, &have_h);
+    if (have_w != w || have_h != h) {
+        macs_texture_destroy(*t);
+        *t = NULL;
+    }
+    bg_status st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, t, "mesh texture");
+    if (st != BG_OK)
+        return st;
+    macs_status ms = macs_texture_upload(*t, data, 0);
+    return ms ? bgi_gpu_fail_macs(r, ms, "mesh texture") : BG_OK;
+}
+
+/* Every distinct mesh into the mesh textures, first[] the objects' first-of-mesh indices. The host
+ * copy lives only while it goes up: the textures' keys say what they hold. */
+static bg_status meshes_upload(bg_renderer *r, gpu_meshes *m, const bg_scene_state *state, const uint32_t *first)
+{
+    mesh_texels texels = mesh_layout(state, first, m->base);
+    int w = mesh_width(r->limits.max_texture_size);
+    int h_nodes = (int)((texels.nodes + (uint64_t)w - 1) / (uint64_t)w);
+    int h_tris = (int)((texels.tris + (uint64_t)w - 1) / (uint64_t)w);
+    m->dims[0] = (float)w;
+    m->dims[1] = 1.0f / (float)w;
+    m->dims[2] = 1.0f / (float)h_tris;
+    m->dims[3] = 1.0f / (float)h_nodes;
+    bool held = false;
+    if (!meshes_held(r, m, state, first, &held))
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh textures' keys");
+    if (held)
+        return BG_OK;
+    size_t node_floats = (size_t)w * (size_t)h_nodes * 4, floats = node_floats + (size_t)w * (size_t)h_tris * 4;
+    float *data = bgi_alloc(&r->allocator, floats * sizeof *data);
+    if (!data) {
+        m->key_count = 0;
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh textures (%zu floats)",
+                            floats);
+    }
+    memset(data, 0, floats * sizeof *data);
+    fill_meshes(state, first, m, data, data + node_floats);
+    m->uploads++;
+    bg_status st = mesh_texture_upload(r, &m->nodes, w, h_nodes, data);
+    if (st == BG_OK)
+        st = mesh_texture_upload(r, &m->triangles, w, h_tris, data + node_floats);
+    bgi_free(&r->allocator, data);
+    if (st != BG_OK)
+        m->key_count = 0; /* they may hold anything now */
+    return st;
+}
+
+/* The textures go with the last mesh: a scene without meshes keeps no mesh data on the GPU. */
+static void textures_release(gpu_meshes *m)
+{
+    if (m->nodes || m->triangles)
+        m->uploads++;
+    macs_texture_destroy(m->nodes);
+    macs_texture_destroy(m->triangles);
+    m->nodes = m->triangles = NULL;
+    m->key_count = 0;
+    memset(m->dims, 0, sizeof m->dims);
+}
+
+bg_status bgi_gpu_meshes_prepare(bg_renderer *r, const bg_scene_state *state)
+{
+    gpu_meshes *m = &r->meshes;
+    if (m->serial != 0 && m->serial == state->serial)
+        return BG_OK; /* the same commit: the textures and bases hold it */
+    m->serial = 0;
+    if (state->mesh_object_count == 0) {
+        textures_release(m);
+        m->serial = state->serial;
+        return BG_OK;
+    }
+    if (m->base_count < state->object_count) {
+        bgi_free(&r->allocator, m->base);
+        m->base_count = 0;
+        m->base = bgi_alloc(&r->allocator, 2 * (size_t)state->object_count * sizeof *m->base);
+        if (!m->base)
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the mesh texture's bases");
+        m->base_count = state->object_count;
+    }
+    uint32_t *first = mesh_firsts(&r->allocator, state);
+    if (!first)
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory ordering the meshes");
+    bg_status st = meshes_upload(r, m, state, first);
+    bgi_free(&r->allocator, first);
+    if (st == BG_OK)
+        m->serial = state->serial;
+    return st;
+}
+
+void bgi_gpu_meshes_release(bg_renderer *r)
+{
+    gpu_meshes *m = &r->meshes;
+    textures_release(m);
+    bgi_free(&r->allocator, m->base);
+    bgi_free(&r->allocator, m->keys);
+    uint64_t uploads = m->uploads;
+    memset(m, 0, sizeof *m);
+    m->uploads = uploads;
+}

@@ -1,0 +1,83 @@
+/* The scene's textures on the GPU, one copy that every plan samples (r->scene_textures): uploaded
+ * when what they hold changes, not on every commit, and not again when a frame switches plan.
+ *
+ * What they hold is keyed by a hash of every texture's size, sampling modes and texels. The scene
+ * pointer and commit count cannot say it (a scene freed and another made can land at one address
+ * with one count, and the allocator can hand a texel buffer back with other contents). A commit's
+ * texels never change and its serial is unique in the process, so the hash is taken once per commit. */
+#include <string.h>
+
+#include "../../common/alloc.h"
+#include "shared.h"
+
+uint64_t bgi_gpu_hash_mix(uint64_t h, uint64_t v)
+{
+    /* splitmix64 finaliser over a running state: cheap and well spread. */
+    uint64_t z = h ^ (v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2));
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/* The key of what the textures of a commit hold. */
+static uint64_t textures_key(const bg_scene_state *state)
+{
+    uint64_t h = bgi_gpu_hash_mix(0x13198a2e03707344ull, state->texture_count);
+    for (uint32_t i = 0; i < state->texture_count; i++) {
+        const bg_texture_data *t = &state->textures[i];
+        h = bgi_gpu_hash_mix(h, (uint64_t)t->width);
+        h = bgi_gpu_hash_mix(h, (uint64_t)t->height);
+        h = bgi_gpu_hash_mix(h, (uint64_t)t->wrap);
+        h = bgi_gpu_hash_mix(h, (uint64_t)t->filter);
+        size_t n = (size_t)t->width * (size_t)t->height * 4;
+        for (size_t k = 0; k + 1 < n; k += 2) {
+            uint32_t a, b;
+            memcpy(&a, &t->texels[k], sizeof a);
+            memcpy(&b, &t->texels[k + 1], sizeof b);
+            h = bgi_gpu_hash_mix(h, ((uint64_t)a << 32) | b);
+        }
+    }
+    return h;
+}
+
+void bgi_gpu_scene_textures_release(bg_renderer *r)
+{
+    gpu_scene_textures *t = &r->scene_textures;
+    for (uint32_t i = 0; i < t->count; i++)
+        macs_texture_destroy(t->texture[i]);
+    bgi_free(&r->allocator, t->texture);
+    t->texture = NULL;
+    t->count = 0;
+    t->held = false;
+    t->serial = 0;
+    t->uploads++;
+}
+
+bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *state)
+{
+    gpu_scene_textures *t = &r->scene_textures;
+    if (t->serial != 0 && t->serial == state->serial)
+        return BG_OK; /* the same commit: keyed, and held */
+    uint64_t key = textures_key(state);
+    if (t->held && t->key == key) {
+        t->serial = state->serial;
+        return BG_OK;
+    }
+    bgi_gpu_scene_textures_release(r);
+    if (state->texture_count > 0) {
+        t->texture = bgi_alloc(&r->allocator, state->texture_count * sizeof *t->texture);
+        if (!t->texture)
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u textures", state->texture_count);
+        memset(t->texture, 0, state->texture_count * sizeof *t->texture);
+        t->count = state->texture_count;
+        for (uint32_t i = 0; i < state->texture_count; i++) {
+            bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &t->texture[i]);
+            if (st != BG_OK)
+                return st; /* not held: the next frame uploads them again */
+        }
+    }
+    t->key = key;
+    t->held = true;
+    t->serial = state->serial;
+    return BG_OK;
+}
