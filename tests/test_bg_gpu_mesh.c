@@ -584,7 +584,7 @@ static void anisotropic_mesh_matches_cpu(void **state)
 }
 
 /* A terrain of 845,000 triangles: 8.45 million texels of mesh data, past the 2^23 that llvmpipe
- * reads right from one texture (gpu/fused/tree_textures.c gives nodes and triangles a texture each). In one
+ * reads right from one texture (gpu/shared/meshes.c gives nodes and triangles a texture each). In one
  * texture its nearest rows went missing (measured: 251 of 16,384 pixels off by up to 240). */
 static void mesh_past_one_texture_matches_cpu(void **state)
 {
