@@ -249,6 +249,11 @@ static void ply_counts_must_fit_the_file(void **state)
          "PLY face element 0: a face of 0 vertices (a face needs at least 3)"},
         {"keyword.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprz\nend_header\n",
          "PLY header line 5: \"prz\" is not a PLY header keyword"},
+        /* Triangle strips loaded as one triangle, silently. */
+        {"strips.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                       "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+                       "0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 3\n",
+         "PLY header line 7: triangle strips (element tristrips) are not read"},
     };
     for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
         l = load_ply(refused[i].name, refused[i].text, strlen(refused[i].text));

@@ -130,6 +130,11 @@ static bg_status header_element(ply *p, int number, char **w, int n)
     e->count = count;
     if (strcmp(e->name, "vertex") == 0)
         p->vertices = count;
+    /* assimp 5.2 reads a file of triangle strips as one triangle, without a word (the Stanford
+     * igea.ply): refused by name rather than rendered as a sliver. */
+    if (strcmp(e->name, "tristrips") == 0 && count > 0)
+        return fail(p, "PLY header line %d: triangle strips (element tristrips) are not read: the model would "
+                    "lose all but one triangle; convert the strips to faces", number);
     return BG_OK;
 }
 
