@@ -80,3 +80,72 @@ void bg_mesh_attributes(sampler2D tris, vec4 dims, float at, vec3 bary, bool fro
     mat3 m = mat3(abs(to_world3[0]), abs(to_world3[1]), abs(to_world3[2]));
     offset = ulps * 1.1920928955078125e-7 * bg_max3(abs(p) + m * big);
 }
+
+// Texel k (a whole float) of a copy's coverage mask, four values to a triangle texel from first.
+float bg_mesh_mask_value(sampler2D tris, vec4 dims, float first, float k)
+{
+    float texel = floor(k * 0.25);
+    vec4 v = bg_mesh_tri(tris, dims, first + texel);
+    float lane = k - 4.0 * texel;
+    return lane < 0.5 ? v.x : lane < 1.5 ? v.y : lane < 2.5 ? v.z : v.w;
+}
+
+// The texel index along one axis after the wrap (clamp 1.0: clamp to the edge, else repeat).
+float bg_mesh_mask_wrap(float i, float size, float clamp_mode)
+{
+    return clamp_mode > 0.5 ? clamp(i, 0.0, size - 1.0) : i - size * floor(i / size);
+}
+
+// The coverage mask at uv as the CPU reference samples a texture (cpu/texture_sample.c): GL_NEAREST
+// or GL_LINEAR, done by hand on the copied channel, since the mask lives in the triangle texture.
+// at = (first mask texel, width, height, nearest), wrap.z = 1.0 for clamp.
+float bg_mesh_mask(sampler2D tris, vec4 dims, vec4 at, vec2 uv, float clamp_mode)
+{
+    vec2 size = at.yz;
+    vec2 s = clamp_mode > 0.5 ? clamp(uv, 0.0, 1.0) : uv - floor(uv);
+    if (at.w > 0.5) {
+        vec2 i = min(floor(s * size), size - 1.0);
+        return bg_mesh_mask_value(tris, dims, at.x, i.y * size.x + i.x);
+    }
+    vec2 xy = s * size - 0.5;
+    vec2 f = floor(xy);
+    vec2 a = xy - f;
+    float i0 = bg_mesh_mask_wrap(f.x, size.x, clamp_mode);
+    float i1 = bg_mesh_mask_wrap(f.x + 1.0, size.x, clamp_mode);
+    float j0 = bg_mesh_mask_wrap(f.y, size.y, clamp_mode);
+    float j1 = bg_mesh_mask_wrap(f.y + 1.0, size.y, clamp_mode);
+    float t00 = bg_mesh_mask_value(tris, dims, at.x, j0 * size.x + i0);
+    float t10 = bg_mesh_mask_value(tris, dims, at.x, j0 * size.x + i1);
+    float t01 = bg_mesh_mask_value(tris, dims, at.x, j1 * size.x + i0);
+    float t11 = bg_mesh_mask_value(tris, dims, at.x, j1 * size.x + i1);
+    return (1.0 - a.x) * (1.0 - a.y) * t00 + a.x * (1.0 - a.y) * t10 + (1.0 - a.x) * a.y * t01 + a.x * a.y * t11;
+}
+
+// Whether the point of weights b on triangle tri of the copy whose first triangle texel is first is
+// there for rays (docs/shading.md 2.11): the copy's filter record, three texels before its first
+// triangle (gpu/shared/meshes.c), drops a single-sided triangle's back (front is the object-space
+// side, turned over by a mirroring transform) and a cut-out's points of coverage below the cut-off.
+bool bg_mesh_keeps(sampler2D tris, vec4 dims, float first, float tri, vec3 b, bool front)
+{
+    vec4 r0 = bg_mesh_tri(tris, dims, first - 3.0);
+    float flags = r0.x;
+    if (flags == 0.0)
+        return true;
+    float mirrored = mod(floor(flags * 0.5), 2.0);
+    if (mod(flags, 2.0) == 1.0 && (front ? 1.0 : 0.0) == mirrored)
+        return false;
+    if (flags < 4.0)
+        return true;
+    float coverage = r0.z;
+    if (flags >= 8.0) {
+        vec4 at = bg_mesh_tri(tris, dims, first - 2.0);
+        vec4 r2 = bg_mesh_tri(tris, dims, first - 1.0);
+        float k = first + 6.0 * tri;
+        vec2 t0 = vec2(bg_mesh_tri(tris, dims, k).w, bg_mesh_tri(tris, dims, k + 3.0).w);
+        vec2 t1 = vec2(bg_mesh_tri(tris, dims, k + 1.0).w, bg_mesh_tri(tris, dims, k + 4.0).w);
+        vec2 t2 = vec2(bg_mesh_tri(tris, dims, k + 2.0).w, bg_mesh_tri(tris, dims, k + 5.0).w);
+        vec2 uv = (b.x * t0 + b.y * t1 + b.z * t2) * r2.xy;
+        coverage *= bg_mesh_mask(tris, dims, at, uv, r2.z);
+    }
+    return coverage >= r0.y;
+}

@@ -225,11 +225,21 @@ typedef struct bg_schlick_layer {
     bg_scalar_param isotropy;
 } bg_schlick_layer;
 
+/* The sides of a mesh's triangles that rays meet; the front is the side its corners are seen
+ * counter-clockwise from, turned over by a mirroring transform (a negative determinant). */
+typedef enum bg_mesh_sides {
+    BG_SIDES_SOLID = 0, /* both: the mesh is a closed solid, and a ray that meets a back is inside it */
+    BG_SIDES_FRONT,     /* only fronts: a ray that meets a back passes through, for every ray, as a
+                         * rasteriser culls back faces (glTF's doubleSided false) */
+    BG_SIDES_COUNT_
+} bg_mesh_sides;
+
 /* A material. docs/shading.md gives every formula. The perfectly specular share of a layer
  * (roughness below 1/2) is traced as a mirror ray; transparency in [0, 1] blends in a dielectric
  * interface of index ior (> 0) with exact Fresnel weights and total internal reflection.
  * Defaults (bg_material_init): a white Lambertian base (C = 0.8, r = 1, p = 1), no coat,
- * ambient (0.1, 0.1, 0.1), no emission, opaque, ior 1.5. */
+ * ambient (0.1, 0.1, 0.1), no emission, opaque, ior 1.5, coverage 1 read from a texture's alpha
+ * (channel 3) with no cut-out, meshes as closed solids. */
 typedef struct bg_material {
     bg_schlick_layer base;
     bool has_coat;           /* the two-layer form: coat is a glossy layer over the base */
@@ -238,6 +248,14 @@ typedef struct bg_material {
     bg_color_param emission; /* added as is */
     bg_scalar_param transparency;
     double ior;
+    /* A cut-out (glTF's alphaMode MASK), on mesh objects: where the coverage (value times one channel
+     * of its texture, read at the mesh's texture coordinates like every other parameter) is below
+     * coverage_cutoff, the surface is not there for any ray, shadow rays included. coverage_cutoff
+     * in [0, 1]; 0 (the default) cuts nothing and leaves coverage unread. */
+    bg_scalar_param coverage;
+    double coverage_cutoff;
+    /* Which sides of a mesh object's triangles are there (the analytic shapes ignore it). */
+    bg_mesh_sides sides;
 } bg_material;
 
 /* The default material described above. */

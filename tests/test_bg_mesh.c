@@ -755,7 +755,7 @@ static void leaving_rays_miss_the_neighbours(void **state)
                 hits++;
                 double from[3];
                 bgi_cpu_leave_origin(&hit, sun, from);
-                blocked += bgi_cpu_segment_blocked_except(&st->objects[0], from, sun, hit.triangle, 1e300);
+                blocked += bgi_cpu_segment_blocked_except(&st->objects[0], from, sun, hit.triangle, NULL, 1e300);
             }
             print_message("terrain vertices at scale %g, shift %g: %d hits, %d blocked leaving rays\n", s, shift, hits,
                           blocked);

@@ -74,14 +74,36 @@ typedef struct bg_cpu_candidate {
 void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const double d[3], double oo[3],
                        double od[3]);
 
+/* Which triangle points of a mesh object are there for rays (mesh_filter.c, docs/shading.md 2.11):
+ * its material's front_only and cut-out, resolved for one object. */
+typedef struct bg_cpu_mesh_filter {
+    bool front_only;
+    bool mirrored;                    /* the object's transform turns the sides over */
+    double cutoff;                    /* 0: no cut-out */
+    double coverage;                  /* the coverage value, times a texel's channel when texture is set */
+    const bg_texture_data *texture;
+    int channel;
+    double uv_scale[2];
+} bg_cpu_mesh_filter;
+
+/* The filter of a mesh object into *storage, or NULL when its material lets every point through. */
+const bg_cpu_mesh_filter *bgi_cpu_mesh_filter_of(const bg_scene_state *state, const bg_object_data *object,
+                                                 bg_cpu_mesh_filter *storage);
+/* Whether the filter keeps the point of weights bary on a triangle met from its object-space front
+ * (front) or back. */
+bool bgi_cpu_mesh_filter_keeps(const bg_cpu_mesh_filter *filter, const bg_mesh_data *mesh, uint32_t triangle,
+                               const double bary[3], bool front);
+
 /* The hit of a world ray on an object with t in (0, t_max]: the nearest root, or with far_root the
  * exit root of a closed shape (a refracted ray travelling inside it). */
 bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
                              double t_max, bg_cpu_candidate *candidate);
 /* The same, skipping triangle skip_triangle of a mesh object (BG_CPU_NONE: none; ignored by the
- * analytic shapes): the rule that lets a ray leave a mesh triangle (docs/shading.md 2.10). */
+ * analytic shapes): the rule that lets a ray leave a mesh triangle (docs/shading.md 2.10); and the
+ * points a mesh's filter (NULL: none) drops. */
 bool bgi_cpu_intersect_object_except(const bg_object_data *object, const double o[3], const double d[3],
-                                    bool far_root, uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate);
+                                    bool far_root, uint32_t skip_triangle, const bg_cpu_mesh_filter *filter,
+                                    double t_max, bg_cpu_candidate *candidate);
 
 /* A shadow segment is open at its light end by this share of its length: a root at
  * t >= t_max (1 - BG_SHADOW_END_REL) does not block (docs/shading.md 2.8). A light lying exactly on
@@ -100,9 +122,10 @@ bool bgi_cpu_intersect_object_except(const bg_object_data *object, const double 
 
 /* True when the segment o + t l, t in (0, t_max (1 - BG_SHADOW_END_REL)), meets the object (shadow test). */
 bool bgi_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max);
-/* The same, skipping triangle skip_triangle of a mesh object (BG_CPU_NONE: none). */
+/* The same, skipping triangle skip_triangle of a mesh object (BG_CPU_NONE: none) and the points
+ * its filter (NULL: none) drops. */
 bool bgi_cpu_segment_blocked_except(const bg_object_data *object, const double o[3], const double l[3],
-                                   uint32_t skip_triangle, double t_max);
+                                   uint32_t skip_triangle, const bg_cpu_mesh_filter *filter, double t_max);
 
 /* A finished hit with everything shading needs. */
 typedef struct bg_cpu_hit {
@@ -165,12 +188,14 @@ double bgi_cpu_diff_of_products(double a, double b, double c, double d);
 /* ---- meshes (mesh_hit.c, docs/shading.md 2.10) ----------------------------------------------- */
 
 /* The nearest triangle of a mesh object met by the object-space ray oo + t od with t in
- * (0, t_max], skipping skip_triangle; of equal t the lower triangle index wins. */
-bool bgi_cpu_mesh_nearest(const bg_object_data *object, const double oo[3], const double od[3],
-                         uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate);
-/* Whether some triangle but skip_triangle meets the object-space segment with t in (0, t_limit). */
-bool bgi_cpu_mesh_blocked(const bg_object_data *object, const double oo[3], const double od[3],
-                         uint32_t skip_triangle, double t_limit);
+ * (0, t_max], skipping skip_triangle and the points filter (NULL: none) drops; of equal t the lower
+ * triangle index wins. */
+bool bgi_cpu_mesh_nearest(const bg_object_data *object, const bg_cpu_mesh_filter *filter, const double oo[3],
+                         const double od[3], uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate);
+/* Whether some triangle but skip_triangle meets the object-space segment with t in (0, t_limit) at a
+ * point that filter (NULL: none) keeps. */
+bool bgi_cpu_mesh_blocked(const bg_object_data *object, const bg_cpu_mesh_filter *filter, const double oo[3],
+                         const double od[3], uint32_t skip_triangle, double t_limit);
 /* bgi_cpu_hit_attributes for a mesh object. */
 void bgi_cpu_mesh_attributes(const bg_object_data *object, uint32_t index, const double d[3],
                             const bg_cpu_candidate *candidate, bg_cpu_hit *hit);

@@ -197,18 +197,19 @@ void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const d
 bool bgi_cpu_intersect_object(const bg_object_data *object, const double o[3], const double d[3], bool far_root,
                              double t_max, bg_cpu_candidate *candidate)
 {
-    return bgi_cpu_intersect_object_except(object, o, d, far_root, BG_CPU_NONE, t_max, candidate);
+    return bgi_cpu_intersect_object_except(object, o, d, far_root, BG_CPU_NONE, NULL, t_max, candidate);
 }
 
 bool bgi_cpu_intersect_object_except(const bg_object_data *object, const double o[3], const double d[3],
-                                    bool far_root, uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate)
+                                    bool far_root, uint32_t skip_triangle, const bg_cpu_mesh_filter *filter,
+                                    double t_max, bg_cpu_candidate *candidate)
 {
     double oo[3], od[3];
     bg_cpu_span span;
     bgi_cpu_object_ray(object, o, d, oo, od);
     /* A mesh has no far root: the side of the triangle says inside or outside. */
     if (object->mesh)
-        return bgi_cpu_mesh_nearest(object, oo, od, skip_triangle, t_max, candidate);
+        return bgi_cpu_mesh_nearest(object, filter, oo, od, skip_triangle, t_max, candidate);
     bgi_cpu_intersect_prototype(object->shape, oo, od, &span);
     if (span.count == 0)
         return false;
@@ -235,17 +236,17 @@ bool bgi_cpu_intersect_object_except(const bg_object_data *object, const double 
 
 bool bgi_cpu_segment_blocked(const bg_object_data *object, const double o[3], const double l[3], double t_max)
 {
-    return bgi_cpu_segment_blocked_except(object, o, l, BG_CPU_NONE, t_max);
+    return bgi_cpu_segment_blocked_except(object, o, l, BG_CPU_NONE, NULL, t_max);
 }
 
 bool bgi_cpu_segment_blocked_except(const bg_object_data *object, const double o[3], const double l[3],
-                                   uint32_t skip_triangle, double t_max)
+                                   uint32_t skip_triangle, const bg_cpu_mesh_filter *filter, double t_max)
 {
     double oo[3], od[3];
     bg_cpu_span span;
     bgi_cpu_object_ray(object, o, l, oo, od);
     if (object->mesh)
-        return bgi_cpu_mesh_blocked(object, oo, od, skip_triangle, t_max * (1.0 - BG_SHADOW_END_REL));
+        return bgi_cpu_mesh_blocked(object, filter, oo, od, skip_triangle, t_max * (1.0 - BG_SHADOW_END_REL));
     bgi_cpu_intersect_prototype(object->shape, oo, od, &span);
     if (span.count == 0)
         return false;

@@ -26,6 +26,7 @@ static double inclusive(double t_max)
 
 typedef struct mesh_search {
     const bg_mesh_data *mesh;
+    const bg_cpu_mesh_filter *filter; /* NULL: every point is there */
     bg_cpu_triangle_ray ray;
     uint32_t skip;
     double t_max;     /* nearest: inclusive limit; shadow: exclusive */
@@ -46,11 +47,14 @@ static bool visit_triangle(void *user, uint32_t prim, double *t_max)
     vertex(s->mesh, prim, 2, v2);
     bg_cpu_triangle_hit h;
     if (s->shadow) {
-        s->found = bgi_cpu_triangle_intersect(&s->ray, v0, v1, v2, 0.0, s->t_max, NULL);
+        s->found = bgi_cpu_triangle_intersect(&s->ray, v0, v1, v2, 0.0, s->t_max, &h) &&
+                   (!s->filter || bgi_cpu_mesh_filter_keeps(s->filter, s->mesh, prim, h.bary, h.front));
         return !s->found;
     }
     double limit = s->found ? s->hit.t : s->t_max;
     if (!bgi_cpu_triangle_intersect(&s->ray, v0, v1, v2, 0.0, inclusive(limit), &h))
+        return true;
+    if (s->filter && !bgi_cpu_mesh_filter_keeps(s->filter, s->mesh, prim, h.bary, h.front))
         return true;
     if (!s->found || h.t < s->hit.t || (h.t == s->hit.t && prim < s->triangle)) {
         s->found = true;
@@ -77,12 +81,13 @@ static void walk(mesh_search *s, const double oo[3], const double od[3])
             return;
 }
 
-bool bgi_cpu_mesh_nearest(const bg_object_data *object, const double oo[3], const double od[3],
-                         uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate)
+bool bgi_cpu_mesh_nearest(const bg_object_data *object, const bg_cpu_mesh_filter *filter, const double oo[3],
+                         const double od[3], uint32_t skip_triangle, double t_max, bg_cpu_candidate *candidate)
 {
     mesh_search s;
     memset(&s, 0, sizeof s);
     s.mesh = object->mesh;
+    s.filter = filter;
     s.skip = skip_triangle;
     s.t_max = t_max;
     walk(&s, oo, od);
@@ -98,12 +103,13 @@ bool bgi_cpu_mesh_nearest(const bg_object_data *object, const double oo[3], cons
     return true;
 }
 
-bool bgi_cpu_mesh_blocked(const bg_object_data *object, const double oo[3], const double od[3],
-                         uint32_t skip_triangle, double t_limit)
+bool bgi_cpu_mesh_blocked(const bg_object_data *object, const bg_cpu_mesh_filter *filter, const double oo[3],
+                         const double od[3], uint32_t skip_triangle, double t_limit)
 {
     mesh_search s;
     memset(&s, 0, sizeof s);
     s.mesh = object->mesh;
+    s.filter = filter;
     s.skip = skip_triangle;
     s.t_max = t_limit;
     s.shadow = true;

@@ -24,8 +24,12 @@ static void offer(nearest_search *n, uint32_t j, double t_max)
     /* A ray leaving a mesh triangle skips that triangle only: a mesh is not convex. */
     bool skip_all = j == n->skip && n->skip_triangle == BG_CPU_NONE;
     uint32_t skip_triangle = j == n->skip ? n->skip_triangle : BG_CPU_NONE;
-    if (skip_all || !bgi_cpu_intersect_object_except(&n->state->objects[j], n->o, n->d, j == n->inside, skip_triangle,
-                                                     t_max, &c))
+    if (skip_all)
+        return;
+    const bg_object_data *obj = &n->state->objects[j];
+    bg_cpu_mesh_filter storage;
+    const bg_cpu_mesh_filter *filter = obj->mesh ? bgi_cpu_mesh_filter_of(n->state, obj, &storage) : NULL;
+    if (!bgi_cpu_intersect_object_except(obj, n->o, n->d, j == n->inside, skip_triangle, filter, t_max, &c))
         return;
     if (n->best_index == BG_CPU_NONE || c.t < n->best.t || (c.t == n->best.t && j < n->best_index)) {
         n->best = c;
@@ -97,7 +101,10 @@ static bool blocks(const shadow_search *s, uint32_t j)
     const bg_object_data *obj = &s->state->objects[j];
     if (!obj->casts_shadows || (j == s->self && s->self_triangle == BG_CPU_NONE))
         return false;
-    return bgi_cpu_segment_blocked_except(obj, s->p, s->l, j == s->self ? s->self_triangle : BG_CPU_NONE, s->t_max);
+    bg_cpu_mesh_filter storage;
+    const bg_cpu_mesh_filter *filter = obj->mesh ? bgi_cpu_mesh_filter_of(s->state, obj, &storage) : NULL;
+    return bgi_cpu_segment_blocked_except(obj, s->p, s->l, j == s->self ? s->self_triangle : BG_CPU_NONE, filter,
+                                          s->t_max);
 }
 
 static bool test_tree_blocker(void *user, uint32_t prim, double *t_max)

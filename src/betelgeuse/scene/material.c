@@ -32,6 +32,9 @@ bg_material bg_material_init(void)
     m.emission = color(0, 0, 0);
     m.transparency = scalar(0.0);
     m.ior = 1.5;
+    m.coverage = (bg_scalar_param){1.0, 0, 3};
+    m.coverage_cutoff = 0.0;
+    m.sides = BG_SIDES_SOLID;
     return m;
 }
 

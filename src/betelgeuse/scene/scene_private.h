@@ -158,7 +158,7 @@ bg_status bgi_validate_object_fields(bg_scene *scene, const char *where, const b
 /* Every texture reference of a material, one row each: X(field) with m->field.texture the handle. */
 #define BG_MATERIAL_TEXTURES(X)                                                                  \
     X(base.reflectance) X(base.roughness) X(base.isotropy) X(coat.reflectance) X(coat.roughness) \
-    X(coat.isotropy) X(ambient) X(emission) X(transparency)
+    X(coat.isotropy) X(ambient) X(emission) X(transparency) X(coverage)
 
 /* ---- derivation: the one check of each item that both its API calls and commit run ---- */
 

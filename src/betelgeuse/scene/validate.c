@@ -106,8 +106,13 @@ bg_status bgi_validate_material(bg_scene *scene, const char *where, const bg_mat
         (st = layer(scene, where, "coat", &m->coat)) != BG_OK ||
         (st = color_param(scene, where, "ambient", &m->ambient)) != BG_OK ||
         (st = color_param(scene, where, "emission", &m->emission)) != BG_OK ||
-        (st = scalar_param(scene, where, "transparency", &m->transparency)) != BG_OK)
+        (st = scalar_param(scene, where, "transparency", &m->transparency)) != BG_OK ||
+        (st = scalar_param(scene, where, "coverage", &m->coverage)) != BG_OK)
         return st;
+    if ((int)m->sides < 0 || m->sides >= BG_SIDES_COUNT_)
+        return FAIL("%s: sides = %d is not a bg_mesh_sides", where, (int)m->sides);
+    if (!(m->coverage_cutoff >= 0.0 && m->coverage_cutoff <= 1.0))
+        return FAIL("%s: coverage_cutoff = %g must be in [0, 1]", where, m->coverage_cutoff);
     if (!isfinite(m->ior) || m->ior <= 0.0)
         return FAIL("%s: ior = %g must be finite and > 0", where, m->ior);
     uint32_t slot;

@@ -239,7 +239,7 @@ static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
     bgi_gpu_text_append(t, "// ---- generated: walks of the object tree and the meshes\n");
     bgi_gpu_walk_globals(t);
     if (l->mesh)
-        bgi_gpu_mesh_walks(l->walk_budget, t);
+        bgi_gpu_mesh_walks(l->walk_budget, l->mesh_filtered, t);
     if (!bgi_gpu_fused_layout_walks(l))
         return;
     emit_tree_nearest(l, t);

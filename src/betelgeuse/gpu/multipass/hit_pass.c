@@ -197,7 +197,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
         ok = ok && bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, 48) &&
              bgi_gpu_mesh_library(t, seen, &n, 48);
         if (ok)
-            bgi_gpu_mesh_pass_walks(meshes, t);
+            bgi_gpu_mesh_pass_walks(meshes, bgi_gpu_meshes_filtered(state), t);
     }
     uint32_t objects[GPU_BATCH_MAX];
     for (int j = 0; j < count; j++)

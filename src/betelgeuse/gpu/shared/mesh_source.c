@@ -54,8 +54,11 @@ static const char *const mesh_setup =
     "    vec3 inv = bg_tree_inverse(d);\n"
     "    bg_tree_left -= 3.0; // the iterations that end this walk's loops (fused_layout.c reserves them per walk)\n";
 
-void bgi_gpu_mesh_walks(int walk_budget, gpu_text *t)
+void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t)
 {
+    /* A filtered scene asks each hit that would count whether the point is there (bg_mesh_keeps); a
+     * scene without single-sided or cut-out meshes keeps today's walk, text for text. */
+    const char *keeps = filtered ? " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, base.y, lo.w, b, f)" : "";
     bgi_gpu_text_append(t, "// ---- generated: mesh objects\n"
                            "float bg_mesh_tri_j;  // the triangle of bg_mesh_nearest's hit, -1 none\n"
                            "vec3 bg_mesh_bary_j;  // and its weights\n"
@@ -74,20 +77,24 @@ void bgi_gpu_mesh_walks(int walk_budget, gpu_text *t)
                            "    vec3 o = (m * vec4(ro.xyz, 1.0)).xyz;\n    vec3 d = (m * vec4(rd.xyz, 0.0)).xyz;\n");
     bgi_gpu_text_append(t, mesh_setup);
     bgi_gpu_text_append(t, "    float best = t_limit;\n");
-    emit_mesh_loop(walk_budget, t, "best", NULL,
-                   "                if (bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, best * 1.0000003, tt, b, f) &&\n"
-                   "                    (bg_mesh_tri_j < 0.0 || tt < best || (tt == best && lo.w < bg_mesh_tri_j))) {\n"
-                   "                    best = tt;\n                    t = tt;\n                    front = f;\n"
-                   "                    bg_mesh_tri_j = lo.w;\n                    bg_mesh_bary_j = b;\n"
-                   "                }\n");
+    char body[1024];
+    snprintf(body, sizeof body,
+             "                if (bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, best * 1.0000003, tt, b, f) &&\n"
+             "                    (bg_mesh_tri_j < 0.0 || tt < best || (tt == best && lo.w < bg_mesh_tri_j))%s) {\n"
+             "                    best = tt;\n                    t = tt;\n                    front = f;\n"
+             "                    bg_mesh_tri_j = lo.w;\n                    bg_mesh_bary_j = b;\n"
+             "                }\n", keeps);
+    emit_mesh_loop(walk_budget, t, "best", NULL, body);
     bgi_gpu_text_append(t, "    if (node < end)\n        bg_tree_short = 1.0;\n    return bg_mesh_tri_j >= 0.0;\n}\n");
 
     bgi_gpu_text_append(t, "bool bg_mesh_blocked(vec3 p, vec3 l, float dist, mat4 m, vec2 base, float skip)\n{\n"
                            "    vec3 o = (m * vec4(p, 1.0)).xyz;\n    vec3 d = (m * vec4(l, 0.0)).xyz;\n"
                            "    float t_max = dist < 0.0 ? 1e38 : dist;\n    bool blocked = false;\n");
     bgi_gpu_text_append(t, mesh_setup);
-    emit_mesh_loop(walk_budget, t, "t_max", "blocked",
-                   "                blocked = bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, t_max, tt, b, f);\n");
+    snprintf(body, sizeof body,
+             "                blocked = bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, t_max, tt, b, f)%s;\n",
+             keeps);
+    emit_mesh_loop(walk_budget, t, "t_max", "blocked", body);
     bgi_gpu_text_append(t, "    if (!blocked && node < end)\n        bg_tree_short = 1.0;\n    return blocked;\n}\n");
 
     /* A ray spawned at a mesh hit leaves its triangle: origin offset to the side it goes to, and the
@@ -110,10 +117,10 @@ int bgi_gpu_mesh_pass_budget(int walks)
     return GPU_MAX_LOOP - 64 - 3 * walks;
 }
 
-void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t)
+void bgi_gpu_mesh_pass_walks(int walks, bool filtered, gpu_text *t)
 {
     bgi_gpu_walk_globals(t);
-    bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), t);
+    bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), filtered, t);
 }
 
 bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap)

@@ -21,14 +21,82 @@ enum { MESH_LEAF_TEXELS = 3 };
  * texel index a whole float. */
 #define MESH_TEXTURE_TEXELS (1ull << 23)
 
+/* Each mesh copy's triangles are preceded by its filter's record (bg_mesh.glsl, bg_mesh_keeps):
+ * {flags, cut-off, coverage value, channel}, {first mask texel, mask width, mask height, nearest},
+ * {uv scale u, v, clamp, 0}; flags 1 single-sided, 2 mirrored, 4 cut-out, 8 a coverage texture. A
+ * cut-out's texture follows the triangles as its coverage channel, four texels to an RGBA texel. */
+enum { MESH_FILTER_TEXELS = 3 };
+
+/* What object i's material lets through, as its copy's record holds it (the first mask texel left
+ * 0) and the coverage texture (NULL: none). An object whose material filters nothing has an all-zero
+ * record. */
+typedef struct mesh_filter {
+    float record[4 * MESH_FILTER_TEXELS];
+    const bg_texture_data *mask;
+} mesh_filter;
+
+static void filter_of(const bg_scene_state *state, uint32_t i, mesh_filter *f)
+{
+    memset(f, 0, sizeof *f);
+    const bg_object_data *o = &state->objects[i];
+    const bg_material *m = &state->materials[o->material];
+    bool cut = m->coverage_cutoff > 0.0;
+    if (m->sides != BG_SIDES_FRONT && !cut)
+        return;
+    f->mask = cut && m->coverage.texture ? &state->textures[m->coverage.texture - 1] : NULL;
+    f->record[0] = (float)((m->sides == BG_SIDES_FRONT ? 1 : 0) + (o->mirrored ? 2 : 0) + (cut ? 4 : 0) + (f->mask ? 8 : 0));
+    if (!cut)
+        return;
+    f->record[1] = (float)m->coverage_cutoff;
+    f->record[2] = (float)m->coverage.value;
+    f->record[3] = (float)(f->mask ? m->coverage.channel : 0);
+    if (f->mask) {
+        f->record[5] = (float)f->mask->width;
+        f->record[6] = (float)f->mask->height;
+        f->record[7] = f->mask->filter == BG_FILTER_NEAREST ? 1.0f : 0.0f;
+        f->record[8] = (float)o->uv_scale[0];
+        f->record[9] = (float)o->uv_scale[1];
+        f->record[10] = f->mask->wrap == BG_WRAP_CLAMP ? 1.0f : 0.0f;
+    }
+}
+
+/* Whether objects i and j can share one copy: the same mesh, filtered alike. */
+static bool same_copy(const bg_scene_state *state, uint32_t i, uint32_t j)
+{
+    if (state->objects[i].mesh != state->objects[j].mesh)
+        return false;
+    mesh_filter a, b;
+    filter_of(state, i, &a);
+    filter_of(state, j, &b);
+    return a.mask == b.mask && memcmp(a.record, b.record, sizeof a.record) == 0;
+}
+
+/* The RGBA texels of a copy's coverage mask. */
+static uint64_t mask_texels(const mesh_filter *f)
+{
+    return f->mask ? ((uint64_t)f->mask->width * (uint64_t)f->mask->height + 3) / 4 : 0;
+}
+
+bool bgi_gpu_meshes_filtered(const bg_scene_state *state)
+{
+    for (uint32_t i = 0; i < state->object_count; i++) {
+        const bg_object_data *o = &state->objects[i];
+        const bg_material *m = &state->materials[o->material];
+        if (o->mesh && (m->sides == BG_SIDES_FRONT || m->coverage_cutoff > 0.0))
+            return true;
+    }
+    return false;
+}
+
 /* The texels the distinct meshes take in each mesh texture. */
 typedef struct mesh_texels {
     uint64_t nodes; /* mesh_tree_texels of each tree */
     uint64_t tris;  /* MESH_TRIANGLE_TEXELS per triangle */
 } mesh_texels;
 
-/* For every object, the first object that shows the same mesh (itself when it is the first; the
- * texture holds each mesh once, in the order of the objects that first show them), found through a
+/* For every object, the first object that shows the same mesh filtered alike (itself when it is the
+ * first; the texture holds each such copy once, in the order of the objects that first show them;
+ * most scenes filter nothing, and have one copy per mesh), found through a
  * hash of the mesh pointers: linear in the objects, which may be thousands of instances. NULL when
  * out of memory; the caller frees it. */
 static uint32_t *mesh_firsts(const bg_allocator *a, const bg_scene_state *state)
@@ -50,7 +118,7 @@ static uint32_t *mesh_firsts(const bg_allocator *a, const bg_scene_state *state)
         if (!m)
             continue;
         size_t h = (size_t)(((uint64_t)(uintptr_t)m >> 4) * 0x9e3779b97f4a7c15ull >> 17) & (room - 1);
-        while (slot[h] != 0 && state->objects[slot[h] - 1].mesh != m)
+        while (slot[h] != 0 && !same_copy(state, slot[h] - 1, i))
             h = (h + 1) & (room - 1);
         if (slot[h] == 0)
             slot[h] = i + 1;
@@ -84,12 +152,15 @@ static mesh_texels mesh_layout(const bg_scene_state *state, const uint32_t *firs
             }
             continue;
         }
+        mesh_filter f;
+        filter_of(state, i, &f);
+        at.tris += MESH_FILTER_TEXELS;
         if (base) {
             base[2 * (size_t)i] = (float)at.nodes;
             base[2 * (size_t)i + 1] = (float)at.tris;
         }
         at.nodes += mesh_tree_texels(m->triangle_count);
-        at.tris += (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count;
+        at.tris += (uint64_t)MESH_TRIANGLE_TEXELS * m->triangle_count + mask_texels(&f);
     }
     return at;
 }
@@ -164,6 +235,18 @@ static void fill_meshes(const bg_scene_state *state, const uint32_t *first, cons
             at += MESH_LEAF_TEXELS;
         }
         float *o = tris + (size_t)m->base[2 * (size_t)i + 1] * 4;
+        mesh_filter f;
+        filter_of(state, i, &f);
+        if (f.mask) {
+            uint64_t first_mask = (uint64_t)m->base[2 * (size_t)i + 1] + (uint64_t)MESH_TRIANGLE_TEXELS * mesh->triangle_count;
+            f.record[4] = (float)first_mask;
+            int channel = (int)f.record[3];
+            size_t n = (size_t)f.mask->width * (size_t)f.mask->height;
+            float *mask = tris + (size_t)first_mask * 4;
+            for (size_t k = 0; k < n; k++)
+                mask[k] = f.mask->texels[4 * k + (size_t)channel];
+        }
+        memcpy(o - 4 * MESH_FILTER_TEXELS, f.record, sizeof f.record);
         for (uint32_t k = 0; k < mesh->triangle_count; k++) {
             for (int c = 0; c < 3; c++) {
                 uint32_t v = mesh->indices[3 * (size_t)k + (size_t)c];
@@ -181,10 +264,37 @@ static void fill_meshes(const bg_scene_state *state, const uint32_t *first, cons
     }
 }
 
-/* Whether the mesh textures already hold the scene's distinct meshes in their order (a mesh's
+/* A copy's filter as a number: its record and, for a cut-out with a texture, every coverage value
+ * it reads (a texture's handle may name other texels after a remove and an add). 0 without one. */
+static uint64_t filter_key(const bg_scene_state *state, uint32_t i)
+{
+    mesh_filter f;
+    filter_of(state, i, &f);
+    if (f.record[0] == 0.0f)
+        return 0;
+    uint64_t h = 0x13198a2e03707344ull;
+    for (int k = 0; k < 4 * MESH_FILTER_TEXELS; k++) {
+        uint32_t bits;
+        memcpy(&bits, &f.record[k], sizeof bits);
+        h = bgi_gpu_hash_mix(h, bits);
+    }
+    if (f.mask) {
+        size_t n = (size_t)f.mask->width * (size_t)f.mask->height;
+        int channel = (int)f.record[3];
+        for (size_t k = 0; k < n; k++) {
+            uint32_t bits;
+            memcpy(&bits, &f.mask->texels[4 * k + (size_t)channel], sizeof bits);
+            h = bgi_gpu_hash_mix(h, bits);
+        }
+    }
+    return h;
+}
+
+/* Whether the mesh textures already hold the scene's distinct copies in their order (a mesh's
  * serial names its contents for good, so a commit that only moves the camera or objects keeps them,
- * and the ten million texels of a million triangles need neither a rebuild nor a comparison);
- * otherwise records them as what they are about to hold. False when out of memory for the record. */
+ * and the ten million texels of a million triangles need neither a rebuild nor a comparison; a
+ * filtered copy is also keyed by its filter); otherwise records them as what they are about to
+ * hold. False when out of memory for the record. */
 static bool meshes_held(bg_renderer *r, gpu_meshes *m, const bg_scene_state *state, const uint32_t *first, bool *held)
 {
     uint32_t n = 0;
@@ -192,23 +302,28 @@ static bool meshes_held(bg_renderer *r, gpu_meshes *m, const bg_scene_state *sta
         n += state->objects[i].mesh && first[i] == i ? 1 : 0;
     bool same = m->nodes && m->keys && n == m->key_count;
     for (uint32_t i = 0, k = 0; i < state->object_count && same; i++)
-        if (state->objects[i].mesh && first[i] == i)
-            same = m->keys[k++] == state->objects[i].mesh->serial;
+        if (state->objects[i].mesh && first[i] == i) {
+            same = m->keys[2 * k] == state->objects[i].mesh->serial && m->keys[2 * k + 1] == filter_key(state, i);
+            k++;
+        }
     *held = same;
     if (same)
         return true;
     if (m->key_room < n) {
         bgi_free(&r->allocator, m->keys);
         m->key_room = 0;
-        m->keys = bgi_alloc(&r->allocator, (size_t)n * sizeof *m->keys);
+        m->keys = bgi_alloc(&r->allocator, 2 * (size_t)n * sizeof *m->keys);
         if (!m->keys)
             return false;
         m->key_room = n;
     }
     m->key_count = 0;
     for (uint32_t i = 0; i < state->object_count; i++)
-        if (state->objects[i].mesh && first[i] == i)
-            m->keys[m->key_count++] = state->objects[i].mesh->serial;
+        if (state->objects[i].mesh && first[i] == i) {
+            m->keys[2 * (size_t)m->key_count] = state->objects[i].mesh->serial;
+            m->keys[2 * (size_t)m->key_count + 1] = filter_key(state, i);
+            m->key_count++;
+        }
     return true;
 }
 

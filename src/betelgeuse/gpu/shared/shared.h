@@ -48,7 +48,7 @@ typedef struct gpu_meshes {
     float dims[4];           /* (texels per row, its inverse, 1 / triangle rows, 1 / node rows): bg_mesh_dims */
     float *base;             /* per object: 2 floats, its mesh's root node and first triangle texel */
     uint32_t base_count;     /* objects base has room for */
-    uint64_t *keys;          /* the serials of the distinct meshes the textures hold, in order */
+    uint64_t *keys;          /* per copy the textures hold, in order: its mesh's serial, its filter's key */
     uint32_t key_count, key_room;
     uint64_t serial;         /* the commit (bg_scene_state.serial) they were made for; 0 none */
     uint64_t uploads;        /* grows whenever the textures are remade or written: a pass that bound them
@@ -297,6 +297,8 @@ bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char 
  * it): each plan checks once, before it takes the frame. */
 bg_status bgi_gpu_meshes_prepare(bg_renderer *r, const bg_scene_state *state);
 void bgi_gpu_meshes_release(bg_renderer *r);
+/* Whether some mesh object's material is single-sided or cuts out: the walks then ask bg_mesh_keeps. */
+bool bgi_gpu_meshes_filtered(const bg_scene_state *state);
 
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
  * returns how many there were. */
@@ -319,7 +321,7 @@ void bgi_gpu_marks_release(gpu_marks *m);
  * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
  * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
  * which turns a spawned ray into one leaving the triangle. */
-void bgi_gpu_mesh_walks(int walk_budget, gpu_text *t);
+void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t);
 /* The mesh slot's w where a walk of the pixel ran out of steps: the multipass marks the pixel for
  * the CPU reference (multipass_frame.c). */
 #define GPU_MESH_SHORT (-2.0)
@@ -329,7 +331,7 @@ int bgi_gpu_mesh_pass_budget(int walks);
 /* The step count the walks share and the flag of one that ran out (set by the caller's main). */
 void bgi_gpu_walk_globals(gpu_text *t);
 /* The walk globals and the mesh walks of a multipass pass with `walks` mesh walks per pixel. */
-void bgi_gpu_mesh_pass_walks(int walks, gpu_text *t);
+void bgi_gpu_mesh_pass_walks(int walks, bool filtered, gpu_text *t);
 /* bg_triangle.glsl and bg_mesh.glsl into t. */
 bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap);
 
