@@ -123,16 +123,15 @@ float bg_mesh_mask(sampler2D tris, vec4 dims, vec4 at, vec2 uv, float clamp_mode
 
 // Whether the point of weights b on triangle tri of the copy whose first triangle texel is first is
 // there for rays (docs/shading.md 2.11): the copy's filter record, three texels before its first
-// triangle (gpu/shared/meshes.c), drops a single-sided triangle's back (front is the object-space
-// side, turned over by a mirroring transform) and a cut-out's points of coverage below the cut-off.
+// triangle (gpu/shared/meshes.c), drops a front-only triangle's back (the side its object-space
+// winding points away from) and a cut-out's points of coverage below the cut-off.
 bool bg_mesh_keeps(sampler2D tris, vec4 dims, float first, float tri, vec3 b, bool front)
 {
     vec4 r0 = bg_mesh_tri(tris, dims, first - 3.0);
     float flags = r0.x;
     if (flags == 0.0)
         return true;
-    float mirrored = mod(floor(flags * 0.5), 2.0);
-    if (mod(flags, 2.0) == 1.0 && (front ? 1.0 : 0.0) == mirrored)
+    if (mod(flags, 2.0) == 1.0 && !front)
         return false;
     if (flags < 4.0)
         return true;
@@ -148,4 +147,11 @@ bool bg_mesh_keeps(sampler2D tris, vec4 dims, float first, float tri, vec3 b, bo
         coverage *= bg_mesh_mask(tris, dims, at, uv, r2.z);
     }
     return coverage >= r0.y;
+}
+
+// Whether the copy whose first triangle texel is first is open (BG_SIDES_BOTH): both sides lit as
+// fronts and light passing straight through, as a plane's (its filter record's last lane).
+bool bg_mesh_open(sampler2D tris, vec4 dims, float first)
+{
+    return bg_mesh_tri(tris, dims, first - 1.0).w > 0.5;
 }

@@ -225,12 +225,17 @@ typedef struct bg_schlick_layer {
     bg_scalar_param isotropy;
 } bg_schlick_layer;
 
-/* The sides of a mesh's triangles that rays meet; the front is the side its corners are seen
- * counter-clockwise from, turned over by a mirroring transform (a negative determinant). */
+/* The sides of a mesh's triangles that rays meet. The front is the side its corners are seen
+ * counter-clockwise from in the mesh's own space: a mirroring transform keeps it the front (in
+ * world space it is then the clockwise side, as glTF has it for a negative determinant). */
 typedef enum bg_mesh_sides {
-    BG_SIDES_SOLID = 0, /* both: the mesh is a closed solid, and a ray that meets a back is inside it */
+    BG_SIDES_SOLID = 0, /* both: the mesh is a closed solid, and a ray that meets a back is inside it
+                         * (unlit by direct light; refraction leaves there) */
     BG_SIDES_FRONT,     /* only fronts: a ray that meets a back passes through, for every ray, as a
                          * rasteriser culls back faces (glTF's doubleSided false) */
+    BG_SIDES_BOTH,      /* both, as an open surface: a back is shaded as a front facing the ray,
+                         * and transparency passes light straight on, as through a plane (glTF's
+                         * doubleSided true) */
     BG_SIDES_COUNT_
 } bg_mesh_sides;
 

@@ -59,8 +59,7 @@ static bg_status scalar_param(bgi_sf_ctx *ctx, const cJSON *obj, const char *key
     bg_status st;
     if (cJSON_IsObject(v)) {
         p->value = 1.0;
-        p->texture = 0;
-        p->channel = 0;
+        p->texture = 0; /* p->channel keeps its default: 0, or the alpha channel for coverage */
         st = bgi_sf_check_object(ctx, v, keys);
         if (st == BG_OK)
             st = bgi_sf_field_number(ctx, v, "value", bgi_sf_unit, &p->value);
@@ -103,7 +102,9 @@ static bg_status layer(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, bg_sc
 
 static bg_status read_material(bgi_sf_ctx *ctx, const cJSON *v, const char *name)
 {
-    static const char *const keys[] = {"base", "coat", "ambient", "emission", "transparency", "ior", NULL};
+    static const char *const keys[] = {"base", "coat", "ambient", "emission", "transparency", "ior",
+                                       "coverage", "coverage_cutoff", "sides", NULL};
+    static const char *const sides[] = {"solid", "front", "both", NULL};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_material m = bg_material_init();
     BGI_SF_TRY(layer(ctx, v, "base", &m.base, NULL));
@@ -112,6 +113,11 @@ static bg_status read_material(bgi_sf_ctx *ctx, const cJSON *v, const char *name
     BGI_SF_TRY(color_param(ctx, v, "emission", &m.emission));
     BGI_SF_TRY(scalar_param(ctx, v, "transparency", &m.transparency));
     BGI_SF_TRY(bgi_sf_field_number(ctx, v, "ior", bgi_sf_positive, &m.ior));
+    BGI_SF_TRY(scalar_param(ctx, v, "coverage", &m.coverage));
+    BGI_SF_TRY(bgi_sf_field_number(ctx, v, "coverage_cutoff", bgi_sf_unit, &m.coverage_cutoff));
+    int s = (int)m.sides;
+    BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "sides", sides, &s));
+    m.sides = (bg_mesh_sides)s;
     uint32_t handle;
     bg_status st = bg_scene_add_material(ctx->scene, &m, &handle);
     if (st != BG_OK)

@@ -78,7 +78,6 @@ void bgi_cpu_object_ray(const bg_object_data *object, const double o[3], const d
  * its material's front_only and cut-out, resolved for one object. */
 typedef struct bg_cpu_mesh_filter {
     bool front_only;
-    bool mirrored;                    /* the object's transform turns the sides over */
     double cutoff;                    /* 0: no cut-out */
     double coverage;                  /* the coverage value, times a texel's channel when texture is set */
     const bg_texture_data *texture;

@@ -12,7 +12,6 @@ const bg_cpu_mesh_filter *bgi_cpu_mesh_filter_of(const bg_scene_state *state, co
     if (m->sides != BG_SIDES_FRONT && m->coverage_cutoff <= 0.0)
         return NULL;
     storage->front_only = m->sides == BG_SIDES_FRONT;
-    storage->mirrored = object->mirrored;
     storage->cutoff = m->coverage_cutoff;
     storage->coverage = m->coverage.value;
     storage->texture = m->coverage.texture ? &state->textures[m->coverage.texture - 1] : NULL;
@@ -25,7 +24,7 @@ const bg_cpu_mesh_filter *bgi_cpu_mesh_filter_of(const bg_scene_state *state, co
 bool bgi_cpu_mesh_filter_keeps(const bg_cpu_mesh_filter *filter, const bg_mesh_data *mesh, uint32_t triangle,
                                const double bary[3], bool front)
 {
-    if (filter->front_only && front == filter->mirrored)
+    if (filter->front_only && !front)
         return false;
     if (filter->cutoff <= 0.0)
         return true;

@@ -187,7 +187,9 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
     const double view[3] = {-d[0], -d[1], -d[2]};
     double v = bg_v3_dot(n, view);
     double opaque = 1.0 - surface.transparency;
-    bool thin = bg_shape_thin(object->shape);
+    /* An open mesh is thin as a plane is: lit on both sides, passing light straight on. */
+    bool thin = bg_shape_thin(object->shape) ||
+                (object->mesh && state->materials[object->material].sides == BG_SIDES_BOTH);
 
     for (int i = 0; i < 3; i++)
         out[i] += weight[i] * (surface.emission[i] + opaque * state->ambient[i] * surface.ambient[i]);

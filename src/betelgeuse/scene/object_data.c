@@ -138,9 +138,5 @@ bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *tran
     o->uv_scale[0] = d->uv_scale[0];
     o->uv_scale[1] = d->uv_scale[1];
     o->casts_shadows = d->casts_shadows;
-    double (*m)[4] = o->to_world;
-    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    o->mirrored = det < 0.0;
     return BG_OK;
 }

@@ -49,8 +49,6 @@ typedef struct bg_object_data {
     bg_uv_mapping uv_mapping;    /* resolved: never BG_UV_DEFAULT */
     double uv_scale[2];
     bool casts_shadows;
-    bool mirrored;               /* the transform's linear part has a negative determinant: it turns a
-                                  * triangle's winding, and so its front, over (glTF's rule) */
     bool bounded;                /* false for planes */
     double bounds_min[3], bounds_max[3]; /* world-space box; meaningful when bounded */
 } bg_object_data;

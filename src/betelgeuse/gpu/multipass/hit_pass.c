@@ -269,14 +269,18 @@ static macs_status set_material_uniforms(macs_pass *pass, const bg_scene_state *
 
 /* A mesh winner's normal, hit code, UV and tangent (docs/shading.md 2.10), and the offset of the
  * rays that leave it, which the MESH slot carries to the shadow and spawn passes. */
-static void emit_mesh_geometry(gpu_text *t, const member *mb, int j, bool need_tangent)
+static void emit_mesh_geometry(gpu_text *t, const bg_scene_state *state, const member *mb, int j, bool need_tangent)
 {
+    /* An open mesh (BG_SIDES_BOTH) is thin, as a plane: its filter record says so. */
+    char thin[96];
+    snprintf(thin, sizeof thin, bgi_gpu_meshes_filtered(state) ? "bg_mesh_open(bg_mesh_tris, bg_mesh_dims, bg_mesh_%d.y)"
+                                                                : "false", j);
     bgi_gpu_text_printf(t, "    vec2 bg_uv;\n    vec3 bg_dpdu, bg_g;\n    float bg_off;\n"
                            "    bg_mesh_attributes(bg_mesh_tris, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "
                            "bg_normal_to_world_%d, bg_to_world3_%d, bg_p, bg_rd.xyz, %.1f, bg_g, bg_n, bg_uv, bg_dpdu, bg_off);\n"
-                           "    bg_entering = bg_first;\n    bg_code = bg_hit_code(bg_index_%d, false, bg_entering);\n"
+                           "    bg_entering = bg_first;\n    bg_code = bg_hit_code(bg_index_%d, %s, bg_entering);\n"
                            "    bg_mesh_ov = bg_g * bg_off;\n",
-                        j, j, j, GPU_MESH_OFFSET_ULPS, j);
+                        j, j, j, GPU_MESH_OFFSET_ULPS, j, thin);
     if (mb->need_uv)
         bgi_gpu_text_printf(t, "    bg_uv *= bg_uv_scale_%d;\n", j);
     if (need_tangent)
@@ -334,7 +338,7 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
 {
     const bg_object_data *obj = &state->objects[mb->object];
     if (mb->mesh)
-        emit_mesh_geometry(t, mb, j, need_tangent);
+        emit_mesh_geometry(t, state, mb, j, need_tangent);
     else
         emit_shape_geometry(t, obj, mb, j, need_tangent);
     emit_params(t, mb, transparent, coat);

@@ -23,7 +23,8 @@ enum { MESH_LEAF_TEXELS = 3 };
 
 /* Each mesh copy's triangles are preceded by its filter's record (bg_mesh.glsl, bg_mesh_keeps):
  * {flags, cut-off, coverage value, channel}, {first mask texel, mask width, mask height, nearest},
- * {uv scale u, v, clamp, 0}; flags 1 single-sided, 2 mirrored, 4 cut-out, 8 a coverage texture. A
+ * {uv scale u, v, clamp, open}; flags 1 front only, 4 cut-out, 8 a coverage texture;
+ * open 1 for BG_SIDES_BOTH (bg_mesh_open), whose walk drops nothing. A
  * cut-out's texture follows the triangles as its coverage channel, four texels to an RGBA texel. */
 enum { MESH_FILTER_TEXELS = 3 };
 
@@ -41,10 +42,11 @@ static void filter_of(const bg_scene_state *state, uint32_t i, mesh_filter *f)
     const bg_object_data *o = &state->objects[i];
     const bg_material *m = &state->materials[o->material];
     bool cut = m->coverage_cutoff > 0.0;
+    f->record[11] = m->sides == BG_SIDES_BOTH ? 1.0f : 0.0f;
     if (m->sides != BG_SIDES_FRONT && !cut)
         return;
     f->mask = cut && m->coverage.texture ? &state->textures[m->coverage.texture - 1] : NULL;
-    f->record[0] = (float)((m->sides == BG_SIDES_FRONT ? 1 : 0) + (o->mirrored ? 2 : 0) + (cut ? 4 : 0) + (f->mask ? 8 : 0));
+    f->record[0] = (float)((m->sides == BG_SIDES_FRONT ? 1 : 0) + (cut ? 4 : 0) + (f->mask ? 8 : 0));
     if (!cut)
         return;
     f->record[1] = (float)m->coverage_cutoff;
@@ -82,7 +84,7 @@ bool bgi_gpu_meshes_filtered(const bg_scene_state *state)
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_object_data *o = &state->objects[i];
         const bg_material *m = &state->materials[o->material];
-        if (o->mesh && (m->sides == BG_SIDES_FRONT || m->coverage_cutoff > 0.0))
+        if (o->mesh && (m->sides != BG_SIDES_SOLID || m->coverage_cutoff > 0.0))
             return true;
     }
     return false;
@@ -270,7 +272,7 @@ static uint64_t filter_key(const bg_scene_state *state, uint32_t i)
 {
     mesh_filter f;
     filter_of(state, i, &f);
-    if (f.record[0] == 0.0f)
+    if (f.record[0] == 0.0f && f.record[11] == 0.0f)
         return 0;
     uint64_t h = 0x13198a2e03707344ull;
     for (int k = 0; k < 4 * MESH_FILTER_TEXELS; k++) {
