@@ -40,11 +40,11 @@ const char *bgi_sf_image_format_name(bgi_sf_image_format f)
 }
 
 /* The size checked before any allocation: a header may claim anything. */
-static bool size_ok(int w, int h, char *reason, size_t size)
+static bool size_ok(const char *format, int w, int h, char *reason, size_t size)
 {
     if (w >= 1 && h >= 1 && w <= BG_MAX_IMAGE_SIDE && h <= BG_MAX_IMAGE_SIDE)
         return true;
-    snprintf(reason, size, "its size %d x %d is outside 1..%d", w, h, BG_MAX_IMAGE_SIDE);
+    snprintf(reason, size, "the %s header's size %d x %d is outside 1..%d", format, w, h, BG_MAX_IMAGE_SIDE);
     return false;
 }
 
@@ -69,7 +69,7 @@ static bg_status decode_png(const unsigned char *data, size_t n, bg_image *out, 
         png_image_free(&pi);
         return BG_ERR_IO;
     }
-    if (!size_ok((int)pi.width, (int)pi.height, reason, size)) {
+    if (!size_ok("PNG", (int)pi.width, (int)pi.height, reason, size)) {
         png_image_free(&pi);
         return BG_ERR_IO;
     }
@@ -103,7 +103,7 @@ static bg_status decode_jpeg(const unsigned char *data, size_t n, bg_image *out,
         tjDecompressHeader3(tj, data, (unsigned long)n, &w, &h, &subsamp, &colorspace) != 0) {
         snprintf(reason, size, "not a readable JPEG: %s", tjGetErrorStr2(tj));
         st = BG_ERR_IO;
-    } else if (!size_ok(w, h, reason, size)) {
+    } else if (!size_ok("JPEG", w, h, reason, size)) {
         st = BG_ERR_IO;
     } else if ((st = alloc_rgba8(w, h, out, reason, size)) == BG_OK &&
                tjDecompress2(tj, data, (unsigned long)n, out->pixels, w, (int)out->stride, h, TJPF_RGBA, 0) != 0) {
