@@ -121,7 +121,7 @@ static bg_status entry(bgi_sf_model *md, int index, const char *path, const char
                        bool *fresh)
 {
     for (size_t i = 0; i < md->image_count; i++) {
-        bgi_sf_model_image *im = &md->images[i];
+        bgi_sf_model_image *im = md->images[i];
         if (im->embedded == index && (index >= 0 || strcmp(im->path, path) == 0)) {
             *out = im;
             *fresh = false;
@@ -130,17 +130,21 @@ static bg_status entry(bgi_sf_model *md, int index, const char *path, const char
     }
     if (md->image_count == md->image_capacity) {
         size_t cap = md->image_capacity ? 2 * md->image_capacity : 8;
-        bgi_sf_model_image *more = realloc(md->images, cap * sizeof *more);
+        bgi_sf_model_image **more = realloc(md->images, cap * sizeof *more);
         if (!more)
             return bgi_sf_fail(md->ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", md->desc->path);
         md->images = more;
         md->image_capacity = cap;
     }
-    bgi_sf_model_image *im = &md->images[md->image_count];
-    memset(im, 0, sizeof *im);
-    im->embedded = index;
-    if (index < 0 && !(im->path = strdup(path)))
+    bgi_sf_model_image *im = calloc(1, sizeof *im);
+    if (!im)
         return bgi_sf_fail(md->ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", md->desc->path);
+    md->images[md->image_count] = im;
+    im->embedded = index;
+    if (index < 0 && !(im->path = strdup(path))) {
+        free(im);
+        return bgi_sf_fail(md->ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", md->desc->path);
+    }
     snprintf(im->name, sizeof im->name, "%s", name);
     md->image_count++;
     *out = im;
@@ -244,8 +248,9 @@ bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, b
 void bgi_sf_model_images_free(bgi_sf_model *md)
 {
     for (size_t i = 0; i < md->image_count; i++) {
-        free(md->images[i].path);
-        free(md->images[i].image.pixels);
+        free(md->images[i]->path);
+        free(md->images[i]->image.pixels);
+        free(md->images[i]);
     }
     free(md->images);
     md->images = NULL;

@@ -33,7 +33,7 @@ typedef struct bgi_sf_model {
     uint32_t *materials;        /* per file material, 0 until mapped */
     uint32_t *first;            /* per file mesh, its first object (later nodes instance it) */
     size_t added;               /* mesh objects added */
-    bgi_sf_model_image *images; /* every image read so far */
+    bgi_sf_model_image **images; /* every image read so far, each allocated alone so that pointers stay */
     size_t image_count, image_capacity;
 } bgi_sf_model;
 
