@@ -218,9 +218,11 @@ bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, c
     return BG_OK;
 }
 
-bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out)
+/* Adds image as a texture (repeat, linear filtering) and counts it; what names it in a failure. */
+static bg_status add(bgi_sf_model *md, const bg_image *image, bg_texture_encoding encoding, const char *what,
+                     uint32_t *out)
 {
-    bg_texture_desc d = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR, BG_FILTER_LINEAR};
+    bg_texture_desc d = {BG_WRAP_REPEAT, encoding, BG_FILTER_LINEAR};
     bg_status st = bg_scene_add_texture(md->ctx->scene, image, &d, out);
     if (st != BG_OK)
         return bgi_sf_scene_fail(md->ctx, st, what);
@@ -228,18 +230,18 @@ bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, cons
     return BG_OK;
 }
 
+bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out)
+{
+    return add(md, image, BG_TEXTURE_LINEAR, what, out);
+}
+
 bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, bg_texture_encoding encoding,
                                      uint32_t *out)
 {
     if (!im->texture[encoding]) {
-        bg_texture_desc d = {BG_WRAP_REPEAT, encoding, BG_FILTER_LINEAR};
-        bg_status st = bg_scene_add_texture(md->ctx->scene, &im->image, &d, &im->texture[encoding]);
-        if (st != BG_OK) {
-            char what[128];
-            snprintf(what, sizeof what, "the texture of image %s", im->name);
-            return bgi_sf_scene_fail(md->ctx, st, what);
-        }
-        md->ctx->out->summary.textures++;
+        char what[128];
+        snprintf(what, sizeof what, "the texture of image %s", im->name);
+        BGI_SF_TRY(add(md, &im->image, encoding, what, &im->texture[encoding]));
     }
     *out = im->texture[encoding];
     return BG_OK;
