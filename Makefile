@@ -46,13 +46,15 @@ BG_SRC   := $(sort $(wildcard src/betelgeuse/*/*.c src/betelgeuse/*/*/*.c))
 BG_DUP_NAMES := $(shell printf '%s\n' $(notdir $(BG_SRC)) | sort | uniq -d)
 $(if $(BG_DUP_NAMES),$(error src/betelgeuse: file names used twice: $(BG_DUP_NAMES)))
 # The scene-file library (include/betelgeuse_scenefile.h): JSON scenes and model files, on top of
-# libbetelgeuse's public API, with cJSON and assimp as its own dependencies.
+# libbetelgeuse's public API, with cJSON and assimp as its own dependencies, and libpng and
+# libjpeg-turbo's TurboJPEG for the images of model files (src/scenefile/image_decode.c).
 SF_SRC   := $(sort $(wildcard src/scenefile/*.c))
 MACS_OBJ := $(MACS_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/macs_shaders.o
 BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
 SF_OBJ   := $(SF_SRC:%.c=$(BUILD)/%.o)
-SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp 2>/dev/null || echo -I/usr/include/cjson)
-SF_LIBS   := $(shell pkg-config --libs libcjson assimp 2>/dev/null || echo -lcjson -lassimp)
+SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp libpng libturbojpeg 2>/dev/null || echo -I/usr/include/cjson)
+SF_LIBS   := $(shell pkg-config --libs libcjson assimp libpng libturbojpeg 2>/dev/null || \
+               echo -lcjson -lassimp -lpng16 -lturbojpeg)
 # The command (src/cli, docs/command.md) on the three libraries.
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)

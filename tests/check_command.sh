@@ -59,11 +59,11 @@ expect 0 "render an OBJ model" "$cli" render "$root/tests/data/two_boxes.obj" --
 	--renderer cpu --float "$out/obj.pfm"
 head -c 2 "$out/obj.pfm" | grep -q PF || fail "--float wrote no PFM"
 # What a model loses is said on stderr, terminal or not (here a file), and --quiet silences it.
-expect 0 "a model warning without a terminal" "$cli" render "$root/tests/data/emissive_jpeg_texture.gltf" --size 32x24 \
+expect 0 "a model warning without a terminal" "$cli" render "$root/tests/data/emissive_webp_texture.gltf" --size 32x24 \
 	--renderer cpu -o "$out/warn.png"
 said "warning: " "a model warning without a terminal"
-said "glow_not_read.jpg" "a model warning without a terminal"
-expect 0 "a model warning under --quiet" "$cli" render "$root/tests/data/emissive_jpeg_texture.gltf" --size 32x24 \
+said "glow_not_read.webp" "a model warning without a terminal"
+expect 0 "a model warning under --quiet" "$cli" render "$root/tests/data/emissive_webp_texture.gltf" --size 32x24 \
 	--renderer cpu -o "$out/warn.png" --quiet
 grep -q "warning: " "$out/err" && fail "--quiet printed a warning: $(cat "$out/err")"
 

@@ -86,11 +86,11 @@ static void emission_is_factor_times_texture(void **state)
     coverage c = render("tests/data/emissive_red.gltf", NULL);
     if (c.covered < 50 || c.red < c.covered * 9 / 10)
         fail_msg("emissive_red.gltf: %zu of %zu pixels red", c.red, c.covered);
-    /* A white factor whose texture is a JPEG, which is not read: left out with the texture, so the
+    /* A white factor whose texture is a WebP, which is not read: left out with the texture, so the
      * surface shows its blue base colour rather than white. */
-    c = render("tests/data/emissive_jpeg_texture.gltf", NULL);
+    c = render("tests/data/emissive_webp_texture.gltf", NULL);
     if (c.covered < 50 || c.white > 0 || c.blue < c.covered * 9 / 10)
-        fail_msg("emissive_jpeg_texture.gltf: %zu of %zu pixels white, %zu blue", c.white, c.covered, c.blue);
+        fail_msg("emissive_webp_texture.gltf: %zu of %zu pixels white, %zu blue", c.white, c.covered, c.blue);
 }
 
 /* Under ambient light alone the surface shows its own colour, not a grey the same for every material. */

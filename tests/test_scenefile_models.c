@@ -246,8 +246,8 @@ static void write_file(const char *path, const char *text)
     fclose(f);
 }
 
-/* What the MTL mapping leaves out it says, to the logger: a colour texture that is not a PNG and
- * every map other than the colour one. A PNG colour texture that is missing is an error. */
+/* What the MTL mapping leaves out it says, to the logger: a colour texture in a format not read (a
+ * WebP) and every map other than the colour one. A colour texture that is missing is an error. */
 static void model_materials_say_what_they_leave_out(void **state)
 {
     (void)state;
@@ -257,7 +257,12 @@ static void model_materials_say_what_they_leave_out(void **state)
     char text[256];
     snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n", strrchr(mtl, '/') + 1);
     write_file(obj, text);
-    write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd wood.jpg\nmap_Bump bump.png\n");
+    char webp[64];
+    snprintf(webp, sizeof webp, "/tmp/bg_sf_%ld.webp", (long)getpid());
+    write_file(webp, "RIFF\x1a\x01\x01\x01WEBPVP8 ");
+    char mtl_text[256];
+    snprintf(mtl_text, sizeof mtl_text, "newmtl m\nKd 1 1 1\nmap_Kd %s\nmap_Bump bump.png\n", strrchr(webp, '/') + 1);
+    write_file(mtl, mtl_text);
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
     warnings w = {0, ""};
@@ -268,8 +273,11 @@ static void model_materials_say_what_they_leave_out(void **state)
     bg_scene_destroy(s);
     if (st != BG_OK)
         fail_msg("%s", message);
-    if (w.count != 2 || !strstr(w.all, "texture \"wood.jpg\" is left out (only PNG files are read)") ||
-        !strstr(w.all, "texture is left out (only the colour and emissive textures are mapped)"))
+    remove(webp);
+    if (w.count != 2 || !strstr(w.all, "material \"m\": its base colour texture \"bg_sf_") ||
+        !strstr(w.all, ".webp\" is left out (WebP images are not read; PNG and JPEG are)") ||
+        !strstr(w.all, "texture is left out (only the colour, emissive, glTF metallic-roughness and occlusion "
+                       "textures are mapped)"))
         fail_msg("%d warnings:\n%s", w.count, w.all);
 
     write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd no_such_texture.png\n");

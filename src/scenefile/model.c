@@ -1,6 +1,6 @@
 /* Model files through assimp's C API: every triangle mesh of the file's node tree becomes a mesh
  * object (a mesh that several nodes show is added once and instanced), placed by the node's world
- * transform after the caller's; materials are mapped as docs/scene_format.md ("Model files") says. */
+ * transform after the caller's; materials are mapped by model_material.c. */
 #include "model_internal.h"
 
 #include <assimp/cimport.h>
@@ -26,15 +26,7 @@
 /* Node trees deeper than this are refused rather than risking the stack. */
 #define MODEL_MAX_DEPTH 256
 
-typedef struct model {
-    bgi_sf_ctx *ctx;
-    const bgi_sf_model_desc *desc;
-    const struct aiScene *sc;
-    char dir[BGI_SF_PATH_MAX];  /* the model's folder: its texture paths are relative to it */
-    uint32_t *materials;        /* per file material, 0 until mapped */
-    uint32_t *first;            /* per file mesh, its first object (later nodes instance it) */
-    size_t added;               /* mesh objects added */
-} model;
+typedef bgi_sf_model model;
 
 static bg_mat4 from_ai(const struct aiMatrix4x4 *a)
 {
@@ -63,179 +55,6 @@ static bg_mat4 compose(bg_mat4 outer, bg_mat4 inner)
     if (is_identity(outer))
         return inner;
     return bg_mat4_mul(outer, inner);
-}
-
-static bool color_of(const struct aiMaterial *am, const char *key, unsigned type, unsigned index, double rgb[3])
-{
-    struct aiColor4D c;
-    if (aiGetMaterialColor(am, key, type, index, &c) != aiReturn_SUCCESS)
-        return false;
-    double v[3] = {c.r, c.g, c.b};
-    for (int i = 0; i < 3; i++)
-        rgb[i] = isfinite(v[i]) && v[i] > 0 ? v[i] : 0.0;
-    return true;
-}
-
-static bool float_of(const struct aiMaterial *am, const char *key, unsigned type, unsigned index, double *out)
-{
-    ai_real f;
-    unsigned int n = 1;
-    if (aiGetMaterialFloatArray(am, key, type, index, &f, &n) != aiReturn_SUCCESS || n < 1 || !isfinite(f))
-        return false;
-    *out = f;
-    return true;
-}
-
-static double clamp01(double x)
-{
-    return x < 0 ? 0 : x > 1 ? 1 : x;
-}
-
-/* The material's first texture of the given types: a PNG file relative to the model loads into
- * *out (a missing one is an error, as every missing file is); an embedded image or another format
- * is left out with a warning naming the texture, and *dropped says so. */
-static bg_status material_texture(model *md, const struct aiMaterial *am, const enum aiTextureType *types, int ntypes,
-                                  const char *mname, uint32_t *out, bool *dropped)
-{
-    struct aiString s;
-    bool found = false;
-    *dropped = false;
-    for (int i = 0; i < ntypes && !found; i++)
-        found = aiGetMaterialTexture(am, types[i], 0, &s, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS;
-    if (!found)
-        return BG_OK;
-    const char *file = s.data;
-    if (strlen(file) != s.length)
-        return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": material \"%s\": the texture "
-                           "file name holds a NUL character", md->desc->path, mname);
-    size_t len = strlen(file);
-    if (file[0] == '*' || len < 4 || strcasecmp(file + len - 4, ".png") != 0) {
-        bgi_sf_warn(md->ctx, "material \"%s\": %s texture \"%s\" is left out (only PNG files are read)", mname,
-                    file[0] == '*' ? "the embedded" : "its", file);
-        *dropped = true;
-        return BG_OK;
-    }
-    char path[BGI_SF_PATH_MAX];
-    int n = snprintf(path, sizeof path, "%s%s", file[0] == '/' ? "" : md->dir, file);
-    if (n < 0 || n >= (int)sizeof path)
-        return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "material \"%s\": texture path too long", mname);
-    bgi_sf_note_input(md->ctx, path);
-    bg_status st = bg_scene_load_texture_png(md->ctx->scene, path, NULL, out);
-    if (st != BG_OK)
-        return bgi_sf_fail(md->ctx, st, "material \"%s\" of %s: %s", mname, md->desc->path,
-                           bg_scene_error_message(md->ctx->scene));
-    md->ctx->out->summary.textures++;
-    return BG_OK;
-}
-
-static bool has_extension(const char *path, const char *extension)
-{
-    size_t n = strlen(path), e = strlen(extension);
-    return n >= e && strcasecmp(path + n - e, extension) == 0;
-}
-
-/* PLY and STL carry no materials, and an OBJ without its MTL names none: assimp then invents one,
- * white with a white ambient and specular colour (PLY, STL) that would render as a white silhouette
- * or a dark mirror. Such a file gets the neutral grey diffuse of bg_material_init instead. */
-static bool invented_by_assimp(const model *md, const char *mname)
-{
-    return has_extension(md->desc->path, ".ply") || has_extension(md->desc->path, ".stl") ||
-           strcmp(mname, AI_DEFAULT_MATERIAL_NAME) == 0;
-}
-
-/* The base colour and its texture (docs/scene_format.md, "Materials of model files"). */
-static bg_status map_base(model *md, const struct aiMaterial *am, const char *mname, bg_material *m, bool *pbr)
-{
-    static const enum aiTextureType color_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
-    double rgb[3];
-    bool dropped;
-    *pbr = color_of(am, AI_MATKEY_BASE_COLOR, rgb);
-    if (*pbr || color_of(am, AI_MATKEY_COLOR_DIFFUSE, rgb))
-        m->base.reflectance = (bg_color_param){rgb[0], rgb[1], rgb[2], 0};
-    return material_texture(md, am, color_types, 2, mname, &m->base.reflectance.texture, &dropped);
-}
-
-/* Emission: the factor times the emissive texture, times KHR_materials_emissive_strength. A factor
- * without a texture is a plain colour; a factor whose texture cannot be read is left out with the
- * texture, since the factor alone (often [1, 1, 1] beside a texture) would light the whole surface. */
-static bg_status map_emission(model *md, const struct aiMaterial *am, const char *mname, bg_material *m)
-{
-    static const enum aiTextureType emissive_types[] = {aiTextureType_EMISSIVE};
-    double rgb[3], strength = 1.0;
-    if (!color_of(am, AI_MATKEY_COLOR_EMISSIVE, rgb))
-        return BG_OK;
-    if (float_of(am, AI_MATKEY_EMISSIVE_INTENSITY, &strength) && strength >= 0)
-        for (int k = 0; k < 3; k++)
-            rgb[k] *= strength;
-    bool dropped;
-    uint32_t texture = 0;
-    BGI_SF_TRY(material_texture(md, am, emissive_types, 1, mname, &texture, &dropped));
-    if (dropped)
-        bgi_sf_warn(md->ctx, "material \"%s\": its emissive factor is left out with its texture", mname);
-    else
-        m->emission = (bg_color_param){rgb[0], rgb[1], rgb[2], texture};
-    return BG_OK;
-}
-
-/* The mapping of docs/scene_format.md, "Materials of model files". */
-static bg_status map_material(model *md, unsigned index, uint32_t *out)
-{
-    if (index >= md->sc->mNumMaterials)
-        return bgi_sf_default_material(md->ctx, out);
-    if (md->materials[index]) {
-        *out = md->materials[index];
-        return BG_OK;
-    }
-    const struct aiMaterial *am = md->sc->mMaterials[index];
-    struct aiString name;
-    const char *mname = aiGetMaterialString(am, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS ? name.data : "";
-    bg_material m = bg_material_init();
-    if (!invented_by_assimp(md, mname)) {
-        double rgb[3], x;
-        bool pbr;
-        BGI_SF_TRY(map_base(md, am, mname, &m, &pbr));
-        if (pbr) {
-            double metallic = 0.0, roughness = 1.0;
-            float_of(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
-            float_of(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness);
-            roughness = clamp01(roughness);
-            if (metallic >= 0.5) {
-                m.base.roughness.value = roughness; /* a metal: the base colour is its glossy reflectance */
-            } else if (roughness < 1.0) {
-                m.has_coat = true;                  /* a dielectric: diffuse base under a 4% coat */
-                m.coat.roughness.value = roughness;
-            }
-        } else if (color_of(am, AI_MATKEY_COLOR_SPECULAR, rgb) && (rgb[0] > 0 || rgb[1] > 0 || rgb[2] > 0)) {
-            m.has_coat = true;
-            m.coat.reflectance = (bg_color_param){rgb[0], rgb[1], rgb[2], 0};
-            if (float_of(am, AI_MATKEY_SHININESS, &x) && x >= 0)
-                m.coat.roughness.value = clamp01(sqrt(2.0 / (x + 2.0)));
-        }
-        BGI_SF_TRY(map_emission(md, am, mname, &m));
-        if (float_of(am, AI_MATKEY_OPACITY, &x))
-            m.transparency.value = clamp01(1.0 - x);
-        if (float_of(am, AI_MATKEY_REFRACTI, &x) && x > 0)
-            m.ior = x;
-        static const enum aiTextureType unmapped[] = {aiTextureType_SPECULAR, aiTextureType_NORMALS,
-                                                      aiTextureType_HEIGHT, aiTextureType_OPACITY,
-                                                      aiTextureType_SHININESS};
-        for (size_t i = 0; i < sizeof unmapped / sizeof unmapped[0]; i++)
-            if (aiGetMaterialTextureCount(am, unmapped[i]) > 0)
-                bgi_sf_warn(md->ctx, "material \"%s\": its %s texture is left out (only the colour and emissive "
-                            "textures are mapped)", mname, aiTextureTypeToString(unmapped[i]));
-    }
-    /* The ambient colour follows the base colour and its texture, so that a textured surface keeps
-     * its texture under ambient light; an eighth of it, so that the default grey 0.8 keeps the
-     * default ambient colour 0.1. A file's own ambient colour (MTL Ka) is not read: exporters write
-     * white or a copy of Kd by habit, which washed every textured surface out. */
-    const bg_color_param *b = &m.base.reflectance;
-    m.ambient = (bg_color_param){b->r / 8, b->g / 8, b->b / 8, b->texture};
-    bg_status st = bg_scene_add_material(md->ctx->scene, &m, &md->materials[index]);
-    if (st != BG_OK)
-        return bgi_sf_scene_fail(md->ctx, st, "the model's material");
-    md->ctx->out->summary.materials++;
-    *out = md->materials[index];
-    return BG_OK;
 }
 
 /* Smooth normals: at each vertex the sum of the face normals around it weighted by area (a cross
@@ -324,7 +143,7 @@ static bg_status add_mesh(model *md, unsigned index, bg_mat4 m)
         return BG_OK; /* points and lines: nothing a ray tracer can hit */
     uint32_t material = md->desc->material;
     if (!material)
-        BGI_SF_TRY(map_material(md, am->mMaterialIndex, &material));
+        BGI_SF_TRY(bgi_sf_model_material(md, am->mMaterialIndex, &material));
     uint32_t id;
     if (md->first[index]) {
         bg_status st = bg_scene_add_mesh_instance(md->ctx->scene, md->first[index], &m, material,
@@ -505,7 +324,11 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
     const struct aiScene *sc = import(ctx, desc->path, &st);
     if (!sc)
         return st;
-    model md = {ctx, desc, sc, "", NULL, NULL, 0};
+    model md;
+    memset(&md, 0, sizeof md);
+    md.ctx = ctx;
+    md.desc = desc;
+    md.sc = sc;
     const char *slash = strrchr(desc->path, '/');
     size_t dl = slash ? (size_t)(slash - desc->path) + 1 : 0;
     memcpy(md.dir, desc->path, dl);
@@ -525,6 +348,7 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
     }
     free(md.materials);
     free(md.first);
+    bgi_sf_model_images_free(&md);
     aiReleaseImport(sc);
     return st;
 }

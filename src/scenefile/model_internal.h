@@ -1,11 +1,61 @@
-/* The model loader's own pieces (model.c): assimp's file access and the checks made before assimp
- * reads a file. Only the model files include this, so the rest of the library needs no assimp. */
+/* The model loader's own pieces: the load in progress (model.c), its images (model_images.c), its
+ * materials (model_material.c), assimp's file access and the checks made before assimp reads a file.
+ * Only the model files include this, so the rest of the library needs no assimp. */
 #ifndef BG_SCENEFILE_MODEL_INTERNAL_H
 #define BG_SCENEFILE_MODEL_INTERNAL_H
 
 #include <assimp/cfileio.h>
+#include <assimp/material.h>
 
 #include "scenefile_internal.h"
+
+/* ---- model_images.c ---- */
+
+/* One image of the model, from a file beside it or embedded in it, decoded at most once per load
+ * and added as a texture at most once per encoding: a model whose materials share one image (a
+ * texture atlas) gets one texture. */
+typedef struct bgi_sf_model_image {
+    int embedded;              /* index in aiScene.mTextures, or -1 for a file */
+    char *path;                /* the resolved file path (files only) */
+    char name[64];             /* the image in messages: "\"*0\" (embedded image 0)" or the file's name */
+    bool unsupported;          /* a format not read (KTX2, WebP, ...): every use is warned */
+    char format[16];           /* what it is, in messages about an unsupported one */
+    bg_image image;            /* RGBA8, tightly packed */
+    uint32_t texture[2];       /* per bg_texture_encoding, 0 until added */
+} bgi_sf_model_image;
+
+/* The load of one model file. */
+typedef struct bgi_sf_model {
+    bgi_sf_ctx *ctx;
+    const bgi_sf_model_desc *desc;
+    const struct aiScene *sc;
+    char dir[BGI_SF_PATH_MAX];  /* the model's folder: its texture paths are relative to it */
+    uint32_t *materials;        /* per file material, 0 until mapped */
+    uint32_t *first;            /* per file mesh, its first object (later nodes instance it) */
+    size_t added;               /* mesh objects added */
+    bgi_sf_model_image **images; /* every image read so far, each allocated alone so that pointers stay */
+    size_t image_count, image_capacity;
+} bgi_sf_model;
+
+/* The image of the material's first texture of the given types (slot names them in messages:
+ * "base colour"), read and decoded at its first use. *out is NULL when the material has none, and
+ * when the image is in a format not read: then a warning names the material, the slot, the image
+ * and the file, and *dropped is true. A missing file or corrupt data is BG_ERR_IO naming the same. */
+bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, const enum aiTextureType *types,
+                                int ntypes, const char *mname, const char *slot, bgi_sf_model_image **out,
+                                bool *dropped);
+/* The image's texture in the given encoding (repeat, linear filtering), added at its first use. */
+bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, bg_texture_encoding encoding,
+                                     uint32_t *out);
+/* A texture the loader made (a bake, linear: RGBA32F or data), added and counted; what names it in a failure. */
+bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out);
+void bgi_sf_model_images_free(bgi_sf_model *md);
+
+/* ---- model_material.c ---- */
+
+/* The material of the file's material index (docs/scene_format.md, "Materials of model files"),
+ * mapped and added at its first use; an index past the file's materials gets the default one. */
+bg_status bgi_sf_model_material(bgi_sf_model *md, unsigned index, uint32_t *out);
 
 /* ---- model_io.c ---- */
 

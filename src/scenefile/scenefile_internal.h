@@ -91,6 +91,27 @@ void bgi_sf_note_input(bgi_sf_ctx *ctx, const char *path);
  * the one the message starts with). */
 bg_status bgi_sf_open_input(bgi_sf_ctx *ctx, const char *path, const char *what, FILE **out);
 
+/* ---- image_decode.c: PNG and JPEG bytes to RGBA8 ---- */
+
+/* What an image's first bytes say it is. */
+typedef enum bgi_sf_image_format {
+    BGI_SF_IMAGE_UNKNOWN = 0,
+    BGI_SF_IMAGE_PNG,
+    BGI_SF_IMAGE_JPEG,
+    BGI_SF_IMAGE_KTX2,
+    BGI_SF_IMAGE_WEBP
+} bgi_sf_image_format;
+
+bgi_sf_image_format bgi_sf_image_sniff(const unsigned char *data, size_t size);
+/* "PNG", "JPEG", "KTX2", "WebP" or "unknown-format", for messages. */
+const char *bgi_sf_image_format_name(bgi_sf_image_format format);
+/* Decodes a PNG or JPEG held in memory into out: RGBA8, tightly packed, pixels from malloc (the
+ * caller frees them). PNG samples are libpng's simplified API's 8-bit sRGB ones (16-bit files
+ * rounded), JPEG's are TurboJPEG's; no alpha means opaque. On failure nothing is left allocated and
+ * reason says why: BG_ERR_IO for another format or corrupt data, BG_ERR_OUT_OF_MEMORY. */
+bg_status bgi_sf_image_decode(const unsigned char *data, size_t size, bg_image *out, char *reason,
+                              size_t reason_size);
+
 /* ---- json_scan.c: what cJSON cannot report ---- */
 
 /* The line and column (from 1) of at in text. */
