@@ -38,14 +38,46 @@ typedef struct bg_scenefile_inputs {
     void *user;
 } bg_scenefile_inputs;
 
+/* Which axis of a model file points up. The renderer's up is +y, glTF's convention; a file written
+ * Z-up (CAD exports, many scans) would lie on its side, so it is turned to stand on +y. */
+typedef enum bg_scenefile_up {
+    BG_SCENEFILE_UP_DEFAULT = 0, /* +y: the file as it is */
+    BG_SCENEFILE_UP_Y,           /* +y, said explicitly */
+    BG_SCENEFILE_UP_Z,           /* +z up, -y to the front (Blender's axes): turned -90 degrees about x */
+    BG_SCENEFILE_UP_NEG_Y,       /* -y up: turned 180 degrees about x */
+    BG_SCENEFILE_UP_NEG_Z,       /* -z up: turned +90 degrees about x */
+    BG_SCENEFILE_UP_COUNT_       /* not an axis: the number of values */
+} bg_scenefile_up;
+
+/* bg_scenefile_desc.camera: the camera framing the bounds even when the file has cameras. */
+#define BG_SCENEFILE_CAMERA_FRAME (-1)
+
 /* Defaults: no logger; base_dir NULL (the current folder); name NULL ("<string>"); no input
- * callback. */
+ * callback; a model as its file has it (+y up, the file's normals or flat faces, its first camera or
+ * one framing it); the camera as the file gives it.
+ *
+ * up_axis, smooth_angle_degrees and camera apply to model files (bg_scenefile_load_model); a JSON
+ * scene given any of them is refused (its meshes have "transform" and "normals" of their own).
+ * look_from, look_at and fov_y_degrees apply to both, after the camera is chosen. A bad value is
+ * BG_ERR_INVALID_ARGUMENT with the field named ("desc->camera: ..."). */
 typedef struct bg_scenefile_desc {
     bg_logger logger;     /* errors (BG_LOG_ERROR) and what a model's materials lose (BG_LOG_WARNING) */
     const char *base_dir; /* bg_scenefile_load_string only: the folder relative paths resolve
                              against (file loads use the scene file's own folder) */
     const char *name;     /* bg_scenefile_load_string only: the text's name in messages */
     bg_scenefile_inputs inputs; /* each file read, as it is opened */
+    bg_scenefile_up up_axis;    /* the model's root turned first, so that the framing camera sees the
+                                   turned bounds and the file's cameras and lights turn with it */
+    double smooth_angle_degrees; /* 0: a mesh without normals stays flat-faceted, as its file says;
+                                    (0, 180]: normals computed for meshes without their own, averaged
+                                    over the faces at a vertex whose normals differ from the face's by
+                                    at most this (a sharper edge keeps a crease); 180: fully smooth */
+    int camera;           /* 0: the file's first camera, else one framing the bounds; N >= 1: the
+                             file's Nth camera (more than it has is an error); BG_SCENEFILE_CAMERA_FRAME */
+    const bg_vec3 *look_from; /* not NULL: replaces the chosen camera's position */
+    const bg_vec3 *look_at;   /* not NULL: replaces the point it looks at */
+    double fov_y_degrees;     /* 0: the chosen camera's; else in (0, 180), replacing it (the framing
+                                 camera keeps the model in view at this angle) */
 } bg_scenefile_desc;
 
 /* The image a scene asks for. Defaults: 640 x 480, 1 sample per pixel. samples is the scene's wish:
@@ -79,6 +111,8 @@ typedef struct bg_scenefile_result {
                                       background and encoding */
     double ambient[3];             /* also set on the scene */
     bool camera_from_file;         /* false: the default camera (JSON) or one framing the bounds (model) */
+    int file_cameras;              /* the cameras the file holds (a JSON scene: 1 with "camera", else 0) */
+    int camera_number;             /* which of them is the camera, from 1; 0: none (framing or default) */
     bool lights_from_file;         /* false for a model without lights: a default light was added */
     bg_scenefile_summary summary;
 } bg_scenefile_result;
@@ -90,8 +124,9 @@ BG_API bg_status bg_scenefile_load(const char *path, const bg_scenefile_desc *de
 BG_API bg_status bg_scenefile_load_string(const char *text, const bg_scenefile_desc *desc, bg_scene *scene,
                                           bg_scenefile_result *out, char *message, size_t message_size);
 /* Loads a model file (OBJ, PLY, STL, glTF 2.0, ...) as a whole scene: its meshes with their materials
- * (docs/scene_format.md, "Model files"), its first camera and its lights where it has them, else a
- * camera framing its bounds and one point light; the image's aspect follows the file's camera. */
+ * (docs/scene_format.md, "Model files"), its first camera (or desc->camera) and its lights where it
+ * has them, else a camera framing its bounds and one point light; the image's aspect follows the
+ * file's camera. */
 BG_API bg_status bg_scenefile_load_model(const char *path, const bg_scenefile_desc *desc, bg_scene *scene,
                                          bg_scenefile_result *out, char *message, size_t message_size);
 /* Loads either: a path ending in ".json" (any case) as a scene file, any other as a model file. */

@@ -40,7 +40,8 @@ echo "== check-command: $cli"
 # A scene that reads no other file, for checks that copy it around.
 printf '{"objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}}]}' >"$out/sphere.json"
 expect 0 "--help" "$cli" --help
-for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet assemble info; do
+for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet assemble info \
+	--up --smooth --camera --look-from --look-at --fov; do
 	grep -qF -- "$option" "$out/stdout" || fail "--help does not mention $option"
 done
 expect 0 "--version" "$cli" --version
@@ -272,6 +273,94 @@ for word in objects triangles lights bounds camera "GPU plan"; do
 	grep -qF "$word" "$out/stdout" || fail "info prints no '$word': $(cat "$out/stdout")"
 done
 grep -q "3674 triangles" "$out/stdout" || fail "info: the bunny's 3674 triangles are not counted: $(cat "$out/stdout")"
+
+# The model options (docs/command.md, "Model options"): what they change, read back through info's
+# bounds and camera lines and the rendered files, and each bad value refused naming its option.
+data=$root/tests/data
+said_out() {
+	grep -qF -- "$1" "$out/stdout" || fail "$2: stdout lacks '$1': $(cat "$out/stdout")"
+}
+expect 0 "info, a Z-up model as its file has it" "$cli" info "$data/zup_tower.obj" --renderer cpu
+said_out "bounds     (-0.5, -0.5, 0) .. (0.5, 0.5, 3)" "a Z-up model as its file has it"
+expect 0 "info --up z" "$cli" info "$data/zup_tower.obj" --renderer cpu --up z
+said_out "bounds     (-0.5, 0, -0.5) .. (0.5, 3, 0.5)" "--up z"
+said_out "looking at (0, 1.5, 0)" "--up z: the framing camera looks at the standing tower's middle"
+expect 0 "info --up=-z" "$cli" info "$data/zup_tower.obj" --renderer cpu --up=-z
+said_out "bounds     (-0.5, -3, -0.5) .. (0.5, 0, 0.5)" "--up=-z"
+expect 0 "render --up z" "$cli" render "$data/zup_tower.obj" --up z --size 32x32 --renderer cpu -o "$out/up_z.png" -q
+expect 0 "render without --up" "$cli" render "$data/zup_tower.obj" --size 32x32 --renderer cpu -o "$out/up_y.png" -q
+cmp -s "$out/up_z.png" "$out/up_y.png" && fail "--up z rendered the same image as the file's own axes"
+expect 2 "--up x" "$cli" render "$data/zup_tower.obj" --up x -o "$out/x.png"
+said "--up: 'x' is not an axis" "--up x"
+
+# --smooth shades a faceted ball: another image; its angle is optional and read only when a number.
+expect 0 "render a faceted ball" "$cli" render "$data/ico_no_normals.ply" --size 32x32 --renderer cpu \
+	-o "$out/facets.png" -q
+expect 0 "render --smooth before the scene" "$cli" render --smooth "$data/ico_no_normals.ply" --size 32x32 \
+	--renderer cpu -o "$out/smooth.png" -q
+cmp -s "$out/facets.png" "$out/smooth.png" && fail "--smooth rendered the faceted ball unchanged"
+expect 0 "render --smooth 180" "$cli" render "$data/ico_no_normals.ply" --smooth 180 --size 32x32 --renderer cpu \
+	-o "$out/smooth180.png" -q
+cmp -s "$out/smooth.png" "$out/smooth180.png" || fail "--smooth alone is not --smooth 180"
+expect 0 "render --smooth=0" "$cli" render "$data/ico_no_normals.ply" --smooth=0 --size 32x32 --renderer cpu \
+	-o "$out/smooth0.png" -q
+cmp -s "$out/smooth0.png" "$out/smooth.png" && fail "--smooth=0 smoothed the ball"
+expect 2 "--smooth 200" "$cli" render "$data/ico_no_normals.ply" --smooth 200 -o "$out/x.png"
+said "--smooth: '200' is not a crease angle" "--smooth 200"
+expect 2 "--smooth=x" "$cli" render "$data/ico_no_normals.ply" --smooth=x -o "$out/x.png"
+said "--smooth: 'x'" "--smooth=x"
+
+# --camera: the file's cameras from 1, auto for the framing one; out of range names the count.
+expect 0 "info, two cameras" "$cli" info "$data/two_cameras.gltf" --renderer cpu
+said_out "camera     (0.3, 0.3, 4)" "info, two cameras"
+said_out "the file's camera 1 of 2" "info, two cameras"
+expect 0 "info --camera 2" "$cli" info "$data/two_cameras.gltf" --camera 2 --renderer cpu
+said_out "camera     (4, 0.3, 0.3) looking at (3, 0.3, 0.3)" "--camera 2"
+said_out "the file's camera 2 of 2" "--camera 2"
+expect 0 "info --camera auto" "$cli" info "$data/two_cameras.gltf" --camera auto --renderer cpu
+said_out "looking at (0.5, 0.5, 0.5)" "--camera auto"
+said_out "framing the bounds; the file has 2 cameras: --camera 1 .. 2" "--camera auto"
+expect 2 "--camera 3" "$cli" render "$data/two_cameras.gltf" --camera 3 --renderer cpu -o "$out/x.png"
+said "--camera: camera 3 asked for, but the file has 2 cameras" "--camera 3"
+expect 2 "--camera 0" "$cli" info "$data/two_cameras.gltf" --camera 0
+said "--camera: '0'" "--camera 0"
+expect 2 "--camera 1 of a file without one" "$cli" info "$data/tetra.ply" --camera 1 --renderer cpu
+said "--camera: camera 1 asked for, but the file has no camera" "--camera 1 of a file without one"
+
+# --look-from, --look-at, --fov: each replaces its part of the chosen camera, of a JSON scene's too.
+expect 0 "info --look-from --fov" "$cli" info "$data/two_cameras.gltf" --look-from 1,2,3 --fov 30 --renderer cpu
+said_out "camera     (1, 2, 3) looking at (0.3, 0.3, 3), fov_y 30 degrees" "--look-from --fov"
+expect 0 "info --look-at of a JSON scene" "$cli" info "$out/sphere.json" --look-at=0,0,-3 --look-from 0,1,2 \
+	--renderer cpu
+said_out "camera     (0, 1, 2) looking at (0, 0, -3)" "--look-at of a JSON scene"
+expect 0 "render --look-from --look-at" "$cli" render "$data/two_cameras.gltf" --look-from 3,3,3 --look-at 0,0,0 \
+	--size 32x32 --renderer cpu -o "$out/look.png" -q
+expect 0 "render with the file's camera" "$cli" render "$data/two_cameras.gltf" --size 32x32 --renderer cpu \
+	-o "$out/file_camera.png" -q
+cmp -s "$out/look.png" "$out/file_camera.png" && fail "--look-from and --look-at rendered the file camera's image"
+expect 2 "--look-from equal to --look-at" "$cli" render "$data/two_cameras.gltf" --look-from 1,1,1 --look-at 1,1,1 \
+	-o "$out/x.png"
+said "--look-from 1,1,1: the same point as --look-at" "--look-from equal to --look-at"
+printf '{"camera": {"position": [0, 0, 5], "look_at": [0, 0, -3]}, "objects": [{"sphere": {}}]}' >"$out/cam.json"
+expect 2 "--look-from at the file camera's point" "$cli" info "$out/cam.json" --look-from 0,0,-3 --renderer cpu
+said "--look-from: the camera at (0, 0, -3) would look at its own position" "--look-from at the file camera's point"
+expect 2 "--look-from straight above" "$cli" info "$data/tetra.ply" --look-from 0.25,9,0.25 --look-at 0.25,0,0.25 \
+	--renderer cpu
+said "along the camera's up" "--look-from straight above"
+expect 2 "--look-from with two numbers" "$cli" render "$data/two_cameras.gltf" --look-from 1,2 -o "$out/x.png"
+said "--look-from: '1,2' is not a point X,Y,Z" "--look-from with two numbers"
+expect 2 "--look-at with a stray character" "$cli" render "$data/two_cameras.gltf" --look-at 1,2,3x -o "$out/x.png"
+said "--look-at: '1,2,3x'" "--look-at with a stray character"
+expect 2 "--look-at nan" "$cli" render "$data/two_cameras.gltf" --look-at nan,0,0 -o "$out/x.png"
+said "--look-at: 'nan,0,0'" "--look-at nan"
+for fov in 0 180 -5 abc 1e999; do
+	expect 2 "--fov $fov" "$cli" render "$data/two_cameras.gltf" --fov $fov -o "$out/x.png"
+	said "--fov: '$fov' is not a vertical field of view" "--fov $fov"
+done
+for option in "--up z" "--smooth" "--camera 1"; do
+	expect 2 "$option for a JSON scene" "$cli" render "$out/sphere.json" $option -o "$out/x.png"
+	said "${option%% *} applies to model files, not to a JSON scene" "$option for a JSON scene"
+done
 
 # What the scene-file library tells the command: every file it reads (here a texture) is an input that
 # -o may not overwrite, and a scene that is a FIFO or a directory is refused without blocking.

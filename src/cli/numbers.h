@@ -14,4 +14,9 @@
  * (no spaces, no signs but a leading '-'), into out[0 .. count). False when text is anything else. */
 bool cli_parse_ints(const char *text, char sep, int count, int lo, int hi, int *out);
 
+/* Exactly count finite decimal numbers (digits with an optional '-', point and exponent: "2",
+ * "-0.5", "1e3"), separated by single sep characters and nothing else; no "inf", "nan", hex or
+ * spaces. False when text is anything else. */
+bool cli_parse_doubles(const char *text, char sep, int count, double *out);
+
 #endif

@@ -55,6 +55,11 @@ bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char 
             value = argv[++i];                                                                 \
         }                                                                                      \
     } while (0)
+        int model = cli_model_option(argc, argv, &i, a, value, &o->model, why, size);
+        if (model < 0)
+            return false;
+        if (model > 0)
+            continue;
         if (strcmp(a, "--renderer") == 0) {
             VALUE();
             if (strcmp(value, "gpu") == 0)
@@ -129,7 +134,7 @@ bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char 
         return fail(why, size, "no scene file given%s%s", "", NULL);
     if (render && !o->output)
         return fail(why, size, "-o OUT.png is required%s%s", "", NULL);
-    return true;
+    return cli_model_options_check(&o->model, o->scene, why, size);
 }
 
 bool cli_options_window(const cli_options *o, int frame_width, int frame_height, int *x, int *y, int *w, int *h,

@@ -5,6 +5,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "model_options.h"
+
 typedef enum cli_renderer { CLI_RENDERER_GPU = 0, CLI_RENDERER_CPU } cli_renderer;
 typedef enum cli_backend { CLI_BACKEND_DEFAULT = 0, CLI_BACKEND_EGL, CLI_BACKEND_OSMESA } cli_backend;
 
@@ -22,10 +24,11 @@ typedef struct cli_options {
     int tile, tiles;        /* --tile I/N (1-based); tiles 0: none */
     bool linear;            /* --linear: the PNG holds linear values, not sRGB */
     bool quiet;             /* --quiet: errors only */
+    cli_model_options model; /* --up, --smooth, --camera, --look-from, --look-at, --fov */
 } cli_options;
 
-/* Parses argv (after the subcommand's name); render wants -o, info takes only SCENE and
- * --renderer/--backend. False with the reason in why (a usage error). */
+/* Parses argv (after the subcommand's name); render wants -o, info takes only SCENE,
+ * --renderer/--backend and the model options. False with the reason in why (a usage error). */
 bool cli_options_parse(int argc, char **argv, bool render, cli_options *out, char *why, size_t why_size);
 
 /* The window of the frame the options ask for: the crop rectangle (or the whole frame), then the

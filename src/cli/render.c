@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "betelgeuse.h"
@@ -114,11 +115,11 @@ static bg_status render_once(const cli_options *o, gpu *g, bg_scene *scene, cons
     return st;
 }
 
-/* The scene or model file into a new scene (*out, committed); the exit code on failure, with the
- * message printed: 2 for a bad or missing file, 1 when out of memory. Each file the load reads goes
- * into inputs when it is not NULL. */
-static int load_scene(const char *path, bool *quiet_logs, cli_inputs *inputs, bg_scene **out,
-                      bg_scenefile_result *file)
+/* The scene or model file into a new scene (*out, committed), as the model options ask; the exit
+ * code on failure, with the message printed: 2 for a bad or missing file (or an option the file
+ * cannot take), 1 when out of memory. Each file the load reads goes into inputs when it is not NULL. */
+static int load_scene(const char *path, const cli_model_options *model, bool *quiet_logs, cli_inputs *inputs,
+                      bg_scene **out, bg_scenefile_result *file)
 {
     *out = NULL;
     bg_scene *scene = NULL;
@@ -130,6 +131,7 @@ static int load_scene(const char *path, bool *quiet_logs, cli_inputs *inputs, bg
     memset(&fd, 0, sizeof fd);
     fd.logger.func = on_log;
     fd.logger.user = quiet_logs;
+    cli_model_options_desc(model, &fd);
     if (inputs) {
         /* The scene file is added here too, so that it is protected whatever the library reports. */
         cli_inputs_add(inputs, path);
@@ -139,6 +141,7 @@ static int load_scene(const char *path, bool *quiet_logs, cli_inputs *inputs, bg
     char why[1024] = "";
     bg_status st = bg_scenefile_load_any(path, &fd, scene, file, why, sizeof why);
     if (st != BG_OK) {
+        cli_model_options_rename(why);
         fprintf(stderr, "betelgeuse: %s\n", why[0] ? why : bg_status_string(st));
         bg_scene_destroy(scene);
         return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
@@ -289,7 +292,7 @@ int cli_render(int argc, char **argv)
     bg_scenefile_result file;
     cli_inputs inputs;
     memset(&inputs, 0, sizeof inputs);
-    int status = load_scene(o.scene, &quiet_logs, &inputs, &scene, &file);
+    int status = load_scene(o.scene, &o.model, &quiet_logs, &inputs, &scene, &file);
     if (status == CLI_EXIT_OK)
         status = check_outputs(&o, &inputs);
     cli_inputs_free(&inputs);
@@ -320,6 +323,26 @@ static const char *plan_name(bg_gpu_plan p)
     }
 }
 
+/* Which camera info shows, and which others the file has, so that a user can pick one with --camera. */
+static void camera_choice(const cli_options *o, const bg_scenefile_result *file, char *text, size_t size)
+{
+    int n = file->file_cameras;
+    const cli_model_options *m = &o->model;
+    const char *changed = m->has_look_from || m->has_look_at || m->fov ? ", changed by --look-from/--look-at/--fov" : "";
+    size_t len = strlen(o->scene);
+    bool json = len >= 5 && strcasecmp(o->scene + len - 5, ".json") == 0;
+    if (json)
+        snprintf(text, size, " (%s%s)", file->camera_from_file ? "the file's" : "the default camera", changed);
+    else if (file->camera_number > 0)
+        snprintf(text, size, " (the file's camera %d of %d%s)", file->camera_number, n, changed);
+    else if (n == 1)
+        snprintf(text, size, " (framing the bounds; the file has 1 camera: --camera 1%s)", changed);
+    else if (n > 1)
+        snprintf(text, size, " (framing the bounds; the file has %d cameras: --camera 1 .. %d%s)", n, n, changed);
+    else
+        snprintf(text, size, " (framing the bounds; the file has no camera%s)", changed);
+}
+
 int cli_info(int argc, char **argv)
 {
     cli_options o;
@@ -331,7 +354,7 @@ int cli_info(int argc, char **argv)
     bool quiet_logs = false;
     bg_scene *scene = NULL;
     bg_scenefile_result file;
-    int loaded = load_scene(o.scene, &quiet_logs, NULL, &scene, &file);
+    int loaded = load_scene(o.scene, &o.model, &quiet_logs, NULL, &scene, &file);
     if (loaded != CLI_EXIT_OK)
         return loaded;
     const bg_scenefile_summary *s = &file.summary;
@@ -347,9 +370,11 @@ int cli_info(int argc, char **argv)
                s->bounds_max.x, s->bounds_max.y, s->bounds_max.z, s->unbounded ? ", and unbounded planes" : "");
     else
         printf("bounds     %s\n", s->unbounded ? "unbounded (planes only)" : "none (empty)");
+    char which[160];
+    camera_choice(&o, &file, which, sizeof which);
     printf("camera     (%g, %g, %g) looking at (%g, %g, %g), fov_y %g degrees%s\n", file.camera.position.x,
            file.camera.position.y, file.camera.position.z, file.camera.look_at.x, file.camera.look_at.y,
-           file.camera.look_at.z, file.camera.fov_y_degrees, file.camera_from_file ? "" : " (framing the bounds)");
+           file.camera.look_at.z, file.camera.fov_y_degrees, which);
     /* The plan is the GPU renderer's choice for this scene and these settings: one pixel shows it. */
     if (o.renderer == CLI_RENDERER_GPU) {
         gpu g;

@@ -75,10 +75,11 @@ static bg_status section(bgi_sf_ctx *ctx, const cJSON *root, const char *key,
     return st;
 }
 
-static bg_status load_text(bgi_sf_ctx *ctx, const char *text)
+static bg_status load_text(bgi_sf_ctx *ctx, const bg_scenefile_desc *desc, const char *text)
 {
     static const char *const keys[] = {"camera", "image", "settings", "textures", "materials", "objects",
                                        "lights", NULL};
+    BGI_SF_TRY(bgi_sf_check_desc(ctx, desc, false));
     BGI_SF_TRY(bgi_sf_json_scan(ctx, text));
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
@@ -112,6 +113,10 @@ static bg_status load_text(bgi_sf_ctx *ctx, const char *text)
     if (st == BG_OK)
         st = section(ctx, root, "lights", bgi_sf_read_lights);
     cJSON_Delete(root);
+    if (st == BG_OK) {
+        ctx->out->file_cameras = ctx->out->camera_number = ctx->out->camera_from_file ? 1 : 0;
+        st = bgi_sf_apply_view(ctx, desc);
+    }
     return st == BG_OK ? finish(ctx) : st;
 }
 
@@ -166,7 +171,7 @@ bg_status bg_scenefile_load(const char *path, const bg_scenefile_desc *desc, bg_
     char *text = NULL;
     bg_status st = read_file(&ctx, path, &text);
     if (st == BG_OK)
-        st = load_text(&ctx, text);
+        st = load_text(&ctx, desc, text);
     free(text);
     bgi_sf_ctx_free(&ctx);
     return st;
@@ -192,7 +197,7 @@ bg_status bg_scenefile_load_string(const char *text, const bg_scenefile_desc *de
         }
         snprintf(ctx.dir, sizeof ctx.dir, "%s%s", desc->base_dir, desc->base_dir[n - 1] == '/' ? "" : "/");
     }
-    bg_status st = load_text(&ctx, text);
+    bg_status st = load_text(&ctx, desc, text);
     bgi_sf_ctx_free(&ctx);
     return st;
 }
@@ -231,10 +236,22 @@ bg_status bg_scenefile_load_model(const char *path, const bg_scenefile_desc *des
     result_init(out);
     bgi_sf_ctx ctx;
     bgi_sf_ctx_init(&ctx, path, desc, scene, out, message, message_size);
-    bgi_sf_model_desc m = {path, bg_mat4_identity(), 0, true, BGI_SF_NORMALS_FILE, true};
-    bg_status st = bgi_sf_load_model(&ctx, &m);
+    bg_status st = bgi_sf_check_desc(&ctx, desc, true);
+    bgi_sf_model_desc m = {path, bg_mat4_identity(), 0, true, BGI_SF_NORMALS_FILE, 0.0, true, 0};
+    if (desc) {
+        m.transform = bgi_sf_up_transform(desc->up_axis);
+        m.smooth_angle = desc->smooth_angle_degrees;
+        m.camera = desc->camera;
+    }
+    if (st == BG_OK)
+        st = bgi_sf_load_model(&ctx, &m);
+    /* A field of view asked for is the one the framing camera fits the model into. */
+    if (st == BG_OK && desc && desc->fov_y_degrees != 0)
+        out->camera.fov_y_degrees = desc->fov_y_degrees;
     if (st == BG_OK && !out->camera_from_file)
         frame_bounds(out);
+    if (st == BG_OK)
+        st = bgi_sf_apply_view(&ctx, desc);
     if (st == BG_OK && !out->lights_from_file) {
         /* One white light above and to the right of the camera, so that shapes read and shadows fall
          * behind them; a little ambient light keeps the shadows from being black. */

@@ -57,22 +57,6 @@ static bg_mat4 compose(bg_mat4 outer, bg_mat4 inner)
     return bg_mat4_mul(outer, inner);
 }
 
-/* Smooth normals: at each vertex the sum of the face normals around it weighted by area (a cross
- * product of two edges is twice the area along the normal); the renderer normalises. */
-static void smooth_normals(const float *p, size_t nv, const uint32_t *idx, size_t nt, float *n)
-{
-    memset(n, 0, nv * 3 * sizeof *n);
-    for (size_t t = 0; t < nt; t++) {
-        const uint32_t *i = &idx[3 * t];
-        const float *a = &p[3 * i[0]], *b = &p[3 * i[1]], *c = &p[3 * i[2]];
-        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-        for (int k = 0; k < 3; k++)
-            for (int j = 0; j < 3; j++)
-                n[3 * i[k] + j] += (float)f[j];
-    }
-}
-
 static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t material, bg_mat4 m, uint32_t *out)
 {
     bgi_sf_ctx *ctx = md->ctx;
@@ -80,13 +64,17 @@ static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t mater
     for (unsigned f = 0; f < am->mNumFaces; f++)
         nt += am->mFaces[f].mNumIndices == 3;
     bool file_normals = md->desc->normals == BGI_SF_NORMALS_FILE && am->mNormals;
-    bool normals = file_normals || md->desc->normals == BGI_SF_NORMALS_SMOOTH;
+    /* "smooth" in a scene file smooths whatever the file has; desc->smooth_angle_degrees only fills
+     * in the normals a file lacks. */
+    double smooth = md->desc->normals == BGI_SF_NORMALS_SMOOTH ? 180.0
+                    : md->desc->normals == BGI_SF_NORMALS_FILE && !file_normals ? md->desc->smooth_angle
+                                                                                : 0.0;
     bool uvs = am->mTextureCoords[0] != NULL;
-    float *p = malloc(nv * 3 * sizeof *p), *n = normals ? malloc(nv * 3 * sizeof *n) : NULL;
+    float *p = malloc(nv * 3 * sizeof *p), *n = file_normals ? malloc(nv * 3 * sizeof *n) : NULL;
     float *uv = uvs ? malloc(nv * 2 * sizeof *uv) : NULL;
     uint32_t *idx = malloc(nt * 3 * sizeof *idx);
     bg_status st = BG_OK;
-    if (!p || !idx || (normals && !n) || (uvs && !uv)) {
+    if (!p || !idx || (file_normals && !n) || (uvs && !uv)) {
         st = bgi_sf_fail(ctx, BG_ERR_OUT_OF_MEMORY, "out of memory for mesh \"%s\" of %s (%zu vertices)",
                          am->mName.data, md->desc->path, nv);
         goto done;
@@ -111,8 +99,12 @@ static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t mater
             memcpy(&idx[3 * t], am->mFaces[f].mIndices, 3 * sizeof *idx);
             t++;
         }
-    if (normals && !file_normals)
-        smooth_normals(p, nv, idx, nt, n);
+    if (smooth > 0 && (st = bgi_sf_crease_normals(&p, &uv, &nv, idx, nt, smooth, &n)) != BG_OK) {
+        st = bgi_sf_fail(ctx, st, "%s computing the normals of mesh \"%s\" of %s (%zu vertices)",
+                         st == BG_ERR_LIMIT ? "more vertices than 32-bit indices reach" : "out of memory",
+                         am->mName.data, md->desc->path, nv);
+        goto done;
+    }
     bg_mesh_desc d = bg_mesh_desc_init(material);
     d.positions = p;
     d.vertex_count = nv;
@@ -217,14 +209,14 @@ static bool is_gltf(const char *path)
     return (n >= 5 && strcasecmp(path + n - 5, ".gltf") == 0) || (n >= 4 && strcasecmp(path + n - 4, ".glb") == 0);
 }
 
-/* The file's first camera, placed by its node. Two quirks of assimp's glTF 2.0 reader are undone
+/* The file's camera number (from 1), placed by its node. Two quirks of assimp's glTF 2.0 reader are undone
  * here (docs/scene_format.md, "Model files"): before 5.3 it gives the camera's position already in
  * world space (the node's translation baked in), so the position is taken from the node alone; and
  * its mHorizontalFOV is not the half horizontal angle that other readers give, but a formula that
  * depends on the version (bgi_sf_gltf_fov_y). */
-static void read_camera(model *md)
+static void read_camera(model *md, int number)
 {
-    const struct aiCamera *c = md->sc->mCameras[0];
+    const struct aiCamera *c = md->sc->mCameras[number - 1];
     bg_mat4 m = node_world(md, c->mName.data);
     bg_scenefile_result *out = md->ctx->out;
     bool gltf = is_gltf(md->desc->path);
@@ -249,6 +241,27 @@ static void read_camera(model *md)
     if (fov > 0 && fov < 180)
         out->camera.fov_y_degrees = fov;
     out->camera_from_file = true;
+    out->camera_number = number;
+}
+
+/* The camera desc->camera asks for: the first by default, none when framing is asked for, and an
+ * error naming the field and the file's count when the file has fewer. */
+static bg_status choose_camera(model *md)
+{
+    int count = md->sc->mNumCameras > INT32_MAX ? INT32_MAX : (int)md->sc->mNumCameras;
+    md->ctx->out->file_cameras = count;
+    int want = md->desc->camera;
+    if (want == BG_SCENEFILE_CAMERA_FRAME || (want == 0 && count == 0))
+        return BG_OK;
+    if (want > count) {
+        if (count == 0)
+            return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "desc->camera: camera %d asked for, but the file "
+                               "has no camera (a framing camera is made without desc->camera)", want);
+        return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "desc->camera: camera %d asked for, but the file has "
+                           "%d camera%s (1 .. %d)", want, count, count == 1 ? "" : "s", count);
+    }
+    read_camera(md, want == 0 ? 1 : want);
+    return BG_OK;
 }
 
 static bg_status read_lights(model *md)
@@ -341,11 +354,10 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
         st = walk(&md, sc->mRootNode, desc->transform, 0);
     if (st == BG_OK && md.added == 0)
         st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\" holds no triangles", desc->path);
-    if (st == BG_OK && desc->scene_items) {
-        if (sc->mNumCameras > 0)
-            read_camera(&md);
+    if (st == BG_OK && desc->scene_items)
+        st = choose_camera(&md);
+    if (st == BG_OK && desc->scene_items)
         st = read_lights(&md);
-    }
     free(md.materials);
     free(md.first);
     bgi_sf_model_images_free(&md);

@@ -180,10 +180,33 @@ typedef struct bgi_sf_model_desc {
     uint32_t material;        /* 0: the file's materials */
     bool casts_shadows;
     bgi_sf_normals normals;
+    double smooth_angle;      /* BGI_SF_NORMALS_FILE: > 0 computes a mesh's missing normals, creased above it */
     bool scene_items;         /* also its cameras and lights (a model loaded as the whole scene) */
+    int camera;               /* scene_items: bg_scenefile_desc.camera, checked against the file */
 } bgi_sf_model_desc;
 
 bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc);
+
+/* ---- normals.c ---- */
+
+/* Normals for a mesh without its own (normals.c): area-weighted sums over the faces at each vertex
+ * within angle_degrees of a corner's own face (180: all of them), a vertex copied, with its uv, for
+ * each side of a crease. *p and *uv (may point to NULL) are replaced by arrays of *nv vertices when
+ * copies are made, idx (3 nt) is rewritten, *n is new. BG_ERR_OUT_OF_MEMORY or BG_ERR_LIMIT (more
+ * vertices than 32-bit indices reach) leave the arrays as they were. */
+bg_status bgi_sf_crease_normals(float **p, float **uv, size_t *nv, uint32_t *idx, size_t nt, double angle_degrees,
+                                float **n);
+
+/* ---- desc_options.c: what the caller's desc asks beyond the file ---- */
+
+/* desc's values in range, and none that a JSON scene (model false) cannot take; the failure names
+ * the field. desc may be NULL. */
+bg_status bgi_sf_check_desc(bgi_sf_ctx *ctx, const bg_scenefile_desc *desc, bool model);
+/* The rotation that turns the file's up axis to +y. */
+bg_mat4 bgi_sf_up_transform(bg_scenefile_up up);
+/* desc's look_from, look_at and fov_y_degrees over ctx->out->camera; a camera they leave without a
+ * direction, or looking along its up, is refused naming them. desc may be NULL. */
+bg_status bgi_sf_apply_view(bgi_sf_ctx *ctx, const bg_scenefile_desc *desc);
 
 /* ---- summary.c ---- */
 void bgi_sf_summary_reset(bg_scenefile_summary *s);
