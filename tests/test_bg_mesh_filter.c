@@ -270,6 +270,41 @@ static void open_quad_is_lit_on_its_back(void **state)
     }
 }
 
+/* The floor's brightness (red) just outside a front-only quad at height 1, in the quad's shadow
+ * when its front faces the light above; mirrored, its front faces down. */
+static int shadow_red(bool mirrored, int k)
+{
+    bg_scene *s = new_scene(bg_vec3_make(0.0, 6.0, 0.0), bg_vec3_make(0.0, 0.0, -1.0), 5.0);
+    uint32_t floor_id;
+    assert_int_equal(bg_scene_add_plane(s, bg_vec3_make(0.0, 0.0, 0.0), bg_vec3_make(0.0, 1.0, 0.0),
+                                        diffuse(s, 0.8, 0.1, 0.1, NULL), &floor_id),
+                     BG_OK);
+    bg_material m = bg_material_init();
+    m.sides = BG_SIDES_FRONT;
+    add_quad(s, diffuse(s, 0.1, 0.8, 0.1, &m), translate_y(1.0, mirrored ? -1.0 : 1.0));
+    commit(s);
+    unsigned char *px = render(s, k);
+    int red = at(px, column_of(1.12, 0.0), H / 2)[0];
+    free(px);
+    bg_scene_destroy(s);
+    return red;
+}
+
+/* A shadow segment runs from the point to the light, but light travels it the other way: what
+ * counts is the side the light sees. A leaf lit on its front shadows the floor; lit from behind, it
+ * lets the light through. */
+static void front_only_shadows_by_the_side_the_light_sees(void **state)
+{
+    (void)state;
+    for (int k = 0; k < RENDERERS; k++) {
+        int front_lit = shadow_red(false, k), back_lit = shadow_red(true, k);
+        print_message("%s: floor beside a front-only quad lit on its front %d, from behind %d\n", renderer_name[k],
+                      front_lit, back_lit);
+        assert_true(front_lit < back_lit / 2);
+        assert_true(back_lit > 200);
+    }
+}
+
 /* A cube, every face counter-clockwise seen from outside. */
 static const float cube_positions[] = {-1, -1, -1, -1, -1, 1, -1, 1, -1, -1, 1, 1, 1, -1, -1, 1, -1, 1, 1, 1, -1, 1, 1, 1};
 static const uint32_t cube_indices[] = {0, 3, 2, 0, 1, 3, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
@@ -342,6 +377,7 @@ int main(void)
         cmocka_unit_test(cut_out_linear),
         cmocka_unit_test(front_only_quad_is_seen_from_its_front),
         cmocka_unit_test(open_quad_is_lit_on_its_back),
+        cmocka_unit_test(front_only_shadows_by_the_side_the_light_sees),
         cmocka_unit_test(mirrored_solid_is_lit_from_outside),
     };
     return cmocka_run_group_tests_name("bg_mesh_filter", tests, util_gpu_group_setup, util_gpu_group_teardown);

@@ -220,9 +220,10 @@ static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, cons
 
 /* glTF alphaMode BLEND: transparency 1 - alpha, alpha the base colour factor's times the base
  * texture's, with ior 1 so that light passes straight through as a blended surface lets it. A base
- * texture with alpha gets a linear texture baked here holding 1 - alpha in channel 0. OPAQUE ignores
- * alpha, as glTF says. MASK is a cut-out at alphaCutoff, which the material model maps elsewhere;
- * here it is opaque. A file without alphaMode (MTL) takes its opacity (d) as given. */
+ * texture with alpha gets a linear texture baked here holding 1 - alpha in channel 0. MASK: a
+ * cut-out where that alpha is below alphaCutoff (default 0.5): the coverage is the factor's alpha
+ * times the base texture's alpha channel, which the texture keeps linear. OPAQUE ignores alpha, as
+ * glTF says. A file without alphaMode (MTL) takes its opacity (d) as given. */
 static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_material *m, double alpha,
                            const bgi_sf_model_image *base)
 {
@@ -231,6 +232,13 @@ static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_mat
     if (!gltf_alpha_mode(am, mode)) {
         if (float_of(am, AI_MATKEY_OPACITY, &x))
             m->transparency.value = clamp01(1.0 - x);
+        return BG_OK;
+    }
+    if (strcmp(mode, "MASK") == 0) {
+        double cutoff = 0.5;
+        float_of(am, AI_MATKEY_GLTF_ALPHACUTOFF, &cutoff);
+        m->coverage = (bg_scalar_param){alpha, base ? m->base.reflectance.texture : 0, 3};
+        m->coverage_cutoff = clamp01(cutoff);
         return BG_OK;
     }
     if (strcmp(mode, "BLEND") != 0)
@@ -288,6 +296,14 @@ static bg_status map_material(bgi_sf_model *md, const struct aiMaterial *am, con
     if (float_of(am, AI_MATKEY_REFRACTI, &x) && x > 0)
         m->ior = x;
     BGI_SF_TRY(map_alpha(md, am, m, alpha, base));
+    /* glTF: a material is single-sided unless doubleSided (assimp's twosided) says otherwise; a
+     * single-sided surface is culled from behind, a double-sided one lit on both sides. Other formats
+     * say nothing of sides, and their meshes stay closed solids. */
+    int two_sided = 0;
+    if (is_gltf(md))
+        m->sides = aiGetMaterialIntegerArray(am, AI_MATKEY_TWOSIDED, &two_sided, NULL) == aiReturn_SUCCESS && two_sided
+                       ? BG_SIDES_BOTH
+                       : BG_SIDES_FRONT;
     BGI_SF_TRY(map_ambient(md, am, mname, m, base));
     static const enum aiTextureType unmapped[] = {aiTextureType_SPECULAR, aiTextureType_NORMALS,
                                                   aiTextureType_HEIGHT, aiTextureType_OPACITY,

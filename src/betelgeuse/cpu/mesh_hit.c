@@ -47,8 +47,9 @@ static bool visit_triangle(void *user, uint32_t prim, double *t_max)
     vertex(s->mesh, prim, 2, v2);
     bg_cpu_triangle_hit h;
     if (s->shadow) {
+        /* Light travels the segment the other way: the side it meets is the one the light sees. */
         s->found = bgi_cpu_triangle_intersect(&s->ray, v0, v1, v2, 0.0, s->t_max, &h) &&
-                   (!s->filter || bgi_cpu_mesh_filter_keeps(s->filter, s->mesh, prim, h.bary, h.front));
+                   (!s->filter || bgi_cpu_mesh_filter_keeps(s->filter, s->mesh, prim, h.bary, !h.front));
         return !s->found;
     }
     double limit = s->found ? s->hit.t : s->t_max;

@@ -59,6 +59,9 @@ void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t)
     /* A filtered scene asks each hit that would count whether the point is there (bg_mesh_keeps); a
      * scene without single-sided or cut-out meshes keeps today's walk, text for text. */
     const char *keeps = filtered ? " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, base.y, lo.w, b, f)" : "";
+    /* A shadow segment runs from the point to the light; light travels it the other way, so the
+     * side that counts is the one the light sees. */
+    const char *keeps_light = filtered ? " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, base.y, lo.w, b, !f)" : "";
     bgi_gpu_text_append(t, "// ---- generated: mesh objects\n"
                            "float bg_mesh_tri_j;  // the triangle of bg_mesh_nearest's hit, -1 none\n"
                            "vec3 bg_mesh_bary_j;  // and its weights\n"
@@ -93,7 +96,7 @@ void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t)
     bgi_gpu_text_append(t, mesh_setup);
     snprintf(body, sizeof body,
              "                blocked = bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, t_max, tt, b, f)%s;\n",
-             keeps);
+             keeps_light);
     emit_mesh_loop(walk_budget, t, "t_max", "blocked", body);
     bgi_gpu_text_append(t, "    if (!blocked && node < end)\n        bg_tree_short = 1.0;\n    return blocked;\n}\n");
 
