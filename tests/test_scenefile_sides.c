@@ -120,11 +120,37 @@ static void sides_seen_from_behind(void **state)
     }
 }
 
+static void collect(bg_log_level level, const char *message, void *user)
+{
+    if (level == BG_LOG_WARNING)
+        snprintf(user, 512, "%s", message);
+}
+
+/* A normal map cannot be taken (no renderer perturbs normals): a warning names the material. */
+static void normal_map_is_left_out_with_a_warning(void **state)
+{
+    (void)state;
+    char warning[512] = "", message[512];
+    bg_scene *scene = NULL;
+    assert_int_equal(bg_scene_create(NULL, &scene), BG_OK);
+    bg_scenefile_desc d;
+    memset(&d, 0, sizeof d);
+    d.logger = (bg_logger){collect, warning};
+    bg_scenefile_result r;
+    assert_int_equal(bg_scenefile_load_model("tests/data/normal_mapped.gltf", &d, scene, &r, message, sizeof message),
+                     BG_OK);
+    print_message("warning: %s\n", warning);
+    assert_non_null(strstr(warning, "\"bumpy\""));
+    assert_non_null(strstr(warning, "normal (or bump) map is left out"));
+    bg_scene_destroy(scene);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mask_quad_over_a_floor),
         cmocka_unit_test(sides_seen_from_behind),
+        cmocka_unit_test(normal_map_is_left_out_with_a_warning),
     };
     return cmocka_run_group_tests_name("scenefile_sides", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

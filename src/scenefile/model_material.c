@@ -305,8 +305,12 @@ static bg_status map_material(bgi_sf_model *md, const struct aiMaterial *am, con
                        ? BG_SIDES_BOTH
                        : BG_SIDES_FRONT;
     BGI_SF_TRY(map_ambient(md, am, mname, m, base));
-    static const enum aiTextureType unmapped[] = {aiTextureType_SPECULAR, aiTextureType_NORMALS,
-                                                  aiTextureType_HEIGHT, aiTextureType_OPACITY,
+    /* Normal and bump maps need a per-vertex tangent frame and a perturbed shading normal, which
+     * neither renderer has (docs/scene_format.md says so); the surface keeps its interpolated normals. */
+    if (aiGetMaterialTextureCount(am, aiTextureType_NORMALS) > 0 || aiGetMaterialTextureCount(am, aiTextureType_HEIGHT) > 0)
+        bgi_sf_warn(md->ctx, "material \"%s\": its normal (or bump) map is left out: the renderers shade with the "
+                    "mesh's interpolated normals and have no normal mapping", mname);
+    static const enum aiTextureType unmapped[] = {aiTextureType_SPECULAR, aiTextureType_OPACITY,
                                                   aiTextureType_SHININESS};
     for (size_t i = 0; i < sizeof unmapped / sizeof unmapped[0]; i++)
         if (aiGetMaterialTextureCount(am, unmapped[i]) > 0)

@@ -12,6 +12,7 @@ hole falls in the image:
   in [-1.625, -0.375].
 - one_sided_back.gltf, two_sided_back.gltf: a green quad [-1, 1]^2 at z = 0 facing +z, doubleSided
   false and true, seen and lit from behind (camera at z = -6, light at z = -5).
+- normal_mapped.gltf: a quad whose material "bumpy" has a normalTexture (a flat 2 x 2 normal map).
 
 Usage: python3 tests/data/make_side_models.py [folder]   (default: the folder of this script)
 """
@@ -60,6 +61,12 @@ def main(out):
         g.quad(1, 0, opaque(g, "sheet", (0.1, 0.8, 0.1), two))
         camera_and_light(g, -6, [0, 0, -5])
         g.write(at(name))
+    # A normal map, which the renderers cannot take: left out with a warning naming the material.
+    g = Gltf(False)
+    t = g.image(png([[(128, 128, 255, 255)] * 2] * 2), "image/png")
+    g.quad(1, 0, g.material({"name": "bumpy", "normalTexture": {"index": t},
+                             "pbrMetallicRoughness": {"metallicFactor": 0}}))
+    g.write(at("normal_mapped.gltf"))
 
 
 if __name__ == "__main__":
