@@ -110,19 +110,7 @@ static unsigned char *render(bg_scene *s, int k)
 {
     bg_render_settings set = bg_render_settings_init();
     set.threads = 2;
-    if (k == 0)
-        return util_cpu_reference(s, &set, W, H);
-    set.gpu_plan = plans[k - 1];
-    unsigned char *px = malloc(4 * W * H);
-    assert_non_null(px);
-    bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-    bg_renderer *r = util_renderer(util_fx.ctx);
-    util_render_gpu(r, util_fx.ctx, s, &set, &img, renderer_name[k]);
-    bg_render_stats st;
-    bg_renderer_get_stats(r, &st);
-    assert_int_equal(st.plan, plans[k - 1]);
-    bg_renderer_destroy(r);
-    return px;
+    return k == 0 ? util_cpu_reference(s, &set, W, H) : util_gpu_plan_image(s, &set, plans[k - 1], W, H, renderer_name[k]);
 }
 
 static const unsigned char *at(const unsigned char *px, int x, int y)

@@ -17,6 +17,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "util_warnings.h"
 
 enum { W = 64, H = 48 };
 /* Pixels inside the front quad [-1, 1]^2 seen from (0, 0, 3): texture u 0.2 and 0.8, mid-height. */
@@ -28,25 +29,11 @@ enum { LEFT_X = 20, RIGHT_X = 44, MID_Y = 24 };
 /* No ambient light and one lamp at the camera. */
 #define LAMP_ONLY "\"settings\": {\"ambient\": [0, 0, 0]}, \"lights\": [{\"position\": [0, 0, 3]}]"
 
-typedef struct warnings {
-    int count;
-    char all[4096];
-} warnings;
-
-static void collect(bg_log_level level, const char *message, void *user)
-{
-    warnings *w = user;
-    if (level != BG_LOG_WARNING)
-        return;
-    w->count++;
-    size_t n = strlen(w->all);
-    snprintf(w->all + n, sizeof w->all - n, "%s\n", message);
-}
 
 typedef struct shot {
     unsigned char px[W * H * 4];
     bg_scenefile_result r;
-    warnings w;
+    util_warnings w;
 } shot;
 
 /* model (in tests/data) placed in a scene with the camera at (0, 0, 3) and the lighting given,
@@ -62,7 +49,7 @@ static shot *render(const char *model, const char *lighting)
     bg_scene *scene = NULL;
     assert_int_equal(bg_scene_create(NULL, &scene), BG_OK);
     char message[1024];
-    bg_scenefile_desc d = {.base_dir = "tests/data", .logger = {collect, &s->w}};
+    bg_scenefile_desc d = {.base_dir = "tests/data", .logger = {util_warnings_collect, &s->w}};
     if (bg_scenefile_load_string(text, &d, scene, &s->r, message, sizeof message) != BG_OK)
         fail_msg("%s: %s", model, message);
     bg_image im = {W, H, BG_PIXEL_RGBA8, 0, s->px};

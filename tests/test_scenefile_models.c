@@ -16,6 +16,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "util_warnings.h"
 #include "scenefile/scenefile_internal.h"
 
 enum { W = 64, H = 48 };
@@ -223,20 +224,6 @@ static void a_broken_model_is_refused(void **state)
     bg_scene_destroy(s);
 }
 
-typedef struct warnings {
-    int count;
-    char all[2048];
-} warnings;
-
-static void collect(bg_log_level level, const char *message, void *user)
-{
-    warnings *w = user;
-    if (level != BG_LOG_WARNING)
-        return;
-    w->count++;
-    size_t n = strlen(w->all);
-    snprintf(w->all + n, sizeof w->all - n, "%s\n", message);
-}
 
 static void write_file(const char *path, const char *text)
 {
@@ -265,8 +252,8 @@ static void model_materials_say_what_they_leave_out(void **state)
     write_file(mtl, mtl_text);
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    warnings w = {0, ""};
-    bg_scenefile_desc d = {.logger = {collect, &w}};
+    util_warnings w = {0, ""};
+    bg_scenefile_desc d = {.logger = {util_warnings_collect, &w}};
     bg_scenefile_result r;
     char message[1024];
     bg_status st = bg_scenefile_load_model(obj, &d, s, &r, message, sizeof message);
@@ -276,8 +263,8 @@ static void model_materials_say_what_they_leave_out(void **state)
     remove(webp);
     if (w.count != 2 || !strstr(w.all, "material \"m\": its base colour texture \"bg_sf_") ||
         !strstr(w.all, ".webp\" is left out (WebP images are not read; PNG and JPEG are)") ||
-        !strstr(w.all, "texture is left out (only the colour, emissive, glTF metallic-roughness and occlusion "
-                       "textures are mapped)"))
+        !strstr(w.all, "its normal (or bump) map is left out: the renderers shade with the mesh's interpolated "
+                       "normals and have no normal mapping"))
         fail_msg("%d warnings:\n%s", w.count, w.all);
 
     write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd no_such_texture.png\n");

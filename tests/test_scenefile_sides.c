@@ -17,6 +17,7 @@
 #include "betelgeuse_scenefile.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_warnings.h"
 
 enum { W = 64, H = 64 };
 
@@ -40,21 +41,8 @@ static unsigned char *render(const char *model, int k)
     assert_true(r.camera_from_file && r.lights_from_file);
     bg_render_settings set = r.settings;
     set.threads = 2;
-    unsigned char *px;
-    if (k == 0) {
-        px = util_cpu_reference(scene, &set, W, H);
-    } else {
-        set.gpu_plan = plans[k - 1];
-        px = malloc(4 * W * H);
-        assert_non_null(px);
-        bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-        bg_renderer *rr = util_renderer(util_fx.ctx);
-        util_render_gpu(rr, util_fx.ctx, scene, &set, &img, renderer_name[k]);
-        bg_render_stats st;
-        bg_renderer_get_stats(rr, &st);
-        assert_int_equal(st.plan, plans[k - 1]);
-        bg_renderer_destroy(rr);
-    }
+    unsigned char *px = k == 0 ? util_cpu_reference(scene, &set, W, H)
+                               : util_gpu_plan_image(scene, &set, plans[k - 1], W, H, renderer_name[k]);
     bg_scene_destroy(scene);
     return px;
 }
@@ -120,28 +108,24 @@ static void sides_seen_from_behind(void **state)
     }
 }
 
-static void collect(bg_log_level level, const char *message, void *user)
-{
-    if (level == BG_LOG_WARNING)
-        snprintf(user, 512, "%s", message);
-}
-
 /* A normal map cannot be taken (no renderer perturbs normals): a warning names the material. */
 static void normal_map_is_left_out_with_a_warning(void **state)
 {
     (void)state;
-    char warning[512] = "", message[512];
+    util_warnings warning = {0, ""};
+    char message[512];
     bg_scene *scene = NULL;
     assert_int_equal(bg_scene_create(NULL, &scene), BG_OK);
     bg_scenefile_desc d;
     memset(&d, 0, sizeof d);
-    d.logger = (bg_logger){collect, warning};
+    d.logger = (bg_logger){util_warnings_collect, &warning};
     bg_scenefile_result r;
     assert_int_equal(bg_scenefile_load_model("tests/data/normal_mapped.gltf", &d, scene, &r, message, sizeof message),
                      BG_OK);
-    print_message("warning: %s\n", warning);
-    assert_non_null(strstr(warning, "\"bumpy\""));
-    assert_non_null(strstr(warning, "normal (or bump) map is left out"));
+    print_message("warnings: %s", warning.all);
+    assert_int_equal(warning.count, 1);
+    assert_non_null(strstr(warning.all, "\"bumpy\""));
+    assert_non_null(strstr(warning.all, "normal (or bump) map is left out"));
     bg_scene_destroy(scene);
 }
 

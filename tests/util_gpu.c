@@ -22,6 +22,23 @@ unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, in
     return cpu;
 }
 
+unsigned char *util_gpu_plan_image(bg_scene *s, const bg_render_settings *set, bg_gpu_plan plan, int width,
+                                   int height, const char *label)
+{
+    bg_render_settings own = *set;
+    own.gpu_plan = plan;
+    unsigned char *px = malloc((size_t)width * height * 4);
+    assert_non_null(px);
+    bg_image img = {width, height, BG_PIXEL_RGBA8, 0, px};
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    util_render_gpu(r, util_fx.ctx, s, &own, &img, label);
+    bg_render_stats st;
+    bg_renderer_get_stats(r, &st);
+    assert_int_equal(st.plan, plan);
+    bg_renderer_destroy(r);
+    return px;
+}
+
 void util_expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label)
 {
     util_expect_near_row(cpu, gpu, gpu_threshold_of(id), label);

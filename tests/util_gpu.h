@@ -44,6 +44,10 @@ void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_re
 
 /* The CPU reference of a scene at width x height, RGBA8, malloc'd (free it). */
 unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height);
+/* The same on the GPU with the given plan, on a renderer of its own over util_fx's context; fails the
+ * test on an error or when another plan ran. */
+unsigned char *util_gpu_plan_image(bg_scene *s, const bg_render_settings *set, bg_gpu_plan plan, int width,
+                                   int height, const char *label);
 /* Fails the test unless the GPU image is within the threshold row of id against the CPU image
  * (gpu_thresholds.h); prints the comparison under label. */
 void util_expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label);
