@@ -123,11 +123,10 @@ float bg_mesh_mask(sampler2D tris, vec4 dims, vec4 at, vec2 uv, float clamp_mode
 
 // Whether the point of weights b on triangle tri of the copy whose first triangle texel is first is
 // there for rays (docs/shading.md 2.11): the copy's filter record, three texels before its first
-// triangle (gpu/shared/meshes.c), drops a front-only triangle's back (the side its object-space
+// triangle (gpu/shared/meshes.c), its first texel r0 read once per walk, drops a front-only triangle's back (the side its object-space
 // winding points away from) and a cut-out's points of coverage below the cut-off.
-bool bg_mesh_keeps(sampler2D tris, vec4 dims, float first, float tri, vec3 b, bool front)
+bool bg_mesh_keeps(sampler2D tris, vec4 dims, vec4 r0, float first, float tri, vec3 b, bool front)
 {
-    vec4 r0 = bg_mesh_tri(tris, dims, first - 3.0);
     float flags = r0.x;
     if (flags == 0.0)
         return true;

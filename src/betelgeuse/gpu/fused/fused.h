@@ -150,7 +150,7 @@ typedef struct gpu_fused_layout {
     gpu_fused_tree_kinds kinds;
     bool mesh;           /* some object is a mesh, in the tree or unrolled: the mesh textures are bound */
     uint32_t unrolled_meshes; /* mesh objects outside the tree, each walked with its own uniforms */
-    bool mesh_filtered;  /* some mesh object is single-sided or cut out: the walks ask bg_mesh_keeps */
+    int mesh_filters;    /* bgi_gpu_meshes_filters: what the mesh walks and hits test */
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
 } gpu_fused_layout;
 /* Shadow tests (lights x casters) up to which lights are unrolled. Each unrolled light inlines its

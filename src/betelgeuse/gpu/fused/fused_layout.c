@@ -166,7 +166,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         l.materials[o->material].used = true;
         l.mesh |= o->shape == BGI_SHAPE_MESH;
     }
-    l.mesh_filtered = l.mesh && bgi_gpu_meshes_filtered(state);
+    l.mesh_filters = l.mesh ? bgi_gpu_meshes_filters(state) : 0;
     l.tree = tree;
     for (uint32_t i = 0; i < state->tree_count && tree; i++)
         l.objects[state->tree_objects[i]].in_tree = true;

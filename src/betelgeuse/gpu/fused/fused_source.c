@@ -239,7 +239,7 @@ static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
     bgi_gpu_text_append(t, "// ---- generated: walks of the object tree and the meshes\n");
     bgi_gpu_walk_globals(t);
     if (l->mesh)
-        bgi_gpu_mesh_walks(l->walk_budget, l->mesh_filtered, t);
+        bgi_gpu_mesh_walks(l->walk_budget, l->mesh_filters, t);
     if (!bgi_gpu_fused_layout_walks(l))
         return;
     emit_tree_nearest(l, t);
@@ -335,13 +335,13 @@ static void branch(gpu_text *t, const char *var, const char *value, int position
 typedef struct mesh_values {
     const char *tris, *normal, *to_world3, *uv_scale, *id, *mat;
     bool tangent;
-    bool filtered; /* some mesh's filter record may make it open (BG_SIDES_BOTH): thin, as a plane */
+    bool open; /* some mesh is open (BG_SIDES_BOTH): its filter record says which, and its hits are thin */
 } mesh_values;
 
 static void emit_mesh_attributes(gpu_text *t, const mesh_values *v)
 {
     char thin[160];
-    snprintf(thin, sizeof thin, v->filtered ? "bg_mesh_open(bg_mesh_tris, bg_mesh_dims, %s)" : "false", v->tris);
+    snprintf(thin, sizeof thin, v->open ? "bg_mesh_open(bg_mesh_tris, bg_mesh_dims, %s)" : "false", v->tris);
     bgi_gpu_text_printf(t, "        bg_mesh_attributes(bg_mesh_tris, bg_mesh_dims, %s + 6.0 * bg_win_tri, bg_win_bary, first_root, "
                            "%s, %s, bg_hit_p, d, %.1f, bg_hit_ng, n, uv, dpdu, bg_hit_off);\n"
                            "        entering = first_root;\n        code = bg_hit_code(%s, %s, entering);\n"
@@ -366,7 +366,7 @@ static void emit_object_attributes(const gpu_fused_layout *l, gpu_text *t, uint3
         snprintf(tris, sizeof tris, "%s.y", uniform(l, GPU_FUSED_U_MESH_BASE, j).s);
         snprintf(mat, sizeof mat, "%u.0", (unsigned)o->material);
         mesh_values v = {tris, normal.s, to_world3.s, bgi_gpu_fused_object_uv(l, j) ? uv_scale.s : NULL, id.s, mat,
-                         bgi_gpu_fused_object_tangent(l, j), l->mesh_filtered};
+                         bgi_gpu_fused_object_tangent(l, j), (l->mesh_filters & GPU_MESH_OPEN) != 0};
         emit_mesh_attributes(t, &v);
         return;
     }
@@ -431,7 +431,7 @@ static void emit_tree_attributes(const gpu_fused_layout *l, gpu_text *t)
         bgi_gpu_text_append(t, "        if (bg_win_tri >= 0.0) {\n"
                                "        vec4 bases = bg_tree_fetch(bg_objects, bg_object_dims, BG_OBJECT_TEXELS, win, 4.0);\n");
         mesh_values v = {"bases.w", "bg_tree_normal_matrix(m)", "bg_tree_to_world3(bg_objects, bg_object_dims, win)",
-                         k->uv ? "bases.xy" : NULL, "win", "meta.y", k->tangent, l->mesh_filtered};
+                         k->uv ? "bases.xy" : NULL, "win", "meta.y", k->tangent, (l->mesh_filters & GPU_MESH_OPEN) != 0};
         emit_mesh_attributes(t, &v);
         bgi_gpu_text_append(t, "        } else {\n");
     }

@@ -197,7 +197,7 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
         ok = ok && bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, 48) &&
              bgi_gpu_mesh_library(t, seen, &n, 48);
         if (ok)
-            bgi_gpu_mesh_pass_walks(meshes, bgi_gpu_meshes_filtered(state), t);
+            bgi_gpu_mesh_pass_walks(meshes, bgi_gpu_meshes_filters(state), t);
     }
     uint32_t objects[GPU_BATCH_MAX];
     for (int j = 0; j < count; j++)
@@ -273,7 +273,7 @@ static void emit_mesh_geometry(gpu_text *t, const bg_scene_state *state, const m
 {
     /* An open mesh (BG_SIDES_BOTH) is thin, as a plane: its filter record says so. */
     char thin[96];
-    snprintf(thin, sizeof thin, bgi_gpu_meshes_filtered(state) ? "bg_mesh_open(bg_mesh_tris, bg_mesh_dims, bg_mesh_%d.y)"
+    snprintf(thin, sizeof thin, (bgi_gpu_meshes_filters(state) & GPU_MESH_OPEN) ? "bg_mesh_open(bg_mesh_tris, bg_mesh_dims, bg_mesh_%d.y)"
                                                                 : "false", j);
     bgi_gpu_text_printf(t, "    vec2 bg_uv;\n    vec3 bg_dpdu, bg_g;\n    float bg_off;\n"
                            "    bg_mesh_attributes(bg_mesh_tris, bg_mesh_dims, bg_mesh_%d.y + 6.0 * bg_tri, bg_bary, bg_first, "

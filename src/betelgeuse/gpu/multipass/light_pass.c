@@ -198,7 +198,7 @@ static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const sha
         ok = bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, 32) &&
              bgi_gpu_mesh_library(t, seen, &n, 32);
         if (ok)
-            bgi_gpu_mesh_pass_walks(sp->meshes * sp->lights, bgi_gpu_meshes_filtered(state), t);
+            bgi_gpu_mesh_pass_walks(sp->meshes * sp->lights, bgi_gpu_meshes_filters(state), t);
     }
     return ok;
 }

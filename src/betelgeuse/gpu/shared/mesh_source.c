@@ -54,14 +54,24 @@ static const char *const mesh_setup =
     "    vec3 inv = bg_tree_inverse(d);\n"
     "    bg_tree_left -= 3.0; // the iterations that end this walk's loops (fused_layout.c reserves them per walk)\n";
 
-void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t)
+void bgi_gpu_mesh_walks(int walk_budget, int filters, gpu_text *t)
 {
-    /* A filtered scene asks each hit that would count whether the point is there (bg_mesh_keeps); a
-     * scene without single-sided or cut-out meshes keeps today's walk, text for text. */
-    const char *keeps = filtered ? " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, base.y, lo.w, b, f)" : "";
-    /* A shadow segment runs from the point to the light; light travels it the other way, so the
-     * side that counts is the one the light sees. */
-    const char *keeps_light = filtered ? " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, base.y, lo.w, b, !f)" : "";
+    /* A filtered scene reads a copy's filter record once per walk and asks each hit that would count
+     * whether its point is there: the side alone (a flag of the record) where no mesh cuts out, the
+     * whole of bg_mesh_keeps where one does. A shadow segment runs from the point to the light, and
+     * light travels it the other way, so for it the side that counts is the one the light sees. A
+     * scene without front-only or cut-out meshes keeps the walk of before, text for text. */
+    const char *keeps = "", *keeps_light = "";
+    if (filters & GPU_MESH_CUT_OUT) {
+        keeps = " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, record, base.y, lo.w, b, f)";
+        keeps_light = " &&\n                    bg_mesh_keeps(bg_mesh_tris, bg_mesh_dims, record, base.y, lo.w, b, !f)";
+    } else if (filters & GPU_MESH_FRONT_ONLY) {
+        keeps = " && (f || record.x != 1.0)";
+        keeps_light = " && (!f || record.x != 1.0)";
+    }
+    const char *setup = filters & (GPU_MESH_CUT_OUT | GPU_MESH_FRONT_ONLY)
+                            ? "    vec4 record = bg_mesh_tri(bg_mesh_tris, bg_mesh_dims, base.y - 3.0);\n"
+                            : "";
     bgi_gpu_text_append(t, "// ---- generated: mesh objects\n"
                            "float bg_mesh_tri_j;  // the triangle of bg_mesh_nearest's hit, -1 none\n"
                            "vec3 bg_mesh_bary_j;  // and its weights\n"
@@ -79,6 +89,7 @@ void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t)
                            "    float skip = ro.w == index && rd.w <= -2.0 ? -2.0 - rd.w : -1.0;\n"
                            "    vec3 o = (m * vec4(ro.xyz, 1.0)).xyz;\n    vec3 d = (m * vec4(rd.xyz, 0.0)).xyz;\n");
     bgi_gpu_text_append(t, mesh_setup);
+    bgi_gpu_text_append(t, setup);
     bgi_gpu_text_append(t, "    float best = t_limit;\n");
     char body[1024];
     snprintf(body, sizeof body,
@@ -94,6 +105,7 @@ void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t)
                            "    vec3 o = (m * vec4(p, 1.0)).xyz;\n    vec3 d = (m * vec4(l, 0.0)).xyz;\n"
                            "    float t_max = dist < 0.0 ? 1e38 : dist;\n    bool blocked = false;\n");
     bgi_gpu_text_append(t, mesh_setup);
+    bgi_gpu_text_append(t, setup);
     snprintf(body, sizeof body,
              "                blocked = bg_triangle_intersect(o, perm, shear, v0, v1, v2, 0.0, t_max, tt, b, f)%s;\n",
              keeps_light);
@@ -120,10 +132,10 @@ int bgi_gpu_mesh_pass_budget(int walks)
     return GPU_MAX_LOOP - 64 - 3 * walks;
 }
 
-void bgi_gpu_mesh_pass_walks(int walks, bool filtered, gpu_text *t)
+void bgi_gpu_mesh_pass_walks(int walks, int filters, gpu_text *t)
 {
     bgi_gpu_walk_globals(t);
-    bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), filtered, t);
+    bgi_gpu_mesh_walks(bgi_gpu_mesh_pass_budget(walks), filters, t);
 }
 
 bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap)

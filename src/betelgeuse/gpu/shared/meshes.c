@@ -79,15 +79,18 @@ static uint64_t mask_texels(const mesh_filter *f)
     return f->mask ? ((uint64_t)f->mask->width * (uint64_t)f->mask->height + 3) / 4 : 0;
 }
 
-bool bgi_gpu_meshes_filtered(const bg_scene_state *state)
+int bgi_gpu_meshes_filters(const bg_scene_state *state)
 {
+    int filters = 0;
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_object_data *o = &state->objects[i];
         const bg_material *m = &state->materials[o->material];
-        if (o->mesh && (m->sides != BG_SIDES_SOLID || m->coverage_cutoff > 0.0))
-            return true;
+        if (!o->mesh)
+            continue;
+        filters |= m->sides == BG_SIDES_FRONT ? GPU_MESH_FRONT_ONLY : m->sides == BG_SIDES_BOTH ? GPU_MESH_OPEN : 0;
+        filters |= m->coverage_cutoff > 0.0 ? GPU_MESH_CUT_OUT : 0;
     }
-    return false;
+    return filters;
 }
 
 /* The texels the distinct meshes take in each mesh texture. */

@@ -297,8 +297,11 @@ bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char 
  * it): each plan checks once, before it takes the frame. */
 bg_status bgi_gpu_meshes_prepare(bg_renderer *r, const bg_scene_state *state);
 void bgi_gpu_meshes_release(bg_renderer *r);
-/* Whether some mesh object's material is single-sided or cuts out: the walks then ask bg_mesh_keeps. */
-bool bgi_gpu_meshes_filtered(const bg_scene_state *state);
+/* What the scene's mesh filters need of the shaders (a program depends on it, never on the values):
+ * a front-only mesh (the walks test the side), a cut-out (they sample the coverage), an open mesh
+ * (its hits are thin). 0 for a scene that filters nothing, whose programs are those of before. */
+enum { GPU_MESH_FRONT_ONLY = 1, GPU_MESH_CUT_OUT = 2, GPU_MESH_OPEN = 4 };
+int bgi_gpu_meshes_filters(const bg_scene_state *state);
 
 /* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
  * returns how many there were. */
@@ -321,7 +324,7 @@ void bgi_gpu_marks_release(gpu_marks *m);
  * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
  * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
  * which turns a spawned ray into one leaving the triangle. */
-void bgi_gpu_mesh_walks(int walk_budget, bool filtered, gpu_text *t);
+void bgi_gpu_mesh_walks(int walk_budget, int filters, gpu_text *t);
 /* The mesh slot's w where a walk of the pixel ran out of steps: the multipass marks the pixel for
  * the CPU reference (multipass_frame.c). */
 #define GPU_MESH_SHORT (-2.0)
@@ -331,7 +334,7 @@ int bgi_gpu_mesh_pass_budget(int walks);
 /* The step count the walks share and the flag of one that ran out (set by the caller's main). */
 void bgi_gpu_walk_globals(gpu_text *t);
 /* The walk globals and the mesh walks of a multipass pass with `walks` mesh walks per pixel. */
-void bgi_gpu_mesh_pass_walks(int walks, bool filtered, gpu_text *t);
+void bgi_gpu_mesh_pass_walks(int walks, int filters, gpu_text *t);
 /* bg_triangle.glsl and bg_mesh.glsl into t. */
 bool bgi_gpu_mesh_library(gpu_text *t, const char **seen, int *seen_count, int seen_cap);
 
