@@ -59,6 +59,11 @@ SF_LIBS   := $(shell pkg-config --libs libcjson assimp libpng libturbojpeg 2>/de
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 CLI_BIN  := $(BUILD)/betelgeuse
+# `betelgeuse view` (src/cli/view*.c) opens its window with GLFW 3.3 (docs/command.md says why); only
+# the command links it, never the libraries (tests/check_symbols.sh, the .pc files).
+GLFW_CFLAGS := $(shell pkg-config --cflags glfw3 2>/dev/null)
+GLFW_LIBS   := $(shell pkg-config --libs glfw3 2>/dev/null || echo -lglfw)
+VIEW_OBJ := $(filter $(BUILD)/src/cli/view%,$(CLI_OBJ))
 BINDIR   ?= $(PREFIX)/bin
 
 # Test helpers are tests/util_*.c; every tests/test_*.c is one cmocka suite.
@@ -193,9 +198,10 @@ $(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENE
 	  $(TEST_LIBS)
 
 $(CLI_OBJ): ALL_CFLAGS += -DBG_CLI_VERSION='"$(VERSION)"'
+$(VIEW_OBJ): ALL_CFLAGS += $(GLFW_CFLAGS)
 $(CLI_BIN): $(CLI_OBJ) $(SF_A) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS)
+	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) $(GLFW_LIBS)
 
 $(BUILD)/tests/%: tests/%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)

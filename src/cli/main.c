@@ -93,6 +93,8 @@ int main(int argc, char **argv)
         return cli_assemble(argc - 2, argv + 2);
     if (strcmp(command, "info") == 0)
         return cli_info(argc - 2, argv + 2);
-    fprintf(stderr, "betelgeuse: unknown command '%s' (render, assemble, info; see betelgeuse --help)\n", command);
+    if (strcmp(command, "view") == 0)
+        return cli_view(argc - 2, argv + 2);
+    fprintf(stderr, "betelgeuse: unknown command '%s' (render, assemble, info, view; see betelgeuse --help)\n", command);
     return CLI_EXIT_USAGE;
 }

@@ -234,7 +234,7 @@ int cli_render(int argc, char **argv)
 {
     cli_options o;
     char why[1024];
-    if (!cli_options_parse(argc, argv, true, &o, why, sizeof why)) {
+    if (!cli_options_parse(argc, argv, CLI_COMMAND_RENDER, &o, why, sizeof why)) {
         fprintf(stderr, "betelgeuse render: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
@@ -267,7 +267,7 @@ int cli_render(int argc, char **argv)
     return status;
 }
 
-static const char *plan_name(bg_gpu_plan p)
+const char *cli_plan_name(bg_gpu_plan p)
 {
     switch (p) {
     case BG_PLAN_FUSED:
@@ -305,7 +305,7 @@ int cli_info(int argc, char **argv)
 {
     cli_options o;
     char why[1024];
-    if (!cli_options_parse(argc, argv, false, &o, why, sizeof why)) {
+    if (!cli_options_parse(argc, argv, CLI_COMMAND_INFO, &o, why, sizeof why)) {
         fprintf(stderr, "betelgeuse info: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
@@ -348,7 +348,7 @@ int cli_info(int argc, char **argv)
             bg_render_stats stats;
             bg_renderer_get_stats(g.renderer, &stats);
             if (st == BG_OK)
-                printf("GPU plan   %s\n", plan_name(stats.plan));
+                printf("GPU plan   %s\n", cli_plan_name(stats.plan));
             else
                 printf("GPU plan   none: %s\n", bg_renderer_error_message(g.renderer));
             gpu_close(&g);

@@ -1,0 +1,19 @@
+/* The resolution rule (view_resolution.h). */
+#include "view_resolution.h"
+
+int view_resolution_next(int divisor, double frame_ms, double target_ms)
+{
+    double per_pixel = frame_ms / ((double)divisor * divisor); /* the full frame's time, estimated */
+    for (int d = 1; d <= VIEW_MAX_DIVISOR; d++) {
+        double estimate = per_pixel / ((double)d * d);
+        double allowed = d < divisor ? 0.8 * target_ms : target_ms;
+        if (estimate <= allowed)
+            return d;
+    }
+    return VIEW_MAX_DIVISOR;
+}
+
+int view_resolution_side(int side, int divisor)
+{
+    return (side + divisor - 1) / divisor;
+}
