@@ -1,5 +1,5 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command,
+# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command, check-view,
 # check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
 # (libFuzzer with clang: docs/fuzzing.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
@@ -123,7 +123,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples check-command check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
+.PHONY: FORCE all check check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -264,6 +264,12 @@ check-symbols: all
 check-command: all
 	@env $(TEST_ENV) sh tests/check_command.sh $(CLI_BIN)
 
+# `betelgeuse view` in a real window on Xvfb with Mesa's GLX: scripted and xdotool input, the
+# screenshot at rest against render, reload on edit, Esc (tests/check_view.sh; needs xvfb, xauth and
+# xdotool, and says so, skipping, without them).
+check-view: all
+	@env $(TEST_ENV) sh tests/check_view.sh $(CLI_BIN)
+
 # A single-node Slurm cluster started and stopped by the test renders a shared scene as a job array
 # of 4 tiles, assembles them and compares the frame with one render (tests/check_cluster.sh; needs
 # the slurm-wlm and munge packages).
@@ -282,7 +288,7 @@ test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.
-check: all glsl-check check-symbols check-examples check-command check-fuzz-corpus $(TEST_BIN) $(BUILD)/tests/probe_headless
+check: all glsl-check check-symbols check-examples check-command check-view check-fuzz-corpus $(TEST_BIN) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless TIMES=build/suite-times \
 	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
