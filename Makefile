@@ -211,6 +211,11 @@ $(BUILD)/examples/%: examples/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
 
+# The window example links GLFW and the system's GL (for its quad); the libraries link neither.
+$(BUILD)/examples/bg_window: examples/bg_window.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(GLFW_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK) $(GLFW_LIBS) -lGL
+
 $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
