@@ -197,6 +197,13 @@ $(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENE
 	$(CC) $(ALL_CFLAGS) $(SF_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) \
 	  $(TEST_LIBS)
 
+# The viewer's pure rules are tested from their objects (no window needed).
+$(BUILD)/tests/test_view_rules: tests/test_view_rules.c $(BUILD)/src/cli/view_resolution.o \
+  $(BUILD)/src/cli/view_camera.o $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(filter %.o,$(wordlist 2,3,$^)) $(TEST_UTIL_OBJ) $(SCENES_OBJ) \
+	  $(STATIC_LINK) $(TEST_LIBS)
+
 $(CLI_OBJ): ALL_CFLAGS += -DBG_CLI_VERSION='"$(VERSION)"'
 $(VIEW_OBJ): ALL_CFLAGS += $(GLFW_CFLAGS)
 $(CLI_BIN): $(CLI_OBJ) $(SF_A) $(BG_A) $(MACS_A)

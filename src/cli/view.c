@@ -94,7 +94,6 @@ static void render_frame(viewer *v, view_display *d, bool moving)
         }
         st = view_frames_rest(&v->frames, v->scene, &settings);
     }
-    double ms = 1000.0 * (cli_now() - start);
     if (st == BG_ERR_CANCELLED) {
         bg_renderer_clear_error(v->frames.renderer);
         return;
@@ -106,6 +105,9 @@ static void render_frame(viewer *v, view_display *d, bool moving)
         v->render_failed = true;
         return;
     }
+    /* The frame's time is the render's and the display's together, up to the frame on the screen. */
+    view_display_show(d, v->window, v->frames.shown, v->window_width, v->window_height);
+    double ms = 1000.0 * (cli_now() - start);
     v->last_frame_ms = ms;
     if (moving) {
         v->frames_moving++;
@@ -120,7 +122,6 @@ static void render_frame(viewer *v, view_display *d, bool moving)
         if (v->frames.samples >= v->samples)
             v->rest_reached = cli_now();
     }
-    view_display_show(d, v->window, v->frames.shown, v->window_width, v->window_height);
 }
 
 /* Whether the loop has a frame to render now. */

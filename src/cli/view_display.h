@@ -15,7 +15,7 @@ bool view_display_create(view_display **out, char *why, size_t why_size);
 
 /* Draws texture over the whole window framebuffer (width x height pixels), scaled up with GL_NEAREST
  * when it is smaller, so that a reduced moving frame shows its own pixels rather than a blur; then
- * swaps the window's buffers. */
+ * swaps the window's buffers and waits until the GPU has done it all. */
 void view_display_show(view_display *d, void *window, const macs_texture *texture, int width, int height);
 
 void view_display_destroy(view_display *d);

@@ -3,9 +3,10 @@
 
 int view_resolution_next(int divisor, double frame_ms, double target_ms)
 {
-    double per_pixel = frame_ms / ((double)divisor * divisor); /* the full frame's time, estimated */
+    /* A frame at divisor d has 1/d^2 of the pixels: the full frame would take frame_ms d^2. */
+    double full = frame_ms * divisor * divisor;
     for (int d = 1; d <= VIEW_MAX_DIVISOR; d++) {
-        double estimate = per_pixel / ((double)d * d);
+        double estimate = full / ((double)d * d);
         double allowed = d < divisor ? 0.8 * target_ms : target_ms;
         if (estimate <= allowed)
             return d;

@@ -6,7 +6,7 @@
 enum { VIEW_MAX_DIVISOR = 4 };
 
 /* The divisor for the next moving frame, given the last one's divisor and its time. A frame's cost is
- * taken as proportional to its pixels (time / divisor^2 per full-frame pixel): the finest divisor
+ * taken as proportional to its pixels (the full frame would take time x divisor^2): the finest divisor
  * whose estimate is within the target, and a finer one only when its estimate is within 80% of it,
  * so that noise in the times does not flip the resolution every frame. */
 int view_resolution_next(int divisor, double frame_ms, double target_ms);
