@@ -279,8 +279,11 @@ check-command: all
 # `betelgeuse view` in a real window on Xvfb with Mesa's GLX: scripted and xdotool input, the
 # screenshot at rest against render, reload on edit, Esc (tests/check_view.sh; needs xvfb, xauth and
 # xdotool, and says so, skipping, without them).
+# Under SANITIZE, leaks are not looked for in the windowed runs: Mesa's GLX driver leaks about 5 KB
+# (driver option strings) and is unloaded before LeakSanitizer runs at exit, so its frames have no
+# module a suppression could name. ASan's memory errors and UBSan stay on.
 check-view: all
-	@env $(TEST_ENV) sh tests/check_view.sh $(CLI_BIN)
+	@env $(TEST_ENV) $(if $(SANFLAGS),ASAN_OPTIONS=detect_leaks=0) sh tests/check_view.sh $(CLI_BIN)
 
 # A single-node Slurm cluster started and stopped by the test renders a shared scene as a job array
 # of 4 tiles, assembles them and compares the frame with one render (tests/check_cluster.sh; needs

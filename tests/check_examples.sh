@@ -76,7 +76,9 @@ for b in $others; do
 		continue
 	fi
 	png="$work/bg_window.png"
-	if ! env $TEST_ENV xvfb-run -a -s "-screen 0 640x480x24" "$b" --frames 5 "$png" 48 >"$work/out" 2>"$work/err"; then
+	# Mesa's GLX driver leaks a few KB and is unloaded before LeakSanitizer runs, leaving frames no
+	# suppression can name: leaks are not looked for here (a sanitized build's memory errors still are).
+	if ! env $TEST_ENV ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" xvfb-run -a -s "-screen 0 640x480x24" "$b" --frames 5 "$png" 48 >"$work/out" 2>"$work/err"; then
 		fail "$b" "5 frames under Xvfb failed:"; cat "$work/out" "$work/err"; continue
 	fi
 	[ "$(head -c 8 "$png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
