@@ -60,4 +60,20 @@ for f in "$build/libmacs.so" "$build/libbetelgeuse.so" "$build/libbetelgeuse_sce
 		echo "$(basename "$f"): links no GL, EGL or OSMesa library"
 	fi
 done
+
+# GLFW is the viewer's (the command's): a program that links the libraries must not get it with them.
+for f in "$build/libmacs.so" "$build/libbetelgeuse.so" "$build/libbetelgeuse_scenefile.so" "$build/libmacs.a" \
+	"$build/libbetelgeuse.a" "$build/libbetelgeuse_scenefile.a" "$build/macs.pc" "$build/betelgeuse.pc" \
+	"$build/betelgeuse_scenefile.pc"; do
+	case $f in
+	*.so) found=$(readelf -d "$f" | grep -i 'NEEDED.*glfw') ;;
+	*.a) found=$(nm -u "$f" 2>/dev/null | grep -i ' glfw') ;;
+	*) found=$(grep -i glfw "$f") ;;
+	esac
+	if [ -n "$found" ]; then
+		echo "FAIL $(basename "$f") names GLFW ($found): only the betelgeuse command may link it"
+		failed=1
+	fi
+done
+echo "libraries and pkg-config files: no GLFW"
 exit $failed

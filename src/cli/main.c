@@ -1,4 +1,4 @@
-/* The `betelgeuse` command (docs/command.md): render, assemble and info, --help and --version. */
+/* The `betelgeuse` command (docs/command.md): render, assemble, info and view, --help and --version. */
 #include <stdio.h>
 #include <string.h>
 
@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "numbers.h"
 #include "output.h"
+#include "view_input.h"
 
 #ifndef BG_CLI_VERSION
 #define BG_CLI_VERSION "unknown"
@@ -14,10 +15,13 @@
 /* The library's limits as text, so that the help states the numbers the parser enforces. */
 #define SIDE CLI_NUMBER_TEXT(BG_MAX_IMAGE_SIDE)
 
-static const char help[] =
+/* In pieces: C99 promises string literals of 4095 characters only. */
+static const char *const help[] = {
     "usage: betelgeuse render SCENE -o OUT.png [options]\n"
     "       betelgeuse assemble TILE.png... -o OUT.png\n"
     "       betelgeuse info SCENE [--renderer gpu|cpu] [--backend egl|osmesa] [model options]\n"
+    "       betelgeuse view SCENE [--size WxH] [--samples N] [--frame-ms MS] [model options]\n"
+    "                       [--script FILE | --benchmark] [-v] [-q]\n"
     "       betelgeuse --help | --version\n"
     "\n"
     "SCENE is a JSON scene file (docs/scene_format.md) or a model file (OBJ, PLY, STL, glTF), which is\n"
@@ -39,8 +43,22 @@ static const char help[] =
     "  --linear               write linear values instead of sRGB\n"
     "  --float OUT.pfm        also write the linear radiance as a PFM (renders the frame a second time)\n"
     "  -q, --quiet            print nothing but errors (no progress bar, no warnings)\n"
-    "\n"
-    "model options (render and info):\n"
+    "\n",
+    "view options (a window; the GPU renderer on its OpenGL 2.1 context, through GLFW):\n"
+    "  --size WxH, --samples N, --max-depth D, -q and the model options as for render; the samples\n"
+    "                         at rest default to the file's when more than 1, else 64\n"
+    "  --frame-ms MS          the frame time to hold while the camera moves, 1 .. 10000 (default 33):\n"
+    "                         moving frames are rendered at 1/1, 1/2, 1/3 or 1/4 of each side\n"
+    "  --script FILE          timed inputs (wait, drag, scroll, key, screenshot, wait-rest, wait-reload,\n"
+    "                         expect-compiled, expect-gl, expect-error, touch, write, quit; docs/command.md);\n"
+    "                         the viewer quits after its last line and prints its frame counts\n"
+    "  --benchmark            a scripted orbit, then the rest to N samples: frame-time percentiles, the\n"
+    "                         resolution chosen, the time to N samples\n"
+    "  -v, --verbose          the GL version, each reload and the frame counts on exit\n"
+    "The scene file and every file it reads are watched: an edit reloads the scene; a bad one keeps the\n"
+    "last image and shows the error in the title and on stderr.\n"
+    "\n",
+    "model options (render, info and view):\n"
     "  --up y|z|-y|-z         the model file's up axis, turned to +y (default y, glTF's); a Z-up file\n"
     "                         lies on its side without --up z\n"
     "  --smooth [ANGLE]       compute normals where the file has none, smooth across edges whose face\n"
@@ -64,18 +82,31 @@ static const char help[] =
     "is refused.\n"
     "\n"
     "exit codes: 0 done; 1 the render or a write failed (or was cancelled); 2 bad usage, or a bad\n"
-    "scene, model or tile file (the message names the file, the field and the reason).\n";
+    "scene, model or tile file (the message names the file, the field and the reason).\n"
+    "\n"
+    "view's mouse and keys:\n",
+};
+
+/* The help, and the viewer's controls from the table its input mapping keeps. */
+static void print_help(void)
+{
+    for (size_t i = 0; i < sizeof help / sizeof help[0]; i++)
+        fputs(help[i], stdout);
+    fputs(view_input_help, stdout);
+}
 
 int main(int argc, char **argv)
 {
     cli_output_init();
     if (argc < 2) {
-        fputs(help, stderr);
+        for (size_t i = 0; i < sizeof help / sizeof help[0]; i++)
+            fputs(help[i], stderr);
+        fputs(view_input_help, stderr);
         return CLI_EXIT_USAGE;
     }
     const char *command = argv[1];
     if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
-        fputs(help, stdout);
+        print_help();
         return CLI_EXIT_OK;
     }
     if (strcmp(command, "--version") == 0) {
@@ -84,7 +115,7 @@ int main(int argc, char **argv)
     }
     for (int i = 2; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(help, stdout);
+            print_help();
             return CLI_EXIT_OK;
         }
     if (strcmp(command, "render") == 0)
@@ -93,6 +124,8 @@ int main(int argc, char **argv)
         return cli_assemble(argc - 2, argv + 2);
     if (strcmp(command, "info") == 0)
         return cli_info(argc - 2, argv + 2);
-    fprintf(stderr, "betelgeuse: unknown command '%s' (render, assemble, info; see betelgeuse --help)\n", command);
+    if (strcmp(command, "view") == 0)
+        return cli_view(argc - 2, argv + 2);
+    fprintf(stderr, "betelgeuse: unknown command '%s' (render, assemble, info, view; see betelgeuse --help)\n", command);
     return CLI_EXIT_USAGE;
 }

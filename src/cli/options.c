@@ -31,8 +31,20 @@ static bool fail(char *why, size_t size, const char *format, const char *option,
     return false;
 }
 
-bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char *why, size_t size)
+/* render's options that mean nothing to a window: the viewer names them rather than ignoring them. */
+static bool render_only(const char *a)
 {
+    static const char *const names[] = {"-o", "--output", "--float", "--crop", "--tile", "--linear", "--renderer",
+                                        "--backend"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (strcmp(a, names[k]) == 0)
+            return true;
+    return false;
+}
+
+bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *o, char *why, size_t size)
+{
+    const bool render = command == CLI_COMMAND_RENDER, view = command == CLI_COMMAND_VIEW;
     memset(o, 0, sizeof *o);
     o->max_depth = -1;
     for (int i = 0; i < argc; i++) {
@@ -60,7 +72,22 @@ bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char 
             return false;
         if (model > 0)
             continue;
-        if (strcmp(a, "--renderer") == 0) {
+        if (view && render_only(a)) {
+            return fail(why, size, "%s is an option of render, not of view%s", a, NULL);
+        } else if (view && strcmp(a, "--frame-ms") == 0) {
+            VALUE();
+            double ms = 0;
+            if (!cli_parse_doubles(value, '\0', 1, &ms) || !(ms >= 1 && ms <= 10000))
+                return fail(why, size, "%s: '%s' is not a frame time in milliseconds, 1 .. 10000", a, value);
+            o->frame_ms = ms;
+        } else if (view && strcmp(a, "--script") == 0) {
+            VALUE();
+            o->script = value;
+        } else if (view && strcmp(a, "--benchmark") == 0) {
+            o->benchmark = true;
+        } else if (view && (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0)) {
+            o->verbose = true;
+        } else if (strcmp(a, "--renderer") == 0) {
             VALUE();
             if (strcmp(value, "gpu") == 0)
                 o->renderer = CLI_RENDERER_GPU;
@@ -76,7 +103,7 @@ bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char 
                 o->backend = CLI_BACKEND_OSMESA;
             else
                 return fail(why, size, "%s: '%s' is neither egl nor osmesa", a, value);
-        } else if (!render && a[0] == '-' && a[1] != '\0') {
+        } else if (command == CLI_COMMAND_INFO && a[0] == '-' && a[1] != '\0') {
             return fail(why, size, "unknown option %s for info%s", a, NULL);
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             VALUE();
@@ -126,12 +153,16 @@ bool cli_options_parse(int argc, char **argv, bool render, cli_options *o, char 
         } else {
             o->scene = a;
         }
-        if (eq && value == eq + 1 && (strcmp(a, "--linear") == 0 || strcmp(a, "--quiet") == 0))
+        if (eq && value == eq + 1 &&
+            (strcmp(a, "--linear") == 0 || strcmp(a, "--quiet") == 0 || strcmp(a, "--benchmark") == 0 ||
+             strcmp(a, "--verbose") == 0))
             return fail(why, size, "%s takes no value%s", a, NULL);
 #undef VALUE
     }
     if (!o->scene)
         return fail(why, size, "no scene file given%s%s", "", NULL);
+    if (o->script && o->benchmark)
+        return fail(why, size, "--script and --benchmark both drive the window: give one%s%s", "", NULL);
     if (render && !o->output)
         return fail(why, size, "-o OUT.png is required%s%s", "", NULL);
     return cli_model_options_check(&o->model, o->scene, why, size);

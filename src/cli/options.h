@@ -10,6 +10,9 @@
 typedef enum cli_renderer { CLI_RENDERER_GPU = 0, CLI_RENDERER_CPU } cli_renderer;
 typedef enum cli_backend { CLI_BACKEND_DEFAULT = 0, CLI_BACKEND_EGL, CLI_BACKEND_OSMESA } cli_backend;
 
+/* Which subcommand's options are parsed: each takes its own set (docs/command.md). */
+typedef enum cli_command { CLI_COMMAND_RENDER = 0, CLI_COMMAND_INFO, CLI_COMMAND_VIEW } cli_command;
+
 typedef struct cli_options {
     const char *scene;      /* the scene or model file */
     const char *output;     /* -o: the PNG */
@@ -25,11 +28,17 @@ typedef struct cli_options {
     bool linear;            /* --linear: the PNG holds linear values, not sRGB */
     bool quiet;             /* --quiet: errors only */
     cli_model_options model; /* --up, --smooth, --camera, --look-from, --look-at, --fov */
+    /* view only */
+    double frame_ms;        /* --frame-ms: the frame time to hold while moving; 0: 33 */
+    const char *script;     /* --script FILE, or NULL */
+    bool benchmark;         /* --benchmark */
+    bool verbose;           /* -v, --verbose: the GL version and each reload */
 } cli_options;
 
 /* Parses argv (after the subcommand's name); render wants -o, info takes only SCENE,
- * --renderer/--backend and the model options. False with the reason in why (a usage error). */
-bool cli_options_parse(int argc, char **argv, bool render, cli_options *out, char *why, size_t why_size);
+ * --renderer/--backend and the model options, view SCENE, --size, --samples, --max-depth, -q, the model
+ * options and its own. False with the reason in why (a usage error). */
+bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *out, char *why, size_t why_size);
 
 /* The window of the frame the options ask for: the crop rectangle (or the whole frame), then the
  * band of rows of tile I of N in it (rows [floor((I - 1) h / N), floor(I h / N))). False with the

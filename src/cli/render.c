@@ -20,6 +20,7 @@
 #include "options.h"
 #include "output.h"
 #include "progress.h"
+#include "scene_load.h"
 #include "tile_file.h"
 
 static volatile sig_atomic_t interrupted;
@@ -35,14 +36,6 @@ static bool on_progress(double fraction, void *user)
 {
     cli_progress_update(user, fraction);
     return !interrupted;
-}
-
-/* Warnings (what a model's materials lose) unless --quiet; errors come back as messages. */
-static void on_log(bg_log_level level, const char *message, void *user)
-{
-    const bool *quiet = user;
-    if (level == BG_LOG_WARNING && !*quiet)
-        fprintf(stderr, "betelgeuse: warning: %s\n", message);
 }
 
 /* The GPU's pieces, made and freed together. */
@@ -113,41 +106,6 @@ static bg_status render_once(const cli_options *o, gpu *g, bg_scene *scene, cons
             snprintf(why, size, "%s", bg_renderer_error_message(g->renderer));
     }
     return st;
-}
-
-/* The scene or model file into a new scene (*out, committed), as the model options ask; the exit
- * code on failure, with the message printed: 2 for a bad or missing file (or an option the file
- * cannot take), 1 when out of memory. Each file the load reads goes into inputs when it is not NULL. */
-static int load_scene(const char *path, const cli_model_options *model, bool *quiet_logs, cli_inputs *inputs,
-                      bg_scene **out, bg_scenefile_result *file)
-{
-    *out = NULL;
-    bg_scene *scene = NULL;
-    if (bg_scene_create(NULL, &scene) != BG_OK) {
-        fprintf(stderr, "betelgeuse: out of memory creating the scene\n");
-        return CLI_EXIT_FAILED;
-    }
-    bg_scenefile_desc fd;
-    memset(&fd, 0, sizeof fd);
-    fd.logger.func = on_log;
-    fd.logger.user = quiet_logs;
-    cli_model_options_desc(model, &fd);
-    if (inputs) {
-        /* The scene file is added here too, so that it is protected whatever the library reports. */
-        cli_inputs_add(inputs, path);
-        fd.inputs.func = cli_inputs_on_read;
-        fd.inputs.user = inputs;
-    }
-    char why[1024] = "";
-    bg_status st = bg_scenefile_load_any(path, &fd, scene, file, why, sizeof why);
-    if (st != BG_OK) {
-        cli_model_options_rename(why);
-        fprintf(stderr, "betelgeuse: %s\n", why[0] ? why : bg_status_string(st));
-        bg_scene_destroy(scene);
-        return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
-    }
-    *out = scene;
-    return CLI_EXIT_OK;
 }
 
 /* Refuses, before any render, outputs that would overwrite an input or each other; the exit code. */
@@ -276,7 +234,7 @@ int cli_render(int argc, char **argv)
 {
     cli_options o;
     char why[1024];
-    if (!cli_options_parse(argc, argv, true, &o, why, sizeof why)) {
+    if (!cli_options_parse(argc, argv, CLI_COMMAND_RENDER, &o, why, sizeof why)) {
         fprintf(stderr, "betelgeuse render: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
@@ -292,7 +250,7 @@ int cli_render(int argc, char **argv)
     bg_scenefile_result file;
     cli_inputs inputs;
     memset(&inputs, 0, sizeof inputs);
-    int status = load_scene(o.scene, &o.model, &quiet_logs, &inputs, &scene, &file);
+    int status = cli_scene_load(o.scene, &o.model, &quiet_logs, &inputs, &scene, &file, NULL, 0);
     if (status == CLI_EXIT_OK)
         status = check_outputs(&o, &inputs);
     cli_inputs_free(&inputs);
@@ -309,7 +267,7 @@ int cli_render(int argc, char **argv)
     return status;
 }
 
-static const char *plan_name(bg_gpu_plan p)
+const char *cli_plan_name(bg_gpu_plan p)
 {
     switch (p) {
     case BG_PLAN_FUSED:
@@ -347,14 +305,14 @@ int cli_info(int argc, char **argv)
 {
     cli_options o;
     char why[1024];
-    if (!cli_options_parse(argc, argv, false, &o, why, sizeof why)) {
+    if (!cli_options_parse(argc, argv, CLI_COMMAND_INFO, &o, why, sizeof why)) {
         fprintf(stderr, "betelgeuse info: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
     bool quiet_logs = false;
     bg_scene *scene = NULL;
     bg_scenefile_result file;
-    int loaded = load_scene(o.scene, &o.model, &quiet_logs, NULL, &scene, &file);
+    int loaded = cli_scene_load(o.scene, &o.model, &quiet_logs, NULL, &scene, &file, NULL, 0);
     if (loaded != CLI_EXIT_OK)
         return loaded;
     const bg_scenefile_summary *s = &file.summary;
@@ -390,7 +348,7 @@ int cli_info(int argc, char **argv)
             bg_render_stats stats;
             bg_renderer_get_stats(g.renderer, &stats);
             if (st == BG_OK)
-                printf("GPU plan   %s\n", plan_name(stats.plan));
+                printf("GPU plan   %s\n", cli_plan_name(stats.plan));
             else
                 printf("GPU plan   none: %s\n", bg_renderer_error_message(g.renderer));
             gpu_close(&g);

@@ -1,0 +1,58 @@
+/* Reloading the scene after an edit (view.h). The new file goes into a new scene, so that a bad edit
+ * leaves the last good scene, its camera and its image untouched; the renderer's program cache
+ * (MACS's) outlives the scene, so an edit of values (a colour, a position) compiles nothing. */
+#include "view.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "scene_load.h"
+
+static bool same_camera(const bg_camera *a, const bg_camera *b)
+{
+    return a->position.x == b->position.x && a->position.y == b->position.y && a->position.z == b->position.z &&
+           a->look_at.x == b->look_at.x && a->look_at.y == b->look_at.y && a->look_at.z == b->look_at.z &&
+           a->up.x == b->up.x && a->up.y == b->up.y && a->up.z == b->up.z && a->fov_y_degrees == b->fov_y_degrees;
+}
+
+void view_reload(viewer *v)
+{
+    cli_inputs inputs;
+    memset(&inputs, 0, sizeof inputs);
+    bool quiet = v->options->quiet;
+    bg_scene *scene = NULL;
+    bg_scenefile_result file;
+    char why[1024] = "";
+    int status = cli_scene_load(v->options->scene, &v->options->model, &quiet, &inputs, &scene, &file, why, sizeof why);
+    /* Watched from now on: what this load read, so that fixing the file (or the model it names) is seen. */
+    if (inputs.count > 0)
+        view_watch_set(&v->watch, &inputs);
+    if (status != CLI_EXIT_OK) {
+        snprintf(v->error, sizeof v->error, "%s", why);
+        v->reload_errors++;
+        cli_inputs_free(&inputs);
+        return;
+    }
+    /* The user's view stays across edits of the scene, unless the edit moved the file's camera. */
+    if (!same_camera(&file.camera, &v->file.camera))
+        v->camera = file.camera;
+    v->loaded = file.camera;
+    bg_scene_destroy(v->scene);
+    v->scene = scene;
+    int samples = v->settings.samples;
+    int width = v->settings.frame_width, height = v->settings.frame_height;
+    v->file = file;
+    v->settings = file.settings;
+    v->settings.samples = samples;
+    v->settings.frame_width = width;
+    v->settings.frame_height = height;
+    cli_inputs_free(&v->inputs);
+    v->inputs = inputs;
+    v->camera_changed = true;
+    v->render_failed = false;
+    v->error[0] = '\0';
+    v->reloads++;
+    if (v->options->verbose)
+        fprintf(stderr, "betelgeuse view: reloaded %s\n", v->options->scene);
+}
