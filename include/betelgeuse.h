@@ -604,6 +604,47 @@ BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_
 BG_API bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
                                           macs_texture *target);
 
+/* Progressive accumulation (docs/gpu_pipeline.md, "Accumulation"): a frame's running sum of samples,
+ * kept on the GPU in float textures of the renderer's MACS context, for a caller that shows a frame
+ * while it refines (an interactive viewer) without reading anything back. Each sample is one pass
+ * of the plan the settings choose into a float texture, added to the sum by a GPU pass in sample
+ * order: the same float additions, in the same order, as bg_render_gpu's multi-sample frames make
+ * (they go through it too), so after N samples of the pattern of settings.samples = N the resolved
+ * image equals bg_render_gpu's at samples = N bit for bit (IEEE single-precision adds, as GLSL's
+ * float on llvmpipe and on GPUs that honour it). The sample pattern is docs/shading.md 1.1's; the
+ * mean of its first k < N samples in row-major order is a preview, not a k-sample image.
+ * GPU memory: three RGBA32F textures of the size and one more for a sample (64 bytes a pixel).
+ * Destroy an accumulation before its renderer's MACS context. */
+typedef struct bg_accumulation bg_accumulation;
+
+/* An empty accumulation of width x height (1 .. 16384 and the GL texture size limit per side:
+ * BG_ERR_INVALID_ARGUMENT and BG_ERR_LIMIT), for the renderer's frames of that size. */
+BG_API bg_status bg_accumulation_create(bg_renderer *renderer, int width, int height, bg_accumulation **out);
+/* Frees it and its textures; NULL is ignored. */
+BG_API void bg_accumulation_destroy(bg_accumulation *accumulation);
+/* Adds samples [first, first + count) of the pattern of settings->samples = N to the sum: first is 0
+ * (starting over, whatever the sum held) or the samples it holds, which must be of the same N;
+ * count >= 1 and first + count <= N. The settings are those of bg_render_gpu (a window included);
+ * progress goes from first / N to (first + count) / N. Each call may change the scene, camera or
+ * plan, and a camera move or a value edit compiles no program, as for bg_render_gpu; samples added
+ * since a change mix the two, so start over (first = 0) after one. Every check fails before any
+ * pass, naming the argument; a failure or a cancel leaves the sum and its count as they were. */
+BG_API bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                                          bg_accumulation *accumulation, int first, int count);
+/* The samples in the sum (0 for NULL). */
+BG_API int bg_accumulation_samples(const bg_accumulation *accumulation);
+/* The mean of the samples so far into a caller image of the accumulation's size, RGBA8 encoded as
+ * settings->encoding says or RGBA32F linear, as bg_render_gpu writes them: one read-back of the sum.
+ * BG_ERR_INVALID_ARGUMENT without samples, or for another size or renderer. */
+BG_API bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                         const bg_render_settings *settings, bg_image *image);
+/* The same into a MACS texture of the renderer's context and the accumulation's size, on the GPU
+ * with nothing read back: RGBA8 encoded by the plans' GLSL encoding, a float format linear. The
+ * division and the sRGB curve are the GPU's, so a byte may differ from bg_accumulation_resolve's by
+ * the rounding of a value on a step's edge (measured: none on llvmpipe in tests/test_bg_gpu_accumulate.c). */
+BG_API bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                                    const bg_render_settings *settings, macs_texture *target);
+
 /* Kinds of GPU pass, counted in bg_render_stats. */
 typedef enum bg_pass_kind {
     BG_PASS_RAYS = 0,   /* camera ray maps */

@@ -26,15 +26,35 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
 bg_status bgi_gpu_tiles_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
                                const gpu_frame_out *out, const bgi_render_view *view);
 
+/* ---- accumulate.c ---- */
+/* An accumulation of width x height with no GPU objects yet (its textures are made at the first
+ * samples); NULL when out of memory. */
+bg_accumulation *bgi_gpu_accumulation_new(bg_renderer *r, int width, int height);
+/* Whether a is of width x height. */
+bool bgi_gpu_accumulation_fits(const bg_accumulation *a, int width, int height);
+/* Adds samples [first, first + count) of view's pattern (checked by the caller) to a: each one pass
+ * of the plan choice into a float texture, added on the GPU; progress after each but the pattern's
+ * last. A failure or a cancel leaves a as it was; untouched names the caller's output in the cancel
+ * message (NULL: the accumulation's own). Sums the statistics of the passes. */
+bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                                     const bg_render_settings *settings, const bgi_render_view *view,
+                                     bg_accumulation *a, int first, int count, const char *untouched);
+/* The sum of a (samples > 0) read back as float RGBA, rows top first. */
+bg_status bgi_gpu_accumulation_read(bg_renderer *r, const bg_accumulation *a, float *top_down);
+
 /* ---- samples.c ---- */
 /* The gpu_view of sample s of view: that one sample, and its camera shift (docs/shading.md 1.1). */
 void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out);
-/* A frame of view->samples > 1: one pass per sample into a float image on the host, summed there in
- * sample order and divided by the count, then encoded into out's image or uploaded into its
- * texture; progress after each pass, cancelling between passes leaves out untouched. */
+/* A frame of view->samples > 1: one pass per sample, summed on the GPU in sample order (accumulate.c),
+ * read back once, divided by the count and encoded into out's image or uploaded into its texture;
+ * progress after each pass, cancelling between passes leaves out untouched. */
 bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
                                  const bg_render_settings *settings, const gpu_frame_out *out,
                                  const bgi_render_view *view);
+/* The mean of samples summed into sum (float RGBA, rows top first), encoded into out's image or
+ * uploaded into its texture as bg_render_gpu's single pass would give it. */
+bg_status bgi_gpu_samples_write(bg_renderer *r, const bg_render_settings *settings, const gpu_frame_out *out,
+                                const float *sum, int samples);
 
 /* ---- plan.c ---- */
 /* One pass of the frame for r->view (one sample) by the plan the settings ask for, or under

@@ -71,6 +71,8 @@ bg_status bg_renderer_create(const bg_renderer_desc *desc, bg_renderer **out_ren
 void bgi_gpu_release_all(bg_renderer *r)
 {
     bgi_gpu_plans_release(r);
+    bg_accumulation_destroy(r->frame_sum);
+    r->frame_sum = NULL;
     bgi_gpu_meshes_release(r);
     bgi_gpu_scene_textures_release(r);
     bgi_free(&r->allocator, r->readback);

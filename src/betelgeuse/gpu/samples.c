@@ -1,9 +1,9 @@
 /* Several samples per pixel on the GPU (docs/shading.md 1.1): each sample is a whole frame pass of
- * whichever plan runs, its camera rays shifted by the sample's offset from the pixel centre, read
- * back as linear float and summed on the host in sample order, so the sum is deterministic and the
- * plans need no accumulation of their own. The tree plan's CPU pixels of a pass are that sample's
- * (bgi_cpu_render_texel renders r->view's one sample). The caller's image or texture is written
- * only after the last pass, so a cancelled or failed frame leaves it untouched. */
+ * whichever plan runs, its camera rays shifted by the sample's offset from the pixel centre, into a
+ * float texture, summed on the GPU in sample order (accumulate.c), so the sum is deterministic and the
+ * plans need no accumulation of their own, and read back once. The tree plan's CPU pixels of a pass
+ * are that sample's (bgi_cpu_render_texel renders r->view's one sample). The caller's image or texture
+ * is written only after the last pass, so a cancelled or failed frame leaves it untouched. */
 #include <string.h>
 
 #include "../common/alloc.h"
@@ -24,13 +24,19 @@ void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out)
     out->shift[1] = (float)((double)(view->frame_height - view->y0 - view->height) + (0.5 - py));
 }
 
-/* The average into the caller's image (rows top-down) or texture (rows bottom-up). */
-static bg_status write_out(bg_renderer *r, const bg_render_settings *settings, const gpu_frame_out *out,
-                           const float *sum, int samples, void *scratch)
+bg_status bgi_gpu_samples_write(bg_renderer *r, const bg_render_settings *settings, const gpu_frame_out *out,
+                                const float *sum, int samples)
 {
     int w = out->width, h = out->height;
     bool as_float = out->as_float;
     size_t texel = as_float ? 16 : 4;
+    void *scratch = NULL;
+    if (!out->image) {
+        scratch = bgi_alloc(&r->allocator, (size_t)w * (size_t)h * texel);
+        if (!scratch)
+            return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the averaged samples (%zu bytes)",
+                                (size_t)w * (size_t)h * texel);
+    }
     for (int y = 0; y < h; y++) {
         /* sum holds the frame's rows top-down, as the image read back has them. */
         const float *src = sum + (size_t)y * (size_t)w * 4;
@@ -53,6 +59,7 @@ static bg_status write_out(bg_renderer *r, const bg_render_settings *settings, c
     if (out->image)
         return BG_OK;
     macs_status ms = macs_texture_upload(out->texture, scratch, 0);
+    bgi_free(&r->allocator, scratch);
     return ms ? bgi_gpu_fail_macs(r, ms, "uploading the averaged samples") : BG_OK;
 }
 
@@ -61,46 +68,31 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg
                                  const bgi_render_view *view)
 {
     int w = out->width, h = out->height, n = view->samples;
-    size_t bytes = (size_t)w * (size_t)h * 16;
-    /* One pass's float image and the running sum; the sum's buffer later holds a texture's texels. */
-    float *pass = bgi_alloc(&r->allocator, bytes), *sum = bgi_alloc(&r->allocator, bytes);
-    void *scratch = out->texture ? bgi_alloc(&r->allocator, bytes) : NULL;
-    if (!pass || !sum || (out->texture && !scratch)) {
-        bgi_free(&r->allocator, pass);
-        bgi_free(&r->allocator, sum);
-        bgi_free(&r->allocator, scratch);
-        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %d samples (%zu bytes of host buffers)",
-                            n, 3 * bytes);
+    /* A sum of another size (the last tile of a tiled image is smaller) goes once the new one has
+     * made its add pass, which then takes the old one's program from MACS's cache. */
+    bg_accumulation *old = NULL;
+    if (r->frame_sum && !bgi_gpu_accumulation_fits(r->frame_sum, w, h)) {
+        old = r->frame_sum;
+        r->frame_sum = NULL;
     }
-    bg_image image = {w, h, BG_PIXEL_RGBA32F, (size_t)w * 16, pass};
-    gpu_frame_out one = {&image, image.stride, NULL, w, h, true};
-    bg_status st = BG_OK;
-    uint64_t fallback = 0;
-    int compiled = 0;
-    size_t floats = (size_t)w * (size_t)h * 4;
-    for (int s = 0; s < n && st == BG_OK; s++) {
-        bgi_gpu_view_for_sample(view, s, &r->view);
-        st = bgi_gpu_plan_render(r, scene, state, settings, &one);
-        if (st != BG_OK)
-            break;
-        fallback += r->stats.fallback_pixels;
-        compiled += r->stats.programs_compiled;
-        for (size_t i = 0; i < floats; i++)
-            sum[i] = s == 0 ? pass[i] : sum[i] + pass[i];
-        if (s + 1 < n && !bgi_render_progress(settings, (double)(s + 1) / n))
-            st = bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress after %d of %d sample passes; "
-                              "the pixels of this %s (of this tile, when tiled) are untouched", s + 1, n,
-                              out->image ? "image" : "texture");
+    if (!r->frame_sum)
+        r->frame_sum = bgi_gpu_accumulation_new(r, w, h);
+    bg_accumulation *a = r->frame_sum;
+    float *sum = bgi_alloc(&r->allocator, (size_t)w * (size_t)h * 16);
+    if (!a || !sum) {
+        bg_accumulation_destroy(old);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %d samples (%zu bytes of host buffer)", n,
+                            (size_t)w * (size_t)h * 16);
     }
-    if (st == BG_OK) {
-        r->stats.fallback_pixels = fallback;
-        r->stats.programs_compiled = compiled;
-        st = write_out(r, settings, out, sum, n, scratch);
-    }
+    bg_status st = bgi_gpu_accumulate_samples(r, scene, state, settings, view, a, 0, n,
+                                              out->image ? "image" : "texture");
+    if (st == BG_OK)
+        st = bgi_gpu_accumulation_read(r, a, sum);
+    if (st == BG_OK)
+        st = bgi_gpu_samples_write(r, settings, out, sum, n);
     if (st == BG_OK)
         bgi_render_progress(settings, 1.0);
-    bgi_free(&r->allocator, pass);
+    bg_accumulation_destroy(old);
     bgi_free(&r->allocator, sum);
-    bgi_free(&r->allocator, scratch);
     return st;
 }

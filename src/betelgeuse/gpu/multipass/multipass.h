@@ -112,6 +112,8 @@ typedef struct gpu_multipass {
     macs_texture *white;     /* 1x1 white, NEAREST: the texture lane of an untextured parameter */
     gpu_passes passes;
     gpu_passes retired; /* the previous scene's, alive while passes are built (bgi_gpu_passes_retire) */
+    macs_pass *resolve_float_retired; /* the previous float resolve, alive until the next is built:
+                                         that one is made at a texture frame's end, after the rest */
     gpu_marks marks;    /* of a texture frame's short mesh walks (shared/fallback.c) */
 } gpu_multipass;
 

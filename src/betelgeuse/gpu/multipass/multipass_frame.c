@@ -351,8 +351,11 @@ static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
     macs_texture *target = o->texture ? o->texture : r->multipass->encoded;
     bg_status st = BG_OK;
     if (o->texture && o->as_float) {
-        if (!r->multipass->passes.resolve_float)
+        if (!r->multipass->passes.resolve_float) {
             st = bgi_gpu_resolve_float_pass_build(r, target);
+            macs_pass_destroy(r->multipass->resolve_float_retired);
+            r->multipass->resolve_float_retired = NULL;
+        }
         resolve = r->multipass->passes.resolve_float;
     }
     if (st != BG_OK)
@@ -535,6 +538,7 @@ void bgi_gpu_multipass_release(bg_renderer *r)
     if (!m)
         return;
     bgi_gpu_passes_release(r);
+    macs_pass_destroy(m->resolve_float_retired);
     bgi_gpu_targets_release(r);
     macs_texture_destroy(m->white);
     bgi_gpu_marks_release(&m->marks);

@@ -271,5 +271,13 @@ void bgi_gpu_passes_retire(bg_renderer *r)
 
 void bgi_gpu_passes_release_retired(bg_renderer *r)
 {
+    /* The float resolve is built lazily at a texture frame's end (multipass_frame.c), after this:
+     * its old pass stays until then, so that MACS's program cache hands its program over and a
+     * camera move compiles nothing there either. */
+    if (r->multipass->retired.resolve_float) {
+        macs_pass_destroy(r->multipass->resolve_float_retired);
+        r->multipass->resolve_float_retired = r->multipass->retired.resolve_float;
+        r->multipass->retired.resolve_float = NULL;
+    }
     release(r, &r->multipass->retired);
 }

@@ -93,6 +93,9 @@ struct bg_renderer {
     gpu_view view; /* of the pass being rendered (the driver sets it) */
 
     gpu_meshes meshes;                 /* meshes.c: both plans read it; the driver frees it */
+    struct bg_accumulation *frame_sum; /* the sum of bg_render_gpu's multi-sample frames (samples.c),
+                                          kept between frames with its add pass, so that the pass's
+                                          program stays in MACS's cache; NULL until one */
     gpu_scene_textures scene_textures; /* scene_textures.c: likewise */
 
     /* Each plan's own objects, NULL until the plan first runs; each plan frees only its own. */

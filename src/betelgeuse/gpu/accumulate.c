@@ -1,0 +1,346 @@
+/* Progressive accumulation on the GPU (docs/gpu_pipeline.md, "Accumulation"): a frame's running sum
+ * of samples in RGBA32F textures, each sample one pass of whichever plan runs into a float texture
+ * and then added by a MACS pass, sum_new = sum_old + sample, ping-ponging between textures (a pass
+ * may not read its own output, and float blending is not in GL 2.1). The adds are the same float
+ * additions in the same order as the host's sum of bg_render_gpu before it, so the sum is bit for bit
+ * that sum (IEEE single precision, round to nearest, on every GL that honours GLSL's float; llvmpipe
+ * does). samples.c renders bg_render_gpu's multi-sample frames through this too, with one read-back
+ * at the end instead of one per sample.
+ *
+ * A call that fails or is cancelled leaves the sum and its count as they were: the samples of a call
+ * go into the two textures that do not hold the sum, and only a finished call makes its last one the
+ * sum. */
+#include <string.h>
+
+#include "../common/alloc.h"
+#include "../common/render_settings.h"
+#include "driver.h"
+
+#define FN_ACCUMULATE "bg_render_gpu_accumulate"
+
+struct bg_accumulation {
+    bg_renderer *renderer;
+    bg_allocator allocator; /* the renderer's, kept for destroy */
+    int width, height;
+    int pattern;            /* settings.samples of the samples in the sum: the pattern they belong to */
+    int samples;            /* samples in the sum */
+    int current;            /* sum[current] is the sum when samples > 0 */
+    macs_texture *sum[3];   /* the third only once samples are added to an existing sum */
+    macs_texture *sample;   /* one sample's radiance */
+    macs_pass *add;
+    macs_pass *resolve;     /* into a texture of resolve_format */
+    macs_format resolve_format;
+};
+
+bool bgi_gpu_accumulation_fits(const bg_accumulation *a, int width, int height)
+{
+    return a->width == width && a->height == height;
+}
+
+bg_accumulation *bgi_gpu_accumulation_new(bg_renderer *r, int width, int height)
+{
+    bg_accumulation *a = bgi_alloc(&r->allocator, sizeof *a);
+    if (!a)
+        return NULL;
+    memset(a, 0, sizeof *a);
+    a->renderer = r;
+    a->allocator = r->allocator;
+    a->width = width;
+    a->height = height;
+    return a;
+}
+
+void bg_accumulation_destroy(bg_accumulation *a)
+{
+    if (!a)
+        return;
+    for (int i = 0; i < 3; i++)
+        macs_texture_destroy(a->sum[i]);
+    macs_texture_destroy(a->sample);
+    macs_pass_destroy(a->add);
+    macs_pass_destroy(a->resolve);
+    bg_allocator allocator = a->allocator;
+    bgi_free(&allocator, a);
+}
+
+bg_status bg_accumulation_create(bg_renderer *renderer, int width, int height, bg_accumulation **out)
+{
+    bg_renderer *r = renderer;
+    if (!r)
+        return BG_ERR_INVALID_ARGUMENT;
+    r->entry = "bg_accumulation_create";
+    if (!out)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "out is NULL");
+    *out = NULL;
+    if (width < 1 || height < 1 || width > BG_MAX_IMAGE_SIDE || height > BG_MAX_IMAGE_SIDE)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "size %dx%d is outside [1, %d] per side", width, height,
+                            BG_MAX_IMAGE_SIDE);
+    int max = r->limits.max_texture_size;
+    if (width > max || height > max)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "size %dx%d exceeds the GL texture size limit %d", width, height, max);
+    *out = bgi_gpu_accumulation_new(r, width, height);
+    return *out ? BG_OK : bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the accumulation");
+}
+
+int bg_accumulation_samples(const bg_accumulation *a)
+{
+    return a ? a->samples : 0;
+}
+
+/* The add pass: sum_new = sum_old + sample, or the sample alone for the first one (bg_first), as the
+ * host sum began. Its inputs and output are bound at each run. */
+static bg_status add_prepare(bg_renderer *r, bg_accumulation *a, int out_index)
+{
+    if (a->add)
+        return BG_OK;
+    macs_input_desc in[2] = {{"bg_sum"}, {"bg_sample"}};
+    macs_uniform_desc u[1] = {{"bg_first", MACS_UNIFORM_BOOL, 0}};
+    macs_output_desc o[1] = {{"sum", "bg_first ? texture2D(bg_sample, macs_uv) : "
+                                     "texture2D(bg_sum, macs_uv) + texture2D(bg_sample, macs_uv)"}};
+    macs_texture *outs[1] = {a->sum[out_index]};
+    macs_pass_desc d;
+    bgi_gpu_pass_desc_init(&d, NULL, in, NULL, 2, u, 1, o, outs, 1);
+    return bgi_gpu_pass_create(r, "accumulation add pass", NULL, NULL, &d, &a->add);
+}
+
+static bg_status add_run(bg_renderer *r, bg_accumulation *a, int from, int to)
+{
+    int first = from < 0;
+    /* The last run's input may be this run's output: unbind it first, as MACS refuses a texture as both. */
+    macs_status ms = macs_pass_set_input(a->add, 0, NULL);
+    if (!ms)
+        ms = macs_pass_set_output(a->add, 0, a->sum[to]);
+    if (!ms)
+        ms = macs_pass_set_input(a->add, 0, a->sum[first ? (to == 0 ? 1 : 0) : from]);
+    if (!ms)
+        ms = macs_pass_set_input(a->add, 1, a->sample);
+    if (!ms)
+        ms = macs_pass_set_uniform(a->add, "bg_first", &first);
+    if (!ms)
+        ms = macs_pass_run(a->add, NULL);
+    return ms ? bgi_gpu_fail_macs(r, ms, "the accumulation's add pass") : BG_OK;
+}
+
+bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
+                                     const bg_render_settings *settings, const bgi_render_view *view,
+                                     bg_accumulation *a, int first, int count, const char *untouched)
+{
+    int n = view->samples;
+    /* The call's samples go into the textures that do not hold the sum, so that a failure or a cancel
+     * leaves it: two of them when starting afresh, the other two of three when adding to a sum. */
+    int keep = first > 0 ? a->current : -1;
+    int work[2], k = 0;
+    for (int i = 0; i < 3 && k < 2; i++)
+        if (i != keep)
+            work[k++] = i;
+    bg_status st = BG_OK;
+    for (int i = 0; i < 2 && st == BG_OK; i++)
+        st = bgi_gpu_texture_ensure(r, a->width, a->height, MACS_FORMAT_RGBA32F, &a->sum[work[i]],
+                                    "accumulation sum texture");
+    if (st == BG_OK)
+        st = bgi_gpu_texture_ensure(r, a->width, a->height, MACS_FORMAT_RGBA32F, &a->sample, "accumulation sample texture");
+    if (st == BG_OK)
+        st = add_prepare(r, a, work[0]);
+    gpu_frame_out one = {NULL, 0, a->sample, a->width, a->height, true};
+    uint64_t fallback = 0;
+    int compiled = 0, from = keep, to = -1;
+    for (int i = 0; i < count && st == BG_OK; i++) {
+        int s = first + i;
+        bgi_gpu_view_for_sample(view, s, &r->view);
+        st = bgi_gpu_plan_render(r, scene, state, settings, &one);
+        if (st != BG_OK)
+            break;
+        fallback += r->stats.fallback_pixels;
+        compiled += r->stats.programs_compiled;
+        to = work[i % 2];
+        st = add_run(r, a, from, to);
+        from = to;
+        if (st == BG_OK && s + 1 < n && !bgi_render_progress(settings, (double)(s + 1) / n))
+            st = untouched ? bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress after %d of %d sample "
+                                          "passes; the pixels of this %s (of this tile, when tiled) are untouched",
+                                          s + 1, n, untouched)
+                           : bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress after %d of the %d "
+                                          "samples of this call; the accumulation keeps its %d samples", i + 1,
+                                          count, a->samples);
+    }
+    if (st != BG_OK)
+        return st;
+    r->stats.fallback_pixels = fallback;
+    r->stats.programs_compiled = compiled;
+    a->current = to;
+    a->samples = first + count;
+    a->pattern = n;
+    return BG_OK;
+}
+
+bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                                   bg_accumulation *accumulation, int first, int count)
+{
+    bg_renderer *r = renderer;
+    bg_accumulation *a = accumulation;
+    if (!r)
+        return BG_ERR_INVALID_ARGUMENT;
+    r->entry = FN_ACCUMULATE;
+    if (!scene || !settings || !a)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "%s is NULL",
+                            !scene ? "scene" : !settings ? "settings" : "accumulation");
+    if (a->renderer != r)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "accumulation was made by another renderer");
+    char message[256];
+    bg_status st = bgi_render_settings_check(settings, FN_ACCUMULATE, message, sizeof message);
+    if (st != BG_OK)
+        return bgi_gpu_fail_checked(r, st, message);
+    bgi_render_view view;
+    st = bgi_render_view_make(settings, a->width, a->height, FN_ACCUMULATE, &view, message, sizeof message);
+    if (st != BG_OK)
+        return bgi_gpu_fail_checked(r, st, message);
+    int n = view.samples;
+    if (count < 1 || first < 0 || first > n - count)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "samples [first, first + count) = [%d, %d) are not within "
+                            "the %d of settings.samples", first, first + count, n);
+    if (first > 0 && first != a->samples)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "first = %d, but the accumulation holds %d samples (0 starts "
+                            "over)", first, a->samples);
+    if (first > 0 && n != a->pattern)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "settings.samples = %d, but the accumulation's samples are "
+                            "of the pattern of %d (first = 0 starts over)", n, a->pattern);
+    const bg_scene_state *state = bgi_scene_committed(scene);
+    if (!state)
+        return bgi_gpu_fail(r, BG_ERR_NOT_COMMITTED, "the scene was never committed");
+    if (!bgi_render_progress(settings, (double)first / n))
+        return bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress before the first pass; the "
+                            "accumulation keeps its %d samples", a->samples);
+    st = bgi_gpu_accumulate_samples(r, scene, state, settings, &view, a, first, count, NULL);
+    if (st == BG_OK)
+        bgi_render_progress(settings, (double)(first + count) / n);
+    return st;
+}
+
+bg_status bgi_gpu_accumulation_read(bg_renderer *r, const bg_accumulation *a, float *top_down)
+{
+    size_t row = (size_t)a->width * 4;
+    macs_status ms = macs_texture_read(a->sum[a->current], top_down, 0);
+    if (ms)
+        return bgi_gpu_fail_macs(r, ms, "reading the accumulation back");
+    /* The texture's rows come bottom first: turn them over in place. */
+    for (int y = 0; y < a->height / 2; y++) {
+        float *p = top_down + (size_t)y * row, *q = top_down + (size_t)(a->height - 1 - y) * row;
+        for (size_t i = 0; i < row; i++) {
+            float t = p[i];
+            p[i] = q[i];
+            q[i] = t;
+        }
+    }
+    return BG_OK;
+}
+
+/* The checks both resolves share. */
+static bg_status resolve_check(bg_renderer *r, const bg_accumulation *a, const bg_render_settings *settings, int w,
+                               int h, const char *what)
+{
+    if (!settings || !a)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "%s is NULL", !a ? "accumulation" : "settings");
+    if (a->renderer != r)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "accumulation was made by another renderer");
+    if (a->samples == 0)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "the accumulation holds no samples yet");
+    if (w != a->width || h != a->height)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "%s is %dx%d, the accumulation %dx%d", what, w, h, a->width,
+                            a->height);
+    char message[256];
+    bg_status st = bgi_render_settings_check(settings, r->entry, message, sizeof message);
+    return st != BG_OK ? bgi_gpu_fail_checked(r, st, message) : BG_OK;
+}
+
+bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                  const bg_render_settings *settings, bg_image *image)
+{
+    bg_renderer *r = renderer;
+    const bg_accumulation *a = accumulation;
+    if (!r)
+        return BG_ERR_INVALID_ARGUMENT;
+    r->entry = "bg_accumulation_resolve";
+    if (!image || !image->pixels)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "image%s is NULL", image ? "->pixels" : "");
+    if (image->format != BG_PIXEL_RGBA8 && image->format != BG_PIXEL_RGBA32F)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "image->format = %d is not BG_PIXEL_RGBA8 or BG_PIXEL_RGBA32F",
+                            (int)image->format);
+    bg_status st = resolve_check(r, a, settings, image->width, image->height, "image");
+    if (st != BG_OK)
+        return st;
+    bool as_float = image->format == BG_PIXEL_RGBA32F;
+    size_t min_stride = (size_t)image->width * (as_float ? 16 : 4);
+    size_t stride = image->stride ? image->stride : min_stride;
+    if (stride < min_stride)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "image->stride = %zu is below a row's %zu bytes", stride,
+                            min_stride);
+    float *sum = bgi_alloc(&r->allocator, (size_t)a->width * a->height * 16);
+    if (!sum)
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory reading the accumulation back");
+    st = bgi_gpu_accumulation_read(r, a, sum);
+    gpu_frame_out out = {image, stride, NULL, image->width, image->height, as_float};
+    if (st == BG_OK)
+        st = bgi_gpu_samples_write(r, settings, &out, sum, a->samples);
+    bgi_free(&r->allocator, sum);
+    return st;
+}
+
+/* The resolve pass into a target of format: the mean, encoded as the settings say into RGBA8 (the
+ * plans' own bg_encode), or linear into a float target. */
+static bg_status resolve_prepare(bg_renderer *r, bg_accumulation *a, macs_texture *target)
+{
+    macs_format format = macs_texture_format(target);
+    if (a->resolve && a->resolve_format == format)
+        return macs_pass_set_output(a->resolve, 0, target) ? bgi_gpu_fail_macs(r, macs_context_error(r->ctx), "the "
+                                                                               "accumulation's resolve pass")
+                                                           : BG_OK;
+    macs_pass_destroy(a->resolve);
+    a->resolve = NULL;
+    macs_input_desc in[1] = {{"bg_sum"}};
+    macs_uniform_desc u[2] = {{"bg_count", MACS_UNIFORM_FLOAT, 0}, {"bg_srgb", MACS_UNIFORM_BOOL, 0}};
+    macs_output_desc o[1] = {{"resolved", format == MACS_FORMAT_RGBA8
+                                              ? "vec4(bg_encode(texture2D(bg_sum, macs_uv).rgb / bg_count, bg_srgb), 1.0)"
+                                              : "vec4(texture2D(bg_sum, macs_uv).rgb / bg_count, 1.0)"}};
+    macs_texture *outs[1] = {target};
+    macs_pass_desc d;
+    bgi_gpu_pass_desc_init(&d, NULL, in, NULL, 1, u, 2, o, outs, 1);
+    const char *files[] = {"bg_stage_resolve.glsl", NULL};
+    bg_status st = bgi_gpu_pass_create(r, "accumulation resolve pass", files, NULL, &d, &a->resolve);
+    if (st == BG_OK)
+        a->resolve_format = format;
+    return st;
+}
+
+bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                             const bg_render_settings *settings, macs_texture *target)
+{
+    bg_renderer *r = renderer;
+    if (!r)
+        return BG_ERR_INVALID_ARGUMENT;
+    r->entry = "bg_accumulation_resolve_to_texture";
+    if (!target)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "target is NULL");
+    if (macs_texture_context(target) != r->ctx)
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT,
+                            "target belongs to another macs_context than the renderer's (bg_renderer_desc.context)");
+    int w = 0, h = 0;
+    macs_texture_size(target, &w, &h);
+    bg_status st = resolve_check(r, accumulation, settings, w, h, "target");
+    if (st != BG_OK)
+        return st;
+    /* The resolve pass is the accumulation's own GPU object, not part of its value. */
+    bg_accumulation *a = (bg_accumulation *)accumulation;
+    st = resolve_prepare(r, a, target);
+    if (st != BG_OK)
+        return st;
+    float count = (float)a->samples;
+    int srgb = settings->encoding == BG_ENCODING_SRGB;
+    macs_status ms = macs_pass_set_input(a->resolve, 0, a->sum[a->current]);
+    if (!ms)
+        ms = macs_pass_set_uniform(a->resolve, "bg_count", &count);
+    if (!ms)
+        ms = macs_pass_set_uniform(a->resolve, "bg_srgb", &srgb);
+    if (!ms)
+        ms = macs_pass_run(a->resolve, NULL);
+    return ms ? bgi_gpu_fail_macs(r, ms, "the accumulation's resolve pass") : BG_OK;
+}
