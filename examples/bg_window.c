@@ -12,9 +12,9 @@
  *   out.png     where --frames saves the last frame
  *   size        the window's width and height in pixels, 1..4096, default 256
  *
- * Progressive: each frame renders more samples per pixel than the last (1, 2, 4, ... up to 16), so the
- * picture appears at once and then sharpens; at 16 the loop stops rendering and only waits for events.
- * (The library's coming progressive API adds samples to a running sum instead of starting over.)
+ * Progressive: each frame adds one sample per pixel to a running sum on the GPU (bg_accumulation) and
+ * draws its mean, so the picture appears at once and then sharpens; at 16 samples the frame is
+ * bg_render_gpu's at samples = 16, bit for bit, and the loop stops rendering and only waits for events.
  */
 #include <stdbool.h>
 #include <stdio.h>
@@ -49,8 +49,8 @@ static int parse_command_line(int argc, char **argv, int *frames, const char **p
         const char *arg = argv[i];
         if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
             printf("usage: " NAME " [--frames N] [out.png [size]]\n"
-                   "Ray traces a sphere over a plane into a GPU texture and shows it in a window, more samples\n"
-                   "per pixel each frame (1, 2, 4, ... %d).\n"
+                   "Ray traces a sphere over a plane into a GPU texture and shows it in a window, one more sample\n"
+                   "per pixel each frame, up to %d.\n"
                    "\n"
                    "  --frames N  draw N frames, save out.png when given, and exit\n"
                    "  out.png     where --frames saves the last frame\n"
@@ -200,6 +200,7 @@ int main(int argc, char **argv)
     bg_renderer *renderer = NULL;
     bg_scene *scene = NULL;
     macs_texture *frame = NULL;
+    bg_accumulation *sum = NULL;
     macs_context_desc cd = {0};
     cd.get_proc_address = glfw_proc;
     bg_renderer_desc rd = {0};
@@ -216,17 +217,21 @@ int main(int argc, char **argv)
                 scene ? bg_scene_error_message(scene) : "");
     } else if (macs_texture_create(context, &td, &frame) != MACS_OK) {
         fprintf(stderr, NAME ": the frame's texture: %s\n", macs_context_error_message(context));
+    } else if (bg_accumulation_create(renderer, size, size, &sum) != BG_OK) {
+        fprintf(stderr, NAME ": the accumulation: %s\n", bg_renderer_error_message(renderer));
     } else {
-        /* The loop: render with more samples while there are more to take, draw, swap; once the frame
-         * has them all, sleep until an event instead of spending the CPU on the same picture. */
+        /* The loop: add a sample of the 16-sample pattern while there are more to take, draw the mean,
+         * swap; once the sum has them all, sleep until an event instead of drawing the same picture. */
         bg_render_settings settings = bg_render_settings_init();
         settings.frame_width = settings.frame_height = size;
-        settings.samples = 0;
+        settings.samples = MAX_SAMPLES;
         status = 0;
         for (int drawn = 0; !glfwWindowShouldClose(window) && (frames == 0 || drawn < frames); drawn++) {
-            if (settings.samples < MAX_SAMPLES) {
-                settings.samples = settings.samples ? 2 * settings.samples : 1;
-                st = bg_render_gpu_to_texture(renderer, scene, &settings, frame);
+            int done = bg_accumulation_samples(sum);
+            if (done < MAX_SAMPLES) {
+                st = bg_render_gpu_accumulate(renderer, scene, &settings, sum, done, 1);
+                if (st == BG_OK)
+                    st = bg_accumulation_resolve_to_texture(renderer, sum, &settings, frame);
                 if (st != BG_OK) {
                     fprintf(stderr, NAME ": render: %s\n", bg_renderer_error_message(renderer));
                     status = 1;
@@ -256,7 +261,7 @@ int main(int argc, char **argv)
                     fprintf(stderr, NAME ": %s\n", message);
                     status = 1;
                 } else {
-                    printf(NAME ": %d samples per pixel, saved to %s\n", settings.samples, path);
+                    printf(NAME ": %d samples per pixel, saved to %s\n", bg_accumulation_samples(sum), path);
                 }
             }
             free(rows);
@@ -265,6 +270,7 @@ int main(int argc, char **argv)
     }
 
     /* Released in reverse order; the renderer before the MACS context that holds its GPU objects. */
+    bg_accumulation_destroy(sum);
     macs_texture_destroy(frame);
     bg_scene_destroy(scene);
     bg_renderer_destroy(renderer);

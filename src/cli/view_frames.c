@@ -1,4 +1,5 @@
-/* The viewer's frames (view_frames.h), on bg_render_gpu_to_texture until bg_accumulation lands. */
+/* The viewer's frames (view_frames.h): moving, bg_render_gpu_to_texture at one sample; at rest,
+ * bg_render_gpu_accumulate a sample at a time and bg_accumulation_resolve_to_texture. */
 #include "view_frames.h"
 
 #include <stdlib.h>
@@ -40,15 +41,26 @@ bg_status view_frames_moving(view_frames *f, bg_scene *scene, const bg_render_se
 
 bg_status view_frames_rest(view_frames *f, bg_scene *scene, const bg_render_settings *settings)
 {
-    bg_status st = sized_texture(f->context, &f->full, settings->frame_width, settings->frame_height);
+    int w = settings->frame_width, h = settings->frame_height;
+    bg_status st = sized_texture(f->context, &f->full, w, h);
     if (st != BG_OK)
         return st;
-    /* The seam: a one-sample picture first, then the N samples at once. */
-    bg_render_settings step = *settings;
-    step.samples = f->samples == 0 ? 1 : settings->samples;
-    st = bg_render_gpu_to_texture(f->renderer, scene, &step, f->full);
+    if (!f->sum || f->sum_width != w || f->sum_height != h) {
+        bg_accumulation_destroy(f->sum);
+        f->sum = NULL;
+        f->samples = 0;
+        st = bg_accumulation_create(f->renderer, w, h, &f->sum);
+        if (st != BG_OK)
+            return st;
+        f->sum_width = w;
+        f->sum_height = h;
+    }
+    /* One sample a step: the first shows at once, and each later one refines what is shown. */
+    st = bg_render_gpu_accumulate(f->renderer, scene, settings, f->sum, f->samples, 1);
+    if (st == BG_OK)
+        st = bg_accumulation_resolve_to_texture(f->renderer, f->sum, settings, f->full);
     if (st == BG_OK) {
-        f->samples = step.samples;
+        f->samples = bg_accumulation_samples(f->sum);
         f->shown = f->full;
     }
     return st;
@@ -82,6 +94,8 @@ bool view_frames_read(view_frames *f, bg_image *image)
 
 void view_frames_free(view_frames *f)
 {
+    bg_accumulation_destroy(f->sum);
+    f->sum = NULL;
     macs_texture_destroy(f->full);
     macs_texture_destroy(f->reduced);
     f->full = f->reduced = f->shown = NULL;

@@ -2,9 +2,9 @@
  * renderer wrote, never an image that went through the host. Moving, a frame is one sample at a
  * reduced size; at rest, the full-size frame gathers samples until it holds the N the viewer wants.
  *
- * This file is the one seam between the viewer and the progressive API (bg_accumulation, coming to
- * the library): until it lands, rest is two renders with bg_render_gpu_to_texture, one sample first
- * (a quick full-size picture) and then all N in one call, which gives render's bytes exactly. */
+ * At rest each step adds one sample of the pattern of N to a bg_accumulation on the GPU and resolves
+ * the mean into the full texture, nothing read back; after N samples the frame is render's
+ * --samples N bit for bit (the library's promise, docs/gpu_pipeline.md "Accumulation"). */
 #ifndef CLI_VIEW_FRAMES_H
 #define CLI_VIEW_FRAMES_H
 
@@ -19,6 +19,8 @@ typedef struct view_frames {
     macs_texture *full;    /* the full-size frame, RGBA8 in the settings' encoding */
     macs_texture *reduced; /* the last moving frame's, at its reduced size */
     macs_texture *shown;   /* the one of the two the window shows (NULL: nothing yet) */
+    bg_accumulation *sum;  /* the full frame's samples so far */
+    int sum_width, sum_height;
     int samples;           /* samples the full frame holds (0: none, it restarts) */
 } view_frames;
 
