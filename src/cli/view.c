@@ -112,13 +112,13 @@ static void render_frame(viewer *v, view_display *d, bool moving)
     if (moving) {
         v->frames_moving++;
         view_times_add(&v->moving_times, ms, v->divisor);
-        v->divisor = view_resolution_next(v->divisor, ms, v->target_ms);
+        v->divisor = view_resolution_next(&v->resolution, v->divisor, ms, v->target_ms);
     } else {
         v->frames_rest++;
         /* A one-sample full frame tells what a moving frame would cost: the first moving frame
          * after a rest starts at the divisor it suggests. */
         if (v->frames.samples == 1)
-            v->divisor = view_resolution_next(1, ms, v->target_ms);
+            v->divisor = view_resolution_next(&v->resolution, 1, ms, v->target_ms);
         if (v->frames.samples >= v->samples)
             v->rest_reached = cli_now();
     }

@@ -13,6 +13,7 @@
 #include "inputs.h"
 #include "options.h"
 #include "view_frames.h"
+#include "view_resolution.h"
 #include "view_watch.h"
 
 /* The viewer counts a frame as moving while an input came in the last MOVING_SECONDS. */
@@ -68,6 +69,7 @@ typedef struct viewer {
     /* What the loop does next. */
     double last_input;     /* when the last action came (seconds, cli_now) */
     int divisor;           /* the moving frames' resolution (view_resolution.h) */
+    view_resolution resolution; /* what the rule has measured */
     bool quit;
     bool screenshot_wanted;
     char screenshot_path[1024]; /* "" for the next numbered one */
