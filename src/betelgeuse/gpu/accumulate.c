@@ -290,10 +290,10 @@ bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *
 static bg_status resolve_prepare(bg_renderer *r, bg_accumulation *a, macs_texture *target)
 {
     macs_format format = macs_texture_format(target);
-    if (a->resolve && a->resolve_format == format)
-        return macs_pass_set_output(a->resolve, 0, target) ? bgi_gpu_fail_macs(r, macs_context_error(r->ctx), "the "
-                                                                               "accumulation's resolve pass")
-                                                           : BG_OK;
+    if (a->resolve && a->resolve_format == format) {
+        macs_status ms = macs_pass_set_output(a->resolve, 0, target);
+        return ms ? bgi_gpu_fail_macs(r, ms, "binding the accumulation's resolve target") : BG_OK;
+    }
     macs_pass_destroy(a->resolve);
     a->resolve = NULL;
     macs_input_desc in[1] = {{"bg_sum"}};
