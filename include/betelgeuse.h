@@ -153,13 +153,22 @@ BG_API const char *bg_scene_error_message(const bg_scene *scene);
 /* Forgets the stored error. */
 BG_API void bg_scene_clear_error(bg_scene *scene);
 
-/* Pinhole camera. Defaults (bg_camera_init): at (0, 0, 5) looking at the origin, up (0, 1, 0),
- * vertical field of view 45 degrees. The aspect ratio comes from the image size. */
+/* The camera: a pinhole, or a thin lens for depth of field (docs/shading.md 1.4). Defaults
+ * (bg_camera_init): at (0, 0, 5) looking at the origin, up (0, 1, 0), vertical field of view 45
+ * degrees, a pinhole. The aspect ratio comes from the image size. A lens of aperture_radius > 0 sits
+ * at position, across the view; each camera sample passes through its own point of the lens
+ * (stratified and scrambled, docs/shading.md 1.3) towards where the pinhole ray meets the plane in
+ * focus, focus_distance ahead along the view direction, so points on that plane stay sharp and the
+ * others blur into discs (the thin-lens circle of confusion). The blur converges as samples add up:
+ * settings.samples, or an accumulation. */
 typedef struct bg_camera {
     bg_vec3 position;
     bg_vec3 look_at;
     bg_vec3 up;
-    double fov_y_degrees; /* in (0, 180) */
+    double fov_y_degrees;   /* in (0, 180) */
+    double aperture_radius; /* the lens radius in world units, finite and >= 0; 0 = the pinhole, the
+                               image of a camera without a lens bit for bit */
+    double focus_distance;  /* finite and >= 0; 0 = |look_at - position| (the plane through look_at) */
 } bg_camera;
 
 /* The default camera described above. */
@@ -389,21 +398,45 @@ BG_API bg_status bg_scene_remove_object(bg_scene *scene, uint32_t object);
 
 /* ---- lights -------------------------------------------------------------------------------- */
 
-typedef enum bg_light_type { BG_LIGHT_POINT = 0, BG_LIGHT_DIRECTIONAL, BG_LIGHT_TYPE_COUNT_ } bg_light_type;
+/* The kinds of light (docs/shading.md 7). The area lights (sphere and rectangle) cast soft shadows:
+ * each camera sample lights a point with one point of the light's shape, chosen for that pixel and
+ * sample by a stratified, scrambled pattern (docs/shading.md 1.3), so n samples send n distinct
+ * shadow rays to each area light and the penumbra converges as samples add up. The shapes light the
+ * scene but are not drawn: to see the light, add an emissive object of the same shape that casts no
+ * shadow. */
+typedef enum bg_light_type {
+    BG_LIGHT_POINT = 0,
+    BG_LIGHT_DIRECTIONAL,
+    BG_LIGHT_SPHERE,    /* a ball of the given radius about position; each sample is a point light
+                           on the part of the sphere seen from the lit point, uniform in the solid
+                           angle it covers there. Radius 0 is BG_LIGHT_POINT, bit for bit */
+    BG_LIGHT_RECTANGLE, /* the parallelogram position + a edge_u + b edge_v, a and b in [0, 1],
+                           shining from its front, the side edge_u x edge_v points to; each sample is
+                           a point light on it, uniform in area, whose radiance is scaled by the cosine
+                           between that normal and the direction to the lit point (a Lambertian panel;
+                           with attenuation (0, 0, 1) exactly an emitter of radiance
+                           color * intensity / area). No spot cone */
+    BG_LIGHT_TYPE_COUNT_
+} bg_light_type;
 
 /* Defaults (bg_light_init): a white point light of intensity 1 at (0, 0, 0), attenuation
- * (1, 0, 0) (none), no spot cone (spot_cutoff_degrees 180). Radiance arriving from a point light
+ * (1, 0, 0) (none), no spot cone (spot_cutoff_degrees 180), radius 0, edges (1, 0, 0) and
+ * (0, 0, 1) (a unit square facing down, for a rectangle). Radiance arriving from a point light
  * is color * intensity * spot / (constant + linear d + quadratic d^2); a directional light has
- * no attenuation and shines along direction. */
+ * no attenuation and shines along direction; an area light's sample is a point light at the
+ * sample point (the distance d and the spot factor taken from there). */
 typedef struct bg_light {
     bg_light_type type;
-    bg_vec3 position;   /* point lights */
+    bg_vec3 position;   /* point lights; a sphere light's centre; a rectangle light's corner */
     bg_vec3 direction;  /* directional lights, and the axis of a spot cone; non-zero where used */
     double color[3];
     double intensity;
     double attenuation[3];       /* constant, linear, quadratic; >= 0, not all 0 */
-    double spot_cutoff_degrees;  /* (0, 90], or 180 for no cone */
+    double spot_cutoff_degrees;  /* (0, 90], or 180 for no cone (rectangle lights: 180) */
     double spot_exponent;        /* >= 0 */
+    double radius;               /* sphere lights: finite, in [0, 1e100] */
+    bg_vec3 edge_u, edge_v;      /* rectangle lights: finite, not parallel (|edge_u x edge_v| at
+                                    least 1e-12 |edge_u| |edge_v|) */
 } bg_light;
 
 /* The default light described above. */

@@ -71,7 +71,7 @@ static void centre_ray(bg_scene *scene, const bg_render_settings *settings, doub
     assert_non_null(st);
     double o[3], d[3];
     bgi_cpu_primary_ray(&st->camera, 3, 3, 1, 1, o, d);
-    bgi_cpu_shade_ray(st, settings, o, d, rgb);
+    bgi_cpu_shade_ray(st, settings, NULL, o, d, rgb);
 }
 
 /* Camera at (0, 0, 5) facing a unit sphere at the origin; one point light at the camera. */
@@ -211,13 +211,13 @@ static void test_shadow_ambient_only(void **state)
     bg_render_settings s = bg_render_settings_init();
     double o[3] = {0, -1.5, 5}, d[3] = {0, -0.5, -5}, rgb[3];
     bg_v3_normalize(d);
-    bgi_cpu_shade_ray(st, &s, o, d, rgb);
+    bgi_cpu_shade_ray(st, &s, NULL, o, d, rgb);
     rel_near(rgb[0], 0.1, 1e-12);
     rel_near(rgb[1], 0.15, 1e-12);
     rel_near(rgb[2], 0.2, 1e-12);
     /* control: a point on the plane away from the shadow is lit */
     double o2[3] = {6, -1.5, 5}, rgb2[3];
-    bgi_cpu_shade_ray(st, &s, o2, d, rgb2);
+    bgi_cpu_shade_ray(st, &s, NULL, o2, d, rgb2);
     assert_true(rgb2[0] > 0.1 + 1e-3);
     bg_scene_destroy(scene);
 }

@@ -56,7 +56,7 @@ bg_status bgi_render_view_make(const bg_render_settings *settings, int width, in
 
 /* rows = the largest divisor of n not above sqrt(n), columns = n / rows: every cell has area 1 / n,
  * so equal weights are the box filter's integral by the midpoint rule of each cell. */
-static int pattern_rows(int n)
+int bgi_sample_rows(int n)
 {
     int rows = 1;
     for (int k = 1; k * k <= n; k++)
@@ -76,7 +76,7 @@ static double cell_centre(int i, int cells)
 void bgi_sample_position(int samples, int s, double *px, double *py)
 {
     int n = samples > 1 ? samples : 1;
-    int rows = pattern_rows(n), columns = n / rows;
+    int rows = bgi_sample_rows(n), columns = n / rows;
     *px = cell_centre(s % columns, columns);
     *py = cell_centre(s / columns, rows);
 }

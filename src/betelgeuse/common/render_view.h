@@ -28,6 +28,9 @@ bg_status bgi_render_view_make(const bg_render_settings *settings, int width, in
  * right and y down, each in (0, 1) (docs/shading.md 1.1); (0.5, 0.5) for one sample. */
 void bgi_sample_position(int samples, int s, double *px, double *py);
 
+/* The rows of the pattern of n samples: the largest divisor of n not above sqrt(n); columns = n / rows. */
+int bgi_sample_rows(int n);
+
 /* Calls settings->progress (if any) with fraction; false when it asks to cancel. */
 bool bgi_render_progress(const bg_render_settings *settings, double fraction);
 

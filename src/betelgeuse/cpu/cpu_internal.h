@@ -9,6 +9,7 @@
 
 #include "../scene/scene_internal.h"
 #include "../common/render_view.h"
+#include "../common/scramble.h"
 
 /* "No object" for the skip and inside indices of a ray. */
 #define BG_CPU_NONE UINT32_MAX
@@ -265,18 +266,32 @@ bool bgi_cpu_nearest_hit_except(const bg_scene_state *state, const double o[3], 
 /* The radiance arriving at p from a light (0 outside a spot cone), its unit direction l and the
  * shadow segment's length; false when the light cannot contribute (docs/shading.md 7). */
 bool bgi_cpu_light_arrival(const bg_light *light, const double p[3], double l[3], double *t_max, double radiance[3]);
+/* The same for the light's point at this camera sample (area_light.c, docs/shading.md 7): an area
+ * light's sample point (of the unit-square point of its dimension) as a point light, a rectangle's
+ * radiance scaled by its cosine towards p; point and directional lights as above. */
+bool bgi_cpu_light_sample(const bg_scene_state *state, uint32_t light, const bgi_sample_point *sample,
+                          const double p[3], double l[3], double *t_max, double radiance[3]);
+/* The point of a sphere light (centre c, radius r) seen from p for the unit-square point uv: uniform
+ * in the solid angle of the cone the sphere fills; c itself when p is inside or on it. */
+void bgi_cpu_sphere_light_point(const double c[3], double r, const double p[3], const double uv[2], double q[3]);
 /* Whether a secondary ray of path weight w is followed: some channel positive and >= min_weight. */
 bool bgi_cpu_worth_following(const double w[3], double min_weight);
 
 /* Adds weight x the radiance along a ray at bounce level `level` into out; skip, skip_triangle and
  * inside as bgi_cpu_nearest_hit_except takes them. */
-void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
-                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t skip_triangle,
-                  uint32_t inside, double out[3]);
+void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const bgi_sample_point *sample,
+                   const double o[3], const double d[3], int level, const double weight[3], uint32_t skip,
+                   uint32_t skip_triangle, uint32_t inside, double out[3]);
 
-/* The linear radiance of one primary ray (o, unit d). */
-void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
-                      const double d[3], double rgb[3]);
+/* The linear radiance of one primary ray (o, unit d) of a camera sample (which places the area
+ * lights' points; NULL: sample 0 of 1 of frame pixel (0, 0)). */
+void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings,
+                       const bgi_sample_point *sample, const double o[3], const double d[3], double rgb[3]);
+
+/* Moves a pinhole ray (o at the eye, unit d) of a camera with aperture_radius > 0 onto the thin lens
+ * (lens.c, docs/shading.md 1.4): through this sample's point of the lens towards where the pinhole
+ * ray meets the plane in focus. */
+void bgi_cpu_lens_ray(const bg_camera_data *camera, const bgi_sample_point *sample, double o[3], double d[3]);
 
 /* The primary ray through the centre of pixel (x, y) of a width x height image (row 0 at the top). */
 void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],

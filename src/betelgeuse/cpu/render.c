@@ -38,7 +38,11 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
         bgi_sample_position(view->samples, s, &px, &py);
         bgi_cpu_frame_ray(&state->camera, view->frame_width, view->frame_height, (double)(view->x0 + x) + px,
                           (double)(view->y0 + y) + py, o, d);
-        bgi_cpu_shade_ray(state, settings, o, d, one);
+        bgi_sample_point sample;
+        bgi_sample_point_make(view->x0 + x, view->y0 + y, s, view->samples, &sample);
+        if (state->camera.camera.aperture_radius > 0.0)
+            bgi_cpu_lens_ray(&state->camera, &sample, o, d);
+        bgi_cpu_shade_ray(state, settings, &sample, o, d, one);
         /* Summed in sample order, then divided once (docs/shading.md 1.1); one sample is kept as it
          * is, so that samples 1 is today's image bit for bit (0 + -0 would be +0). */
         for (int i = 0; i < 3; i++)

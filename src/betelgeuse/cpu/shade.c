@@ -168,9 +168,9 @@ bool bgi_cpu_worth_following(const double w[3], double min_weight)
     return m > 0.0 && m >= min_weight;
 }
 
-void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
-                  const double d[3], int level, const double weight[3], uint32_t skip, uint32_t skip_triangle,
-                  uint32_t inside, double out[3])
+void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settings, const bgi_sample_point *sample,
+                   const double o[3], const double d[3], int level, const double weight[3], uint32_t skip,
+                   uint32_t skip_triangle, uint32_t inside, double out[3])
 {
     bg_cpu_hit hit;
     if (!bgi_cpu_nearest_hit_except(state, o, d, skip, skip_triangle, inside, &hit)) {
@@ -198,7 +198,7 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
     if (opaque > 0.0 && v > 0.0 && (thin || hit.entering)) {
         for (uint32_t k = 0; k < state->light_count; k++) {
             double l[3], radiance[3], t_max;
-            if (!bgi_cpu_light_arrival(&state->lights[k], hit.position, l, &t_max, radiance))
+            if (!bgi_cpu_light_sample(state, k, sample, hit.position, l, &t_max, radiance))
                 continue;
             double vl = bg_v3_dot(n, l);
             if (!(vl > 0.0))
@@ -245,7 +245,7 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
         double from[3];
         bgi_cpu_leave_origin(&hit, r, from);
         if (bg_v3_normalize(r))
-            bgi_cpu_trace(state, settings, from, r, level + 1, w_refl,
+            bgi_cpu_trace(state, settings, sample, from, r, level + 1, w_refl,
                          object->mesh ? leave_skip : stays_inside ? BG_CPU_NONE : hit.object, leave_triangle,
                          stays_inside ? hit.object : BG_CPU_NONE, out);
     }
@@ -260,19 +260,24 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
             bool enters = !thin && hit.entering && !object->mesh;
             double from[3];
             bgi_cpu_leave_origin(&hit, t, from);
-            bgi_cpu_trace(state, settings, from, t, level + 1, w_refr,
+            bgi_cpu_trace(state, settings, sample, from, t, level + 1, w_refr,
                          object->mesh ? leave_skip : enters ? BG_CPU_NONE : hit.object, leave_triangle,
                          enters ? hit.object : BG_CPU_NONE, out);
         }
     }
 }
 
-void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings, const double o[3],
-                      const double d[3], double rgb[3])
+void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings,
+                       const bgi_sample_point *sample, const double o[3], const double d[3], double rgb[3])
 {
     const double one[3] = {1.0, 1.0, 1.0};
+    bgi_sample_point first;
+    if (!sample) {
+        bgi_sample_point_make(0, 0, 0, 1, &first);
+        sample = &first;
+    }
     bg_v3_set(rgb, 0.0, 0.0, 0.0);
-    bgi_cpu_trace(state, settings, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, BG_CPU_NONE, rgb);
+    bgi_cpu_trace(state, settings, sample, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, BG_CPU_NONE, rgb);
 }
 
 void bgi_cpu_primary_ray(const bg_camera_data *camera, int width, int height, int x, int y, double o[3],

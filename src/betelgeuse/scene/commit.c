@@ -46,6 +46,9 @@ bg_status bgi_camera_derive(bg_scene *scene, const char *where, const bg_camera 
     memcpy(out->right, r, sizeof r);
     memcpy(out->up, u, sizeof u);
     out->tan_half_fov_y = tan(c->fov_y_degrees * (3.14159265358979323846 / 360.0));
+    double to_look = bgi_vec3_length(bg_vec3_make(c->look_at.x - c->position.x, c->look_at.y - c->position.y,
+                                                  c->look_at.z - c->position.z));
+    out->focus = c->focus_distance > 0.0 ? c->focus_distance : to_look;
     return BG_OK;
 }
 
@@ -55,6 +58,9 @@ bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *i
     if (st != BG_OK)
         return st;
     *out = *in;
+    /* A sphere of radius 0 is the point light, so that it renders as one bit for bit. */
+    if (in->type == BG_LIGHT_SPHERE && in->radius == 0.0)
+        out->type = BG_LIGHT_POINT;
     /* A zero direction is unused (a point light without a cone); keep the committed state
      * normalised anyway. bgi_vec3_normalize also takes directions whose length overflows. */
     bg_vec3 d = bgi_vec3_length(in->direction) == 0.0 ? bg_vec3_make(0, -1, 0) : in->direction;

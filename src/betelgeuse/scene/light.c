@@ -17,6 +17,9 @@ bg_light bg_light_init(void)
     l.attenuation[0] = 1.0;
     l.spot_cutoff_degrees = 180.0;
     l.spot_exponent = 0.0;
+    l.radius = 0.0;
+    l.edge_u = bg_vec3_make(1, 0, 0);
+    l.edge_v = bg_vec3_make(0, 0, 1);
     return l;
 }
 

@@ -133,6 +133,8 @@ bg_camera bg_camera_init(void)
     c.look_at = bg_vec3_make(0, 0, 0);
     c.up = bg_vec3_make(0, 1, 0);
     c.fov_y_degrees = 45.0;
+    c.aperture_radius = 0.0;
+    c.focus_distance = 0.0;
     return c;
 }
 

@@ -58,6 +58,8 @@ typedef struct bg_camera_data {
     bg_camera camera;
     double forward[3], right[3], up[3];
     double tan_half_fov_y;
+    double focus; /* the distance to the plane in focus, along forward (camera.focus_distance, or
+                     |look_at - position| for 0); used with camera.aperture_radius > 0 only */
 } bg_camera_data;
 
 /* What a commit produces. Lights' directions are normalised; materials keep their public form

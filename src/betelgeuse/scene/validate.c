@@ -48,6 +48,11 @@ bg_status bgi_validate_camera(bg_scene *scene, const char *where, const bg_camer
     if (bgi_vec3_length(x) < BG_UP_PARALLEL_SIN)
         return FAIL("%s: up = (%g, %g, %g) is parallel to the view direction", where, c->up.x,
                     c->up.y, c->up.z);
+    if (!isfinite(c->aperture_radius) || c->aperture_radius < 0.0)
+        return FAIL("%s: aperture_radius = %g must be finite and >= 0", where, c->aperture_radius);
+    if (!isfinite(c->focus_distance) || c->focus_distance < 0.0)
+        return FAIL("%s: focus_distance = %g must be finite and >= 0 (0: the distance to look_at)", where,
+                    c->focus_distance);
     return BG_OK;
 }
 
@@ -148,6 +153,28 @@ bg_status bgi_validate_light(bg_scene *scene, const char *where, const bg_light 
         return FAIL("%s: spot_cutoff_degrees = %g is outside (0, 90] and not 180", where, cut);
     if (!isfinite(l->spot_exponent) || l->spot_exponent < 0.0)
         return FAIL("%s: spot_exponent = %g must be finite and >= 0", where, l->spot_exponent);
+    if (l->type == BG_LIGHT_SPHERE && !(l->radius >= 0.0 && l->radius <= 1e100))
+        return FAIL("%s: radius = %g of the sphere light must be finite and in [0, 1e100]", where, l->radius);
+    if (l->type == BG_LIGHT_RECTANGLE) {
+        if ((st = vec3_finite(scene, where, "edge_u", l->edge_u)) != BG_OK ||
+            (st = vec3_finite(scene, where, "edge_v", l->edge_v)) != BG_OK)
+            return st;
+        /* On unit vectors, so that no length in the double range overflows the test. */
+        double lu = bgi_vec3_length(l->edge_u), lv = bgi_vec3_length(l->edge_v);
+        bg_vec3 u = lu > 0.0 ? bgi_vec3_normalize(l->edge_u) : l->edge_u;
+        bg_vec3 v = lv > 0.0 ? bgi_vec3_normalize(l->edge_v) : l->edge_v;
+        bg_vec3 n = bg_vec3_make(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+        if (!(bgi_vec3_length(n) >= 1e-12))
+            return FAIL("%s: edge_u = (%g, %g, %g) and edge_v = (%g, %g, %g) of the rectangle light are zero or "
+                        "parallel", where, l->edge_u.x, l->edge_u.y, l->edge_u.z, l->edge_v.x, l->edge_v.y,
+                        l->edge_v.z);
+        if (!bgi_vec3_finite(bg_vec3_make(l->position.x + l->edge_u.x + l->edge_v.x,
+                                          l->position.y + l->edge_u.y + l->edge_v.y,
+                                          l->position.z + l->edge_u.z + l->edge_v.z)))
+            return FAIL("%s: position + edge_u + edge_v of the rectangle light overflows", where);
+        if (cut != 180.0)
+            return FAIL("%s: spot_cutoff_degrees = %g: a rectangle light has no spot cone (180)", where, cut);
+    }
     bool needs_direction = l->type == BG_LIGHT_DIRECTIONAL || cut != 180.0;
     if (needs_direction && bgi_vec3_length(l->direction) == 0.0)
         return FAIL("%s: direction = (0, 0, 0) is zero but the %s needs it", where,

@@ -47,7 +47,8 @@ typedef enum gpu_fused_need {
     GPU_FUSED_NEED_ALWAYS = 0, GPU_FUSED_NEED_BOUNCE, GPU_FUSED_NEED_LIGHTS, GPU_FUSED_NEED_TREE, GPU_FUSED_NEED_MESH,
     GPU_FUSED_NEED_TANGENT,
     GPU_FUSED_NEED_UV, GPU_FUSED_NEED_USED, GPU_FUSED_NEED_ANISO, GPU_FUSED_NEED_TRANSPARENT,
-    GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO
+    GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO,
+    GPU_FUSED_NEED_SCRAMBLE, GPU_FUSED_NEED_LENS, GPU_FUSED_NEED_AREA
 } gpu_fused_need;
 
 /* Who a uniform belongs to: the frame, the light arrays (one element per light), an object, a material. */
@@ -72,11 +73,16 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(OBJECT_DIMS, FRAME, "bg_object_dims", VEC4, TREE, tree_object_dims)       \
     X(TREE_NODES, FRAME, "bg_tree_count", FLOAT, TREE, tree_node_count)         \
     X(MESH_DIMS, FRAME, "bg_mesh_dims", VEC4, MESH, tree_mesh_dims)             \
+    X(PIXEL_AT, FRAME, "bg_pixel_at", VEC2, SCRAMBLE, pixel_at)                 \
+    X(SAMPLE_OF, FRAME, "bg_sample_of", VEC4, SCRAMBLE, sample_of)              \
+    X(LENS, FRAME, "bg_lens", VEC2, LENS, lens)                                 \
     X(LIGHT_POS, LIGHTS, "bg_lpos", VEC4, LIGHTS, light_position)               \
     X(LIGHT_RAD, LIGHTS, "bg_lrad", VEC3, LIGHTS, light_radiance)               \
     X(LIGHT_ATT, LIGHTS, "bg_latt", VEC3, LIGHTS, light_attenuation)            \
     X(LIGHT_SPOT, LIGHTS, "bg_lspot", VEC4, LIGHTS, light_spot)                 \
     X(LIGHT_EXP, LIGHTS, "bg_lexp", FLOAT, LIGHTS, light_exponent)              \
+    X(LIGHT_EDGE_U, LIGHTS, "bg_ledge_u", VEC4, AREA, light_edge_u)             \
+    X(LIGHT_EDGE_V, LIGHTS, "bg_ledge_v", VEC4, AREA, light_edge_v)             \
     X(ID, OBJECT, "bg_o%u_id", FLOAT, ALWAYS, object_id)                        \
     X(TO_OBJECT, OBJECT, "bg_o%u_to_object", MAT4, ALWAYS, object_to_object)    \
     X(NORMAL, OBJECT, "bg_o%u_normal", MAT3, ALWAYS, object_normal)             \
@@ -152,6 +158,8 @@ typedef struct gpu_fused_layout {
     uint32_t unrolled_meshes; /* mesh objects outside the tree, each walked with its own uniforms */
     int mesh_filters;    /* bgi_gpu_meshes_filters: what the mesh walks and hits test */
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
+    bool lens;           /* the camera has an aperture (docs/shading.md 1.4) */
+    bool area;           /* some light is an area light (docs/shading.md 7) */
 } gpu_fused_layout;
 /* Shadow tests (lights x casters) up to which lights are unrolled. Each unrolled light inlines its
  * own copy of every caster's test: at 2 lights x 17 casters (many_spheres) the program took 14 s

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "../../common/scramble.h"
 #include "../../common/shapes.h"
 #include "fused.h"
 
@@ -78,6 +79,15 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         ok = bgi_gpu_mesh_library(t, seen, &n, SEEN_CAP);
     if (ok && l->light_count > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
+    /* The distribution effects' sample points, and the frame pixel's hash they start from. */
+    if (ok && (l->lens || l->area)) {
+        ok = bgi_gpu_text_snippet(t, "bg_scramble.glsl", seen, &n, SEEN_CAP);
+        bgi_gpu_text_append(t, "float bg_ph;\n");
+    }
+    if (ok && l->lens)
+        ok = bgi_gpu_text_snippet(t, "bg_lens.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->area)
+        ok = bgi_gpu_text_snippet(t, "bg_area_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)
         ok = bgi_gpu_text_snippet(t, "bg_stage_spawn.glsl", seen, &n, SEEN_CAP);
     return ok && bgi_gpu_text_snippet(t, "bg_fused_trace.glsl", seen, &n, SEEN_CAP);
@@ -509,13 +519,25 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
                        "    xparent = vec2(transparency, ior);\n}\n");
 }
 
-/* One light's term, the light given by its index into the light arrays (a number or the loop's). */
-static void emit_light_term(gpu_text *t, const char *i, const char *indent)
+/* One light's term, the light given by its index into the light arrays (a number or the loop's).
+ * With area lights, each light is its point at this sample (docs/shading.md 7), of the light's own
+ * dimension of the scramble. */
+static void emit_light_term(const gpu_fused_layout *l, gpu_text *t, const char *i, const char *indent)
 {
+    if (!l->area) {
+        bgi_gpu_text_printf(t,
+                        "%sradiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, bg_lpos[%s], bg_lrad[%s], "
+                        "bg_latt[%s], bg_lspot[%s], bg_lexp[%s]);\n",
+                        indent, i, i, i, i, i);
+        return;
+    }
     bgi_gpu_text_printf(t,
-                    "%sradiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, bg_lpos[%s], bg_lrad[%s], "
-                    "bg_latt[%s], bg_lspot[%s], bg_lexp[%s]);\n",
-                    indent, i, i, i, i, i);
+                    "%s{\n%s    vec4 q = bg_area_light_pos(p, bg_lpos[%s], bg_ledge_u[%s], bg_ledge_v[%s], "
+                    "bg_sample_square(bg_ph, %d.0 + float(%s), bg_sample_of));\n"
+                    "%s    radiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, q, "
+                    "bg_area_light_radiance(p, q, bg_ledge_u[%s], bg_ledge_v[%s], bg_lrad[%s]), bg_latt[%s], bg_lspot[%s], "
+                    "bg_lexp[%s]);\n%s}\n",
+                    indent, indent, i, i, i, BGI_DIMENSION_LIGHT0, i, indent, i, i, i, i, i, i, indent);
 }
 
 /* Every light in the scene's order (docs/shading.md 8): unrolled, or a loop of the scene's exact
@@ -527,12 +549,12 @@ static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
                        "vec3 lw, inout vec3 radiance)\n{\n");
     if (l->light_loop) {
         bgi_gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
-        emit_light_term(t, "i", "        ");
+        emit_light_term(l, t, "i", "        ");
     } else {
         for (uint32_t i = 0; i < l->light_count; i++) {
             char k[16];
             snprintf(k, sizeof k, "%u", (unsigned)i);
-            emit_light_term(t, k, "    ");
+            emit_light_term(l, t, k, "    ");
         }
     }
     bgi_gpu_text_append(t, "}\n");
@@ -619,6 +641,11 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
                        "bg_tan_half, bg_ro, bg_rd, bg_w0);\n"
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
+    if (l->lens || l->area)
+        bgi_gpu_text_append(t, "bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
+    if (l->lens)
+        bgi_gpu_text_printf(t, "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_ph, %d.0, bg_sample_of)), bg_lens.x, bg_lens.y, "
+                               "bg_forward, bg_right, bg_up, bg_ro, bg_rd);\n", BGI_DIMENSION_LENS);
     if (bgi_gpu_fused_layout_budgeted(l))
         bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
     if (l->max_depth == 0)

@@ -48,6 +48,24 @@ static void pixel_shift(const gpu_fused_values *v, uint32_t i, float *out)
     out[1] = v->view->shift[1];
 }
 
+static void pixel_at(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    bgi_gpu_pixel_at(v->view, out);
+}
+
+static void sample_of(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    bgi_gpu_sample_of(v->view, out);
+}
+
+static void lens(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    bgi_gpu_lens(v->state, out);
+}
+
 static void camera_forward(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
@@ -141,6 +159,8 @@ LIGHT_ROW_(light_radiance, rad, 3)
 LIGHT_ROW_(light_attenuation, att, 3)
 LIGHT_ROW_(light_spot, spot, 4)
 LIGHT_ROW_(light_exponent, exponent, 1)
+LIGHT_ROW_(light_edge_u, edge_u, 4)
+LIGHT_ROW_(light_edge_v, edge_v, 4)
 #undef LIGHT_ROW_
 
 /* GL takes matrices column by column; the scene's are row-major. */
@@ -251,9 +271,13 @@ bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
     case GPU_FUSED_FRAME:
         if (w->need == GPU_FUSED_NEED_MESH)
             return l->mesh;
+        if (w->need == GPU_FUSED_NEED_SCRAMBLE)
+            return l->lens || l->area;
+        if (w->need == GPU_FUSED_NEED_LENS)
+            return l->lens;
         return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;
     case GPU_FUSED_LIGHTS:
-        return l->light_count > 0;
+        return l->light_count > 0 && (w->need != GPU_FUSED_NEED_AREA || l->area);
     case GPU_FUSED_OBJECT:
         if (l->objects[i].in_tree)
             return false;

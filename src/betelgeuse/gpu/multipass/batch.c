@@ -97,7 +97,7 @@ int bgi_gpu_batch_plan_shadows(const bg_renderer *r, const bg_scene_state *state
     int lights = (int)state->light_count - group * GPU_LIGHTS_PER_GROUP;
     if (lights > GPU_LIGHTS_PER_GROUP)
         lights = GPU_LIGHTS_PER_GROUP;
-    int per_batch = (macs_context_max_uniform_components(r->ctx) - bgi_gpu_shadow_shared_components(lights)) /
+    int per_batch = (macs_context_max_uniform_components(r->ctx) - bgi_gpu_shadow_shared_components(lights, r->multipass->features.area)) /
                     bgi_gpu_shadow_object_components();
     if (per_batch > GPU_BATCH_MAX)
         per_batch = GPU_BATCH_MAX;

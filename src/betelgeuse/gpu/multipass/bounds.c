@@ -45,7 +45,9 @@ void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *
         return;
     }
     const double *e = &state->camera.camera.position.x;
-    box3 camera = {{e[0], e[1], e[2]}, {e[0], e[1], e[2]}};
+    /* Camera rays start anywhere on the lens. */
+    double a = state->camera.camera.aperture_radius;
+    box3 camera = {{e[0] - a, e[1] - a, e[2] - a}, {e[0] + a, e[1] + a, e[2] + a}};
     box3 scene = camera;
     bool empty = true;
     if (state->has_bounded_objects) {
@@ -71,9 +73,10 @@ bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, const 
     int frame_width = view->pixels.frame_width, frame_height = view->pixels.frame_height;
     int width = view->pixels.width, height = view->pixels.height;
     const bg_object_data *o = &state->objects[object];
-    if (!o->bounded)
-        return false;
     const bg_camera_data *cam = &state->camera;
+    /* Through a lens, camera rays do not start at one point: no projection bounds them. */
+    if (!o->bounded || cam->camera.aperture_radius > 0.0)
+        return false;
     const double *e = &cam->camera.position.x;
     double aspect = (double)frame_width / (double)frame_height;
     double tx = aspect * cam->tan_half_fov_y, ty = cam->tan_half_fov_y;

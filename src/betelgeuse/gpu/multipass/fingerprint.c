@@ -62,6 +62,8 @@ uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t texture
     mix_doubles(&s, c->right, 3);
     mix_doubles(&s, c->up, 3);
     mix_double(&s, c->tan_half_fov_y);
+    mix_double(&s, c->camera.aperture_radius);
+    mix_double(&s, c->focus);
     mix_doubles(&s, state->ambient, 3);
     mix(&s, state->object_count);
     for (uint32_t i = 0; i < state->object_count; i++) {
@@ -107,6 +109,13 @@ uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t texture
         mix_doubles(&s, l->attenuation, 3);
         mix_double(&s, l->spot_cutoff_degrees);
         mix_double(&s, l->spot_exponent);
+        mix_double(&s, l->radius);
+        mix_double(&s, l->edge_u.x);
+        mix_double(&s, l->edge_u.y);
+        mix_double(&s, l->edge_u.z);
+        mix_double(&s, l->edge_v.x);
+        mix_double(&s, l->edge_v.y);
+        mix_double(&s, l->edge_v.z);
     }
     mix(&s, textures);
     return s.h;

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "../../common/scramble.h"
 #include "multipass.h"
 
 static int group_size(const bg_scene_state *state, int group)
@@ -14,23 +15,48 @@ static int group_size(const bg_scene_state *state, int group)
     return n > GPU_LIGHTS_PER_GROUP ? GPU_LIGHTS_PER_GROUP : (n < 0 ? 0 : n);
 }
 
-/* How many uniforms light_uniforms declares. */
-#define LIGHT_UNIFORM_COUNT 5
+/* The most uniforms light_uniforms declares. */
+#define LIGHT_UNIFORM_COUNT 9
 
-/* The uniform arrays of a group of `count` lights, appended to u[*n ..]. */
-static void light_uniforms(macs_uniform_desc *u, int *n, int count)
+/* The uniform arrays of a group of `count` lights, appended to u[*n ..]; with area lights, their
+ * shapes and the uniforms of the sample that places their points. */
+static void light_uniforms(macs_uniform_desc *u, int *n, int count, bool area)
 {
     u[(*n)++] = (macs_uniform_desc){"bg_lpos", MACS_UNIFORM_VEC4, count};
     u[(*n)++] = (macs_uniform_desc){"bg_lrad", MACS_UNIFORM_VEC3, count};
     u[(*n)++] = (macs_uniform_desc){"bg_latt", MACS_UNIFORM_VEC3, count};
     u[(*n)++] = (macs_uniform_desc){"bg_lspot", MACS_UNIFORM_VEC4, count};
     u[(*n)++] = (macs_uniform_desc){"bg_lexp", MACS_UNIFORM_FLOAT, count};
+    if (!area)
+        return;
+    u[(*n)++] = (macs_uniform_desc){"bg_ledge_u", MACS_UNIFORM_VEC4, count};
+    u[(*n)++] = (macs_uniform_desc){"bg_ledge_v", MACS_UNIFORM_VEC4, count};
+    u[(*n)++] = (macs_uniform_desc){"bg_pixel_at", MACS_UNIFORM_VEC2, 0};
+    u[(*n)++] = (macs_uniform_desc){"bg_sample_of", MACS_UNIFORM_VEC4, 0};
+}
+
+/* Where light i of a group (k in the scene) is at this sample, as the arguments of bg_light_at:
+ * declares its point (an area light's, bg_area_light.glsl, of the light's own dimension of the
+ * scramble) into main and prints the position and radiance expressions into pos and rad. */
+static void light_place(gpu_text *main, bool area, int i, int k, const char *indent, char *pos, char *rad, size_t size)
+{
+    if (!area) {
+        snprintf(pos, size, "bg_lpos[%d]", i);
+        snprintf(rad, size, "bg_lrad[%d]", i);
+        return;
+    }
+    bgi_gpu_text_printf(main, "%svec4 bg_q%d = bg_area_light_pos(bg_h.xyz, bg_lpos[%d], bg_ledge_u[%d], bg_ledge_v[%d], "
+                              "bg_sample_square(bg_ph, %d.0, bg_sample_of));\n",
+                        indent, i, i, i, i, BGI_DIMENSION_LIGHT0 + k);
+    snprintf(pos, size, "bg_q%d", i);
+    snprintf(rad, size, "bg_area_light_radiance(bg_h.xyz, bg_q%d, bg_ledge_u[%d], bg_ledge_v[%d], bg_lrad[%d])", i, i, i, i);
 }
 
 bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_scene_state *state, int first, int count)
 {
     float pos[4 * GPU_LIGHTS_PER_GROUP], rad[3 * GPU_LIGHTS_PER_GROUP], att[3 * GPU_LIGHTS_PER_GROUP];
     float spot[4 * GPU_LIGHTS_PER_GROUP], ex[GPU_LIGHTS_PER_GROUP];
+    float eu[4 * GPU_LIGHTS_PER_GROUP], ev[4 * GPU_LIGHTS_PER_GROUP];
     for (int i = 0; i < count; i++) {
         gpu_packed_light p = bgi_gpu_light_pack(state, (uint32_t)(first + i));
         memcpy(&pos[4 * i], p.pos, sizeof p.pos);
@@ -38,6 +64,8 @@ bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
         memcpy(&att[3 * i], p.att, sizeof p.att);
         memcpy(&spot[4 * i], p.spot, sizeof p.spot);
         ex[i] = p.exponent;
+        memcpy(&eu[4 * i], p.edge_u, sizeof p.edge_u);
+        memcpy(&ev[4 * i], p.edge_v, sizeof p.edge_v);
     }
     macs_status ms = macs_pass_set_uniform(pass, "bg_lpos", pos);
     if (!ms)
@@ -48,7 +76,43 @@ bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
         ms = macs_pass_set_uniform(pass, "bg_lspot", spot);
     if (!ms)
         ms = macs_pass_set_uniform(pass, "bg_lexp", ex);
+    if (!ms && r->multipass->features.area)
+        ms = macs_pass_set_uniform(pass, "bg_ledge_u", eu);
+    if (!ms && r->multipass->features.area)
+        ms = macs_pass_set_uniform(pass, "bg_ledge_v", ev);
     return ms ? bgi_gpu_fail_macs(r, ms, "light uniforms") : BG_OK;
+}
+
+bg_status bgi_gpu_sample_uniforms_set(bg_renderer *r)
+{
+    const gpu_features *f = &r->multipass->features;
+    if (!f->lens && !f->area)
+        return BG_OK;
+    float at[2], of[4];
+    bgi_gpu_pixel_at(&r->view, at);
+    bgi_gpu_sample_of(&r->view, of);
+    gpu_passes *p = &r->multipass->passes;
+    macs_status ms = MACS_OK;
+    if (f->lens) {
+        ms = macs_pass_set_uniform(p->camera, "bg_pixel_at", at);
+        if (!ms)
+            ms = macs_pass_set_uniform(p->camera, "bg_sample_of", of);
+    }
+    for (int i = 0; f->area && i < p->shadow_count && !ms; i++) {
+        if (!p->shadow[i].pass)
+            continue;
+        ms = macs_pass_set_uniform(p->shadow[i].pass, "bg_pixel_at", at);
+        if (!ms)
+            ms = macs_pass_set_uniform(p->shadow[i].pass, "bg_sample_of", of);
+    }
+    for (int g = 0; f->area && g < p->group_count && !ms; g++) {
+        if (!p->light[g])
+            continue;
+        ms = macs_pass_set_uniform(p->light[g], "bg_pixel_at", at);
+        if (!ms)
+            ms = macs_pass_set_uniform(p->light[g], "bg_sample_of", of);
+    }
+    return ms ? bgi_gpu_fail_macs(r, ms, "sample uniforms") : BG_OK;
 }
 
 /* Live hit pixels only: both stencil bits set (or only the hit bit when the stencil skip is off). */
@@ -95,11 +159,11 @@ int bgi_gpu_shadow_object_components(void)
     return bgi_gpu_uniform_components(u, caster_uniforms(0, true, names, u));
 }
 
-int bgi_gpu_shadow_shared_components(int lights)
+int bgi_gpu_shadow_shared_components(int lights, bool area)
 {
     macs_uniform_desc u[LIGHT_UNIFORM_COUNT + 1];
     int n = 0;
-    light_uniforms(u, &n, lights);
+    light_uniforms(u, &n, lights, area);
     u[n++] = (macs_uniform_desc){"bg_mesh_dims", MACS_UNIFORM_VEC4, 0};
     return bgi_gpu_uniform_components(u, n);
 }
@@ -112,6 +176,7 @@ typedef struct shadow_pass_parts {
     bool mesh[GPU_BATCH_MAX]; /* caster j is a mesh (its test walks the mesh's tree) */
     int meshes;               /* mesh casters that block */
     bool on_meshes;           /* the scene has meshes: a point on one starts its segments off it */
+    bool area;                /* the scene has area lights: each light is its point at this sample */
     caster_names names[GPU_BATCH_MAX];
     macs_uniform_desc uniforms[GPU_BATCH_MAX * C_COUNT + LIGHT_UNIFORM_COUNT + 1];
     int uniform_count;
@@ -123,7 +188,7 @@ static void add_shadow_uniforms(shadow_pass_parts *sp)
     sp->uniform_count = 0;
     for (int j = 0; j < sp->count; j++)
         sp->uniform_count += caster_uniforms(j, sp->mesh[j], sp->names[j], &sp->uniforms[sp->uniform_count]);
-    light_uniforms(sp->uniforms, &sp->uniform_count, sp->lights);
+    light_uniforms(sp->uniforms, &sp->uniform_count, sp->lights, sp->area);
     if (sp->meshes > 0)
         sp->uniforms[sp->uniform_count++] = (macs_uniform_desc){"bg_mesh_dims", MACS_UNIFORM_VEC4, 0};
 }
@@ -145,6 +210,8 @@ static void emit_shadow_main(const bg_renderer *r, const bg_scene_state *state, 
     if (!any)
         bgi_gpu_text_append(main, "if (true)\n    discard;\n");
     bgi_gpu_text_append(main, "float bg_self = bg_hit_index(bg_h.w);\n");
+    if (sp->area)
+        bgi_gpu_text_append(main, "float bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
     if (sp->count == 1 && !sp->mesh[0])
         bgi_gpu_text_append(main, "if (bg_self == bg_index_0) discard;\n");
     bgi_gpu_text_append(main, "vec3 bg_n = texture2D(bg_g_normal, macs_uv).xyz;\n"
@@ -156,10 +223,12 @@ static void emit_shadow_main(const bg_renderer *r, const bg_scene_state *state, 
     if (sp->meshes > 0)
         bgi_gpu_text_printf(main, "bg_tree_left = %d.0;\n", bgi_gpu_mesh_pass_budget(sp->meshes * sp->lights));
     for (int i = 0; i < sp->lights; i++) {
+        char pos[128], rad[128];
+        light_place(main, sp->area, i, sp->group * GPU_LIGHTS_PER_GROUP + i, "", pos, rad, sizeof pos);
         bgi_gpu_text_printf(main,
-                        "if (bg_light_at(bg_h.xyz, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], bg_lexp[%d], "
+                        "if (bg_light_at(bg_h.xyz, %s, %s, bg_latt[%d], bg_lspot[%d], bg_lexp[%d], "
                         "bg_l, bg_dist, bg_e)%s) {\n",
-                        i, i, i, i, i, skip_facing ? " && !(dot(bg_n, bg_l) <= 0.0)" : "");
+                        pos, rad, i, i, i, skip_facing ? " && !(dot(bg_n, bg_l) <= 0.0)" : "");
         if (sp->on_meshes)
             bgi_gpu_text_append(main, "    bg_p = bg_m.w >= 0.0 ? bg_h.xyz + (dot(bg_l, bg_m.xyz) >= 0.0 ? 1.0 : -1.0) * bg_m.xyz "
                                       ": bg_h.xyz;\n");
@@ -193,6 +262,8 @@ static bool shadow_functions(gpu_text *t, const bg_scene_state *state, const sha
     int n = 0;
     static const char *const stage[] = {"bg_segment_blocked", "bg_shadow_visibility", NULL};
     bool ok = bgi_gpu_text_snippet(t, "bg_hit_code.glsl", seen, &n, 32) && bgi_gpu_text_snippet(t, "bg_light.glsl", seen, &n, 32) &&
+              (!sp->area || (bgi_gpu_text_snippet(t, "bg_scramble.glsl", seen, &n, 32) &&
+                             bgi_gpu_text_snippet(t, "bg_area_light.glsl", seen, &n, 32))) &&
               bgi_gpu_text_shape_stages(t, state, sp->casters, sp->count, "bg_stage_shadow.glsl", stage, seen, &n, 32);
     if (ok && sp->meshes > 0) {
         ok = bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, 32) &&
@@ -241,6 +312,7 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
     sp.lights = group_size(state, group);
     sp.meshes = 0;
     sp.on_meshes = r->multipass->features.mesh;
+    sp.area = r->multipass->features.area;
     for (int j = 0; j < count; j++) {
         sp.mesh[j] = state->objects[casters[j]].shape == BGI_SHAPE_MESH;
         sp.meshes += sp.mesh[j] && blocks[j] ? 1 : 0;
@@ -315,10 +387,11 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     if (vis)
         INPUT("bg_vis", r->multipass->vis);
 #undef INPUT
+    bool area = f->area;
     macs_uniform_desc uniforms[LIGHT_UNIFORM_COUNT];
     int nu = 0;
     if (count > 0)
-        light_uniforms(uniforms, &nu, count);
+        light_uniforms(uniforms, &nu, count, area);
 
     gpu_text main;
     bgi_gpu_text_init(&main, &r->allocator);
@@ -336,6 +409,8 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
                                                   : "vec4 bg_c = vec4(0.0, 0.0, 0.0, -1.0);\n");
     bgi_gpu_text_append(&main, vis ? "vec4 bg_v = texture2D(bg_vis, macs_uv);\n" : "vec4 bg_v = vec4(1.0);\n");
     bgi_gpu_text_append(&main, "vec3 bg_sum = vec3(0.0);\nfloat bg_any = 0.0;\nfloat bg_unknown = 0.0;\n");
+    if (area)
+        bgi_gpu_text_append(&main, "float bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
     /* A visibility strictly between 0 and 1 is a shadow walk that ran out of steps (shadow pass):
      * the alpha counts it, and multipass_frame.c hands the pixel to the CPU reference. */
     for (int i = 0; i < count && vis && f->mesh; i++)
@@ -345,13 +420,16 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
          * skip off it is shaded and multiplied by 0, as every pixel is. */
         bgi_gpu_text_printf(&main, "if (bg_hit_outside(bg_h.w) && dot(bg_nr.xyz, bg_view) > 0.0%s) {\n    vec4 bg_term;\n",
                         (r->multipass->key.disable_skips & BG_SKIP_STENCIL) ? "" : " && bg_max3(bg_lw) > 0.0");
-        for (int i = 0; i < count; i++)
+        for (int i = 0; i < count; i++) {
+            char pos[128], rad[128];
+            light_place(&main, area, i, group * GPU_LIGHTS_PER_GROUP + i, "    ", pos, rad, sizeof pos);
             bgi_gpu_text_printf(&main,
                             "    bg_term = bg_light_term(bg_h.xyz, bg_nr.xyz, bg_view, bg_tg.xyz, bg_b.rgb, bg_nr.w, bg_b.a, "
-                            "bg_c.w >= 0.0, bg_c.rgb, bg_c.w, bg_tg.w, bg_lpos[%d], bg_lrad[%d], bg_latt[%d], bg_lspot[%d], "
+                            "bg_c.w >= 0.0, bg_c.rgb, bg_c.w, bg_tg.w, %s, %s, bg_latt[%d], bg_lspot[%d], "
                             "bg_lexp[%d], bg_v.%c, %s);\n"
                             "    bg_sum += bg_lw * bg_term.rgb;\n    bg_any += bg_term.a;\n",
-                            i, i, i, i, i, "xyzw"[i], skip_facing ? "true" : "false");
+                            pos, rad, i, i, i, "xyzw"[i], skip_facing ? "true" : "false");
+        }
         bgi_gpu_text_append(&main, "}\n");
     }
     /* Adding nothing changes nothing: a pixel no light reaches skips the blend. */
@@ -365,7 +443,9 @@ bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, 
     hit_stencil(r, &desc.stencil);
     desc.blend = MACS_BLEND_ADD;
 
-    const char *files[] = {"bg_hit_code.glsl", "bg_stage_light.glsl", NULL};
+    const char *point_files[] = {"bg_hit_code.glsl", "bg_stage_light.glsl", NULL};
+    const char *area_files[] = {"bg_hit_code.glsl", "bg_stage_light.glsl", "bg_scramble.glsl", "bg_area_light.glsl", NULL};
+    const char **files = area ? area_files : point_files;
     bg_status st = main.failed ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building a light shader")
                                : bgi_gpu_pass_create(r, "light pass", files, NULL, &desc, out);
     bgi_gpu_text_free(&main);

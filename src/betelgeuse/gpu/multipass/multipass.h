@@ -32,6 +32,8 @@ typedef struct gpu_features {
     bool bounce;      /* some material may reflect or refract: spawn passes */
     bool generic;     /* specialisation off: every slot, every texture lane */
     bool mesh;        /* some object is a mesh: MESH slot, the mesh textures, the marks of short walks */
+    bool lens;        /* the camera has an aperture: the camera pass samples the lens */
+    bool area;        /* some light is an area light: shadow and light passes sample its point */
     bool slot[GPU_SLOT_COUNT];
     int slot_count;
 } gpu_features;
@@ -213,7 +215,10 @@ bg_status bgi_gpu_shadow_pass_build(bg_renderer *r, const bg_scene_state *state,
 /* Uniform components of a shadow pass (as bgi_gpu_uniform_components counts them, from what the pass
  * declares): per object, and shared for a group of 1 .. GPU_LIGHTS_PER_GROUP lights. */
 int bgi_gpu_shadow_object_components(void);
-int bgi_gpu_shadow_shared_components(int lights);
+int bgi_gpu_shadow_shared_components(int lights, bool area);
+/* Sets the uniforms that follow the view's sample (bg_pixel_at, bg_sample_of) on every pass that
+ * samples the lens or an area light; every frame, like the camera's shift. */
+bg_status bgi_gpu_sample_uniforms_set(bg_renderer *r);
 /* The light pass of a group of up to four lights (vis: read the visibility texture); a group past
  * the last light makes the ambient and emission pass instead. */
 bg_status bgi_gpu_light_pass_build(bg_renderer *r, const bg_scene_state *state, int group, bool vis, macs_pass **out);

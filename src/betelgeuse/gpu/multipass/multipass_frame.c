@@ -496,6 +496,8 @@ static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, siz
     /* The camera's shift follows the window and the sample: a uniform, set every frame. */
     if (st == BG_OK)
         st = bgi_gpu_camera_uniforms_set(r, state);
+    if (st == BG_OK)
+        st = bgi_gpu_sample_uniforms_set(r);
     if (st == BG_OK) {
         static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         macs_status ms = macs_texture_clear(r->multipass->accum, zero);

@@ -6,6 +6,7 @@
  * Ray-map inputs are bound per ray set by multipass_frame.c at the fixed input positions of multipass.h. */
 #include <string.h>
 
+#include "../../common/scramble.h"
 #include "multipass.h"
 
 /* A pass over the live (and, with hit_bits, hit or missed) pixels with one or two ray-map inputs. */
@@ -77,6 +78,11 @@ bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *stat
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_up", up);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_tan_half", th);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_shift", r->view.shift);
+    if (!ms && r->multipass->features.lens) {
+        float lens[2];
+        bgi_gpu_lens(state, lens);
+        ms = macs_pass_set_uniform(pass, "bg_lens", lens);
+    }
     return ms ? bgi_gpu_fail_macs(r, ms, "camera pass uniforms") : BG_OK;
 }
 
@@ -84,17 +90,28 @@ bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *stat
  * set 0. */
 static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, const gpu_ray_set *set0)
 {
-    macs_uniform_desc u[7] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
-                              {"bg_forward", MACS_UNIFORM_VEC3, 0}, {"bg_right", MACS_UNIFORM_VEC3, 0},
-                              {"bg_up", MACS_UNIFORM_VEC3, 0},      {"bg_tan_half", MACS_UNIFORM_VEC2, 0},
-                              {"bg_shift", MACS_UNIFORM_VEC2, 0}};
+    bool lens = r->multipass->features.lens;
+    macs_uniform_desc u[10] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
+                               {"bg_forward", MACS_UNIFORM_VEC3, 0}, {"bg_right", MACS_UNIFORM_VEC3, 0},
+                               {"bg_up", MACS_UNIFORM_VEC3, 0},      {"bg_tan_half", MACS_UNIFORM_VEC2, 0},
+                               {"bg_shift", MACS_UNIFORM_VEC2, 0},   {"bg_pixel_at", MACS_UNIFORM_VEC2, 0},
+                               {"bg_sample_of", MACS_UNIFORM_VEC4, 0}, {"bg_lens", MACS_UNIFORM_VEC2, 0}};
     macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
-    const char *files[] = {"bg_stage_camera.glsl", NULL};
-    bg_status st = simple_pass(r, "camera pass", files,
-                               "vec4 bg_o0, bg_o1, bg_o2;\n"
-                               "bg_camera_ray(gl_FragCoord.xy + bg_shift, bg_size, bg_eye, bg_forward, bg_right, "
-                               "bg_up, bg_tan_half, bg_o0, bg_o1, bg_o2);\n",
-                               NULL, 0, NULL, u, 7, NULL, outs, 3, MACS_BLEND_NONE, NULL, &r->multipass->passes.camera);
+    const char *pinhole[] = {"bg_stage_camera.glsl", NULL};
+    const char *thin_lens[] = {"bg_stage_camera.glsl", "bg_lens.glsl", NULL};
+    /* Through a lens, each sample's ray leaves its own point of the lens (docs/shading.md 1.4). */
+    char main[512];
+    int n = snprintf(main, sizeof main,
+                     "vec4 bg_o0, bg_o1, bg_o2;\n"
+                     "bg_camera_ray(gl_FragCoord.xy + bg_shift, bg_size, bg_eye, bg_forward, bg_right, "
+                     "bg_up, bg_tan_half, bg_o0, bg_o1, bg_o2);\n");
+    if (lens)
+        snprintf(main + n, sizeof main - (size_t)n,
+                 "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at), %d.0, "
+                 "bg_sample_of)), bg_lens.x, bg_lens.y, bg_forward, bg_right, bg_up, bg_o0, bg_o1);\n",
+                 BGI_DIMENSION_LENS);
+    bg_status st = simple_pass(r, "camera pass", lens ? thin_lens : pinhole, main, NULL, 0, NULL, u, lens ? 10 : 7, NULL,
+                               outs, 3, MACS_BLEND_NONE, NULL, &r->multipass->passes.camera);
     return st == BG_OK ? bgi_gpu_camera_uniforms_set(r, state) : st;
 }
 

@@ -32,5 +32,46 @@ gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k)
     /* -2: no cone (bg_light.glsl), below every cosine. */
     p.spot[3] = cone ? (float)cos(l->spot_cutoff_degrees * (PI / 180.0)) : -2.0f;
     p.exponent = (float)l->spot_exponent;
+    /* The kind in edge_u's w: 0 point or directional, 1 sphere, 2 rectangle (bg_area_light.glsl). */
+    const bg_vec3 *eu = &l->edge_u, *ev = &l->edge_v;
+    bool rectangle = l->type == BG_LIGHT_RECTANGLE;
+    float u[3] = {(float)eu->x, (float)eu->y, (float)eu->z}, v[3] = {(float)ev->x, (float)ev->y, (float)ev->z};
+    for (int c = 0; c < 3; c++) {
+        p.edge_u[c] = rectangle ? u[c] : 0.0f;
+        p.edge_v[c] = rectangle ? v[c] : 0.0f;
+    }
+    p.edge_u[3] = l->type == BG_LIGHT_SPHERE ? 1.0f : rectangle ? 2.0f : 0.0f;
+    p.edge_v[3] = l->type == BG_LIGHT_SPHERE ? (float)l->radius : 0.0f;
     return p;
+}
+
+bool bgi_gpu_scene_has_area_lights(const bg_scene_state *state)
+{
+    for (uint32_t k = 0; k < state->light_count; k++)
+        if (state->lights[k].type == BG_LIGHT_SPHERE || state->lights[k].type == BG_LIGHT_RECTANGLE)
+            return true;
+    return false;
+}
+
+void bgi_gpu_pixel_at(const gpu_view *view, float out[2])
+{
+    /* gl_FragCoord's floor is the window's GL column and row; frame row y counts down from the top,
+     * and the window's bottom GL row is its last image row, y0 + height - 1. */
+    out[0] = (float)view->pixels.x0;
+    out[1] = (float)(view->pixels.y0 + view->pixels.height - 1);
+}
+
+void bgi_gpu_sample_of(const gpu_view *view, float out[4])
+{
+    int n = view->pixels.samples, rows = bgi_sample_rows(n);
+    out[0] = (float)view->pixels.sample_first;
+    out[1] = (float)n;
+    out[2] = (float)(n / rows);
+    out[3] = (float)rows;
+}
+
+void bgi_gpu_lens(const bg_scene_state *state, float out[2])
+{
+    out[0] = (float)state->camera.camera.aperture_radius;
+    out[1] = (float)state->camera.focus;
 }

@@ -225,10 +225,20 @@ void bgi_gpu_param_of(const bg_material *m, gpu_param p, double v[3], uint32_t *
 void bgi_gpu_param_value(const bg_scene_state *state, const bg_material *m, gpu_param p, float out[3]);
 
 /* ---- light_pack.c ---- */
-/* One light as bg_light.glsl reads it (the uniforms bg_lpos, bg_lrad, bg_latt, bg_lspot, bg_lexp). */
+/* One light as bg_light.glsl reads it (the uniforms bg_lpos, bg_lrad, bg_latt, bg_lspot, bg_lexp),
+ * and as bg_area_light.glsl reads an area light's shape (bg_ledge_u, bg_ledge_v). */
 typedef struct gpu_packed_light {
     float pos[4], rad[3], att[3], spot[4], exponent;
+    float edge_u[4], edge_v[4];
 } gpu_packed_light;
+/* Whether the committed scene has an area light (a sphere of radius > 0 or a rectangle). */
+bool bgi_gpu_scene_has_area_lights(const bg_scene_state *state);
+/* The distribution uniforms of a pass (docs/shading.md 1.3 and 1.4): bg_pixel_at, the frame column
+ * of the window's first pixel and the frame row of its bottom GL row; bg_sample_of, (s, n,
+ * columns, rows) of the view's sample; bg_lens, (aperture_radius, focus). */
+void bgi_gpu_pixel_at(const gpu_view *view, float out[2]);
+void bgi_gpu_sample_of(const gpu_view *view, float out[4]);
+void bgi_gpu_lens(const bg_scene_state *state, float out[2]);
 gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
 
 /* ---- scene_textures.c ---- */

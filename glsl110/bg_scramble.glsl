@@ -1,0 +1,68 @@
+#version 110
+// requires:
+// The sample scramble (docs/shading.md 1.3), the twin of src/betelgeuse/common/scramble.c: every
+// value an integer below 2^24, which float holds exactly, so both reach the same integers. mod by a
+// power of two is exact (x / 4096.0 and floor are); by another n it is corrected by hand, since
+// GLSL 1.10 does not promise a correctly rounded division.
+
+float bg_mod_exact(float a, float n)
+{
+    float r = a - floor(a / n) * n;
+    if (r < 0.0)
+        r += n;
+    if (r >= n)
+        r -= n;
+    return r;
+}
+
+// One round: a permutation of [0, 4096) (multiply, add, rotate the 12 bits by 7).
+float bg_scramble_round(float h)
+{
+    h = mod(h * 2653.0 + 2731.0, 4096.0);
+    float low = mod(h, 128.0);
+    return low * 32.0 + (h - low) / 128.0;
+}
+
+float bg_scramble_mix(float h, float v)
+{
+    h = mod(h + mod(v, 4096.0), 4096.0);
+    return bg_scramble_round(bg_scramble_round(bg_scramble_round(h)));
+}
+
+// The hash of the frame pixel under frag (gl_FragCoord.xy); pixel_at = (the window's first frame
+// column, the frame row of the window's bottom GL row), so that frame pixel (x, y) counts y down.
+float bg_pixel_hash(vec2 frag, vec2 pixel_at)
+{
+    float x = floor(frag.x) + pixel_at.x, y = pixel_at.y - floor(frag.y);
+    float h = bg_scramble_mix(bg_scramble_mix(0.0, x), y);
+    return bg_scramble_mix(h, floor(x / 4096.0) * 4.0 + floor(y / 4096.0));
+}
+
+// The unit-square point of a dimension at camera sample sample_of = (s, n, columns, rows).
+vec2 bg_sample_square(float pixel_hash, float dimension, vec4 sample_of)
+{
+    float h = bg_scramble_mix(pixel_hash, dimension);
+    float cell = bg_mod_exact(sample_of.x + bg_mod_exact(h, sample_of.y), sample_of.y);
+    float g1 = bg_scramble_mix(h, sample_of.x);
+    float g2 = bg_scramble_mix(g1, 1.0);
+    float column = bg_mod_exact(cell, sample_of.z);
+    float row = floor((cell - column) / sample_of.z + 0.5);
+    return vec2((column + (g1 + 0.5) / 4096.0) / sample_of.z, (row + (g2 + 0.5) / 4096.0) / sample_of.w);
+}
+
+// Shirley and Chiu's concentric map of the unit square onto the unit disc.
+vec2 bg_sample_disc(vec2 uv)
+{
+    float a = 2.0 * uv.x - 1.0, b = 2.0 * uv.y - 1.0;
+    if (a == 0.0 && b == 0.0)
+        return vec2(0.0);
+    float r, phi;
+    if (abs(a) > abs(b)) {
+        r = a;
+        phi = 0.785398163 * (b / a);
+    } else {
+        r = b;
+        phi = 1.570796327 - 0.785398163 * (a / b);
+    }
+    return r * vec2(cos(phi), sin(phi));
+}

@@ -1,0 +1,32 @@
+/* The stratified, scrambled sample points the distribution effects spend (docs/shading.md 1.3): for
+ * each frame pixel, camera sample s of n and dimension (the lens, one light), a point of the unit
+ * square. Over a pixel's n samples every dimension visits each of the n cells of the pixel pattern's
+ * grid once, in an order rotated per pixel and dimension, at a jittered place in the cell, so that
+ * the dimensions are decorrelated from each other and from the sample's place in the pixel.
+ * Everything is small integers held exactly in float, so that glsl110/bg_scramble.glsl computes
+ * the same points in GLSL 1.10 (which has no integer bit operations) up to the rounding of the
+ * last division. */
+#ifndef BG_SCRAMBLE_H
+#define BG_SCRAMBLE_H
+
+/* Dimensions: the lens, then one per light in the committed order. */
+#define BGI_DIMENSION_LENS 0
+#define BGI_DIMENSION_LIGHT0 16
+
+typedef struct bgi_sample_point {
+    double pixel_hash; /* the frame pixel's hash, an integer in [0, 4096) */
+    int sample;        /* s, 0 .. samples - 1 */
+    int samples;       /* n >= 1 */
+    int columns, rows; /* the pixel pattern's grid of n cells */
+} bgi_sample_point;
+
+/* Sample s of n of frame pixel (x, y) (x right, y down from the frame's top-left, each < 16384). */
+void bgi_sample_point_make(int x, int y, int s, int n, bgi_sample_point *out);
+
+/* The point of the unit square [0, 1)^2 of a dimension (>= 0) at this sample. */
+void bgi_sample_square(const bgi_sample_point *point, int dimension, double uv[2]);
+
+/* Shirley and Chiu's concentric map of the unit square onto the unit disc: strata stay compact. */
+void bgi_sample_disc(const double uv[2], double xy[2]);
+
+#endif
