@@ -15,12 +15,16 @@ float bg_mod_exact(float a, float n)
     return r;
 }
 
-// One round: a permutation of [0, 4096) (multiply, add, rotate the 12 bits by 7).
+// One round: a permutation of [0, 4096) (multiply, add, rotate the 12 bits by 7, cube modulo the
+// prime 4091, which permutes [0, 4091) since 4091 = 2 mod 3).
 float bg_scramble_round(float h)
 {
     h = mod(h * 2653.0 + 2731.0, 4096.0);
     float low = mod(h, 128.0);
-    return low * 32.0 + (h - low) / 128.0;
+    h = low * 32.0 + (h - low) / 128.0;
+    if (h < 4091.0)
+        h = bg_mod_exact(bg_mod_exact(h * h, 4091.0) * h, 4091.0);
+    return h;
 }
 
 float bg_scramble_mix(float h, float v)

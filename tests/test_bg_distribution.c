@@ -256,6 +256,210 @@ static void depth_of_field_gpu_follows_cpu(void **state)
     bg_scene_destroy(s);
 }
 
+/* ---- convergence ---- */
+
+/* Renders s at w x h, 256 samples, linear float: on the CPU (plan < 0) or on a GPU plan. */
+static float *linear_image(bg_scene *s, int w, int h, int plan)
+{
+    float *px = malloc((size_t)w * h * 16);
+    assert_non_null(px);
+    bg_image img = {w, h, BG_PIXEL_RGBA32F, 0, px};
+    bg_render_settings set = samples_settings(256);
+    if (plan < 0) {
+        if (bg_render_cpu(s, &set, &img) != BG_OK)
+            fail_msg("bg_render_cpu: %s", bg_scene_error_message(s));
+        return px;
+    }
+    set.gpu_plan = plans[plan];
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    util_render_gpu(r, util_fx.ctx, s, &set, &img, plan_names[plan]);
+    bg_renderer_destroy(r);
+    return px;
+}
+
+/* The penumbra scene: a white floor (y = 0, reflectance C = 0.8, no ambient light), an opaque
+ * half-plane y = OCCLUDER_Y, x < 0 above it, and a sphere light of radius LIGHT_R at height LIGHT_Y
+ * above x = 0, attenuation none, intensity 1; the camera looks straight down from y = 1.5 at the strip
+ * x in [-0.87, 0.87] that holds the penumbra. */
+#define LIGHT_Y 4.0
+#define LIGHT_R 0.5
+#define OCCLUDER_Y 2.0
+#define FLOOR_C 0.8
+/* Twice the largest error measured (docs/shading.md 7). */
+#define PENUMBRA_MAX_ERROR 0.016
+
+static bg_scene *penumbra_scene(void)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    const double none[3] = {0, 0, 0};
+    assert_int_equal(bg_scene_set_ambient(s, none), BG_OK);
+    uint32_t white = diffuse(s, FLOOR_C, FLOOR_C, FLOOR_C), id;
+    assert_int_equal(bg_scene_add_plane(s, bg_vec3_make(0, 0, 0), bg_vec3_make(0, 1, 0), white, &id), BG_OK);
+    bg_object_desc o = bg_object_desc_init(BG_SHAPE_RECTANGLE, white);
+    o.transform = bg_mat4_mul(bg_mat4_translate(-1000, OCCLUDER_Y, 0), bg_mat4_scale(1000, 1, 1000));
+    assert_int_equal(bg_scene_add_object(s, &o, &id), BG_OK);
+    bg_light l = bg_light_init();
+    l.type = BG_LIGHT_SPHERE;
+    l.position = bg_vec3_make(0, LIGHT_Y, 0);
+    l.radius = LIGHT_R;
+    add_light(s, &l);
+    bg_camera c = bg_camera_init();
+    c.position = bg_vec3_make(0, 1.5, 0);
+    c.look_at = bg_vec3_make(0, 0, 0);
+    c.up = bg_vec3_make(0, 0, -1);
+    c.fov_y_degrees = 2.0 * atan(0.87 / 1.5 * 4.0 / 64.0) * 180.0 / 3.14159265358979323846;
+    assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    return s;
+}
+
+/* The exact radiance of floor point (x, 0, z): C times the mean, over the light's cone of
+ * directions (uniform in solid angle, as both renderers sample it), of the cosine at the floor over
+ * the directions the half-plane lets through: C pi F_visible / Omega, F_visible the form factor of
+ * the part of the sphere seen past the occluder's edge. On each ring of the cone (fixed angle from
+ * its axis) the visible arc and the integral of the cosine over it are closed forms; the rings are
+ * summed by the midpoint rule, n of them. */
+static double penumbra_exact(double x, double z, int n)
+{
+    const double pi = 3.14159265358979323846;
+    double c[3] = {-x, LIGHT_Y, -z};
+    double d = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double w[3] = {c[0] / d, c[1] / d, c[2] / d};
+    /* Any orthonormal a, b across w. */
+    double h[3] = {0.0, 0.0, 1.0}, a[3], b[3];
+    a[0] = h[1] * w[2] - h[2] * w[1];
+    a[1] = h[2] * w[0] - h[0] * w[2];
+    a[2] = h[0] * w[1] - h[1] * w[0];
+    double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int k = 0; k < 3; k++)
+        a[k] /= la;
+    b[0] = w[1] * a[2] - w[2] * a[1];
+    b[1] = w[2] * a[0] - w[0] * a[2];
+    b[2] = w[0] * a[1] - w[1] * a[0];
+    double sin_a = LIGHT_R / d, top = 1.0 - sqrt(1.0 - sin_a * sin_a);
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) {
+        double t = (i + 0.5) / n * top, cos_t = 1.0 - t, sin_t = sqrt(t * (2.0 - t));
+        /* A direction passes the edge when its crossing of y = OCCLUDER_Y has x >= 0, i.e.
+         * g = x dir_y + OCCLUDER_Y dir_x >= 0 (dir_y > 0 in the cone): g = al + rho cos(phi - psi). */
+        double al = cos_t * (x * w[1] + OCCLUDER_Y * w[0]);
+        double be = sin_t * (x * a[1] + OCCLUDER_Y * a[0]), ga = sin_t * (x * b[1] + OCCLUDER_Y * b[0]);
+        double rho = sqrt(be * be + ga * ga), psi = atan2(ga, be);
+        /* dir_y = p + q cos phi + r sin phi, integrated over the visible arc psi +- delta. */
+        double p = cos_t * w[1], q = sin_t * a[1], r = sin_t * b[1];
+        double delta = al >= rho ? pi : al <= -rho ? 0.0 : acos(-al / rho);
+        double arc = delta >= pi ? 2.0 * pi * p : 2.0 * delta * p + 2.0 * sin(delta) * (q * cos(psi) + r * sin(psi));
+        sum += arc / (2.0 * pi);
+    }
+    return FLOOR_C * sum / n;
+}
+
+/* At 256 samples the penumbra of a sphere light follows the exact visible share of it: the largest
+ * error of a pixel in linear radiance along the strip, on the CPU and on every plan. */
+static void sphere_penumbra_converges(void **state)
+{
+    (void)state;
+    enum { PW = 64, PH = 4 };
+    bg_scene *s = penumbra_scene();
+    /* The camera maps the floor linearly: x = 1.5 sx and z = -1.5 sy (docs/shading.md 1). */
+    double tx = 0.87 / 1.5, ty = tx * PH / PW;
+    double exact[PW];
+    for (int i = 0; i < PW; i++) {
+        double x = 1.5 * (2.0 * (i + 0.5) / PW - 1.0) * tx;
+        exact[i] = 0.0;
+        for (int j = 0; j < PH; j++)
+            exact[i] += penumbra_exact(x, -1.5 * (1.0 - 2.0 * (j + 0.5) / PH) * ty, 4000) / PH;
+    }
+    /* The strip crosses the whole penumbra: fully shadowed at its left end, fully lit at its right,
+     * where the sum is the closed form of a whole sphere above the horizon, F = (R / D)^2 cos theta,
+     * and Omega = 2 pi (1 - cos alpha). */
+    assert_true(exact[0] == 0.0);
+    double x = 1.5 * (2.0 * (PW - 0.5) / PW - 1.0) * tx, d = sqrt(x * x + LIGHT_Y * LIGHT_Y);
+    double form = LIGHT_R * LIGHT_R / (d * d) * (LIGHT_Y / d);
+    double omega = 2.0 * 3.14159265358979323846 * (1.0 - sqrt(1.0 - LIGHT_R * LIGHT_R / (d * d)));
+    double closed = FLOOR_C * 3.14159265358979323846 * form / omega, summed = penumbra_exact(x, 0.0, 4000);
+    print_message("fully lit: closed form %.6f, rings summed %.6f\n", closed, summed);
+    assert_true(fabs(closed - summed) < 1e-6);
+    for (int plan = -1; plan < 3; plan++) {
+        float *px = linear_image(s, PW, PH, plan);
+        double worst = 0.0, mean = 0.0;
+        for (int i = 0; i < PW; i++) {
+            double v = 0.0;
+            for (int j = 0; j < PH; j++)
+                v += px[((size_t)j * PW + i) * 4] / (double)PH;
+            double e = fabs(v - exact[i]);
+            worst = e > worst ? e : worst;
+            mean += e / PW;
+        }
+        print_message("penumbra, %-9s largest error %.4f, mean %.4f (lit 0.77)\n", plan < 0 ? "CPU" : plan_names[plan],
+                      worst, mean);
+        assert_true(worst < PENUMBRA_MAX_ERROR);
+        free(px);
+    }
+    bg_scene_destroy(s);
+}
+
+/* The circle of confusion: a small emissive sphere (radius DOT_R) on the axis at distance DOT_Z
+ * before a camera focused at FOCUS with aperture APERTURE, on black. Through a thin lens a point at
+ * distance z spreads over a disc of radius A |z - f| / (z f) in the units of the image plane at
+ * distance 1 (the thin-lens formula), here in pixels R_coc = that x (H / 2) / tan(fov / 2). The disc
+ * is uniform (the lens points are uniform on the lens), so its intensity-weighted mean of squared
+ * distance from the centre is R_coc^2 / 2; the sphere's own image (a disc of radius r_img) and the
+ * pixel's box filter add r_img^2 / 2 and 1/6, which are taken off before the comparison. */
+#define DOT_Z 4.0
+#define DOT_R 0.1
+#define FOCUS 8.0
+#define APERTURE 0.5
+/* Twice the largest relative error measured (docs/shading.md 1.4). */
+#define COC_MAX_ERROR 0.01
+
+static void circle_of_confusion_follows_thin_lens(void **state)
+{
+    (void)state;
+    enum { CW = 64, CH = 64 };
+    const double fov = 20.0, tan_half = tan(fov * 3.14159265358979323846 / 360.0);
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_material glow = bg_material_init();
+    glow.base.reflectance = (bg_color_param){0, 0, 0, 0};
+    glow.ambient = (bg_color_param){0, 0, 0, 0};
+    glow.emission = (bg_color_param){1, 1, 1, 0};
+    uint32_t m, id;
+    assert_int_equal(bg_scene_add_material(s, &glow, &m), BG_OK);
+    assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(0, 0, -DOT_Z), DOT_R, m, &id), BG_OK);
+    bg_camera c = bg_camera_init();
+    c.position = bg_vec3_make(0, 0, 0);
+    c.look_at = bg_vec3_make(0, 0, -1);
+    c.fov_y_degrees = fov;
+    c.aperture_radius = APERTURE;
+    c.focus_distance = FOCUS;
+    assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    double px_per_unit = CH / 2.0 / tan_half;
+    double coc = APERTURE * fabs(DOT_Z - FOCUS) / (DOT_Z * FOCUS) * px_per_unit;
+    double dot = DOT_R / DOT_Z * px_per_unit;
+    for (int plan = -1; plan < 3; plan++) {
+        float *px = linear_image(s, CW, CH, plan);
+        double total = 0.0, second = 0.0, cx = 0.0, cy = 0.0;
+        for (int y = 0; y < CH; y++)
+            for (int x = 0; x < CW; x++) {
+                double v = px[((size_t)y * CW + x) * 4], dx = x + 0.5 - CW / 2.0, dy = y + 0.5 - CH / 2.0;
+                total += v;
+                cx += v * dx;
+                cy += v * dy;
+                second += v * (dx * dx + dy * dy);
+            }
+        double measured = sqrt(2.0 * (second / total - dot * dot / 2.0 - 1.0 / 6.0));
+        print_message("circle of confusion, %-9s radius %.3f px (thin lens %.3f), centre (%.3f, %.3f)\n",
+                      plan < 0 ? "CPU" : plan_names[plan], measured, coc, cx / total, cy / total);
+        assert_true(fabs(measured - coc) < COC_MAX_ERROR * coc);
+        assert_true(fabs(cx / total) < 0.3 && fabs(cy / total) < 0.3);
+        free(px);
+    }
+    bg_scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -264,6 +468,8 @@ int main(void)
         cmocka_unit_test(sphere_light_gpu_follows_cpu),
         cmocka_unit_test(rectangle_lights_gpu_follow_cpu),
         cmocka_unit_test(depth_of_field_gpu_follows_cpu),
+        cmocka_unit_test(sphere_penumbra_converges),
+        cmocka_unit_test(circle_of_confusion_follows_thin_lens),
     };
     return cmocka_run_group_tests_name("bg_distribution", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

@@ -1,8 +1,8 @@
 /* The sample scramble of docs/shading.md 1.3. Every value is an integer below 2^24 (or a multiple
  * of 2^-13 below 2^14), which float holds exactly, so the GLSL twin (glsl110/bg_scramble.glsl)
  * reaches the same integers; the hash is a small permutation network on 12-bit integers
- * (multiply by an odd constant and add, modulo 4096, then rotate the 12 bits by 7), three rounds per
- * value mixed in, since GLSL 1.10 has no bitwise operators to build a better-known hash from. */
+ * (multiply by an odd constant and add, modulo 4096, rotate the 12 bits by 7, cube modulo 4091),
+ * three rounds per value mixed in, since GLSL 1.10 has no bitwise operators to build a better-known hash from. */
 #include <math.h>
 
 #include "render_view.h"
@@ -10,12 +10,20 @@
 
 #define M 4096.0
 
-/* One round: a permutation of [0, 4096). h * 2653 + 2731 < 2^24. */
+/* The prime of the cube step: 4091 = 2 mod 3, so cubing permutes [0, 4091); 4090^2 < 2^24. */
+#define P 4091.0
+
+/* One round: a permutation of [0, 4096). An affine map modulo 4096 (h * 2653 + 2731 < 2^24) and a
+ * rotation of the 12 bits mix the bits; the cube modulo a prime is what makes the round nonlinear
+ * (without it the lens and a light fell in one cell at half the rate chance gives). */
 static double round_(double h)
 {
     h = fmod(h * 2653.0 + 2731.0, M);
     double low = fmod(h, 128.0);
-    return low * 32.0 + (h - low) / 128.0;
+    h = low * 32.0 + (h - low) / 128.0;
+    if (h < P)
+        h = fmod(fmod(h * h, P) * h, P);
+    return h;
 }
 
 /* h and a value v >= 0 (below 2^24) mixed into a new hash in [0, 4096). */
