@@ -1,21 +1,11 @@
 #version 110
-// requires:
+// requires: bg_basis.glsl
 // Area lights (docs/shading.md 7), the twin of src/betelgeuse/cpu/area_light.c. Beside bg_light.glsl's
 // packing, an area light has
 //   edge_u  xyz = a rectangle's first edge, w = the kind: 0.0 point or directional, 1.0 sphere,
 //           2.0 rectangle
 //   edge_v  xyz = a rectangle's second edge, w = a sphere's radius
 // and uv, its unit-square point at this camera sample (bg_scramble.glsl).
-
-// Duff et al. (2017): an orthonormal pair across the unit vector w.
-void bg_basis_across(vec3 w, out vec3 a, out vec3 b)
-{
-    float s = w.z >= 0.0 ? 1.0 : -1.0;
-    float k = -1.0 / (s + w.z);
-    float m = w.x * w.y * k;
-    a = vec3(1.0 + s * w.x * w.x * k, s * m, -s * w.x);
-    b = vec3(m, s + w.y * w.y * k, -w.y);
-}
 
 // The point of the sphere (centre c, radius r) seen from p, uniform in solid angle; c from inside.
 vec3 bg_sphere_light_point(vec3 c, float r, vec3 p, vec2 uv)

@@ -270,6 +270,13 @@ typedef struct bg_material {
     double coverage_cutoff;
     /* Which sides of a mesh object's triangles are there (the analytic shapes ignore it). */
     bg_mesh_sides sides;
+    /* Glossy reflection (docs/shading.md 9.1): the reflected ray (the specular share, and a
+     * transparent interface's reflection) leaves, at each camera sample, in a direction drawn from
+     * the lobe of the roughness, the coat's if the material has one, else the base's: Schlick's zenith
+     * factor Z(t) / pi (the GGX distribution of alpha^2 = r) over the mirror's normal. The blur
+     * converges as samples add up. false (the default): a perfect mirror; roughness 0 is a perfect
+     * mirror either way, bit for bit. Transmitted rays stay sharp. */
+    bool glossy;
 } bg_material;
 
 /* The default material described above. */

@@ -43,18 +43,40 @@ static void add_light(bg_scene *s, const bg_light *l)
         fail_msg("bg_scene_add_light: %s", bg_scene_error_message(s));
 }
 
+/* How the mirror sphere reflects: a perfect mirror; the same with glossy set (roughness 0); glossy
+ * with roughness 0.15, beside a glossy coated sphere and a glossy glass sphere; the same three
+ * materials without glossy (their specular shares perfect mirrors). */
+typedef enum reflection { MIRROR, GLOSSY_ROUGHNESS_0, GLOSSY, SHARP } reflection;
+
 /* Two spheres on a floor, a mirror sphere among them, under lights of the given kind, through a
  * camera of the given aperture (0: the pinhole) focused on the nearer sphere. */
-static bg_scene *spheres_scene(light_kind kind, double aperture, double focus)
+static bg_scene *spheres_scene_of(light_kind kind, double aperture, double focus, reflection reflect)
 {
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
     uint32_t floor = diffuse(s, 0.8, 0.8, 0.8), red = diffuse(s, 0.8, 0.1, 0.1), blue = diffuse(s, 0.1, 0.2, 0.8);
     bg_material chrome = bg_material_init();
     chrome.base.reflectance = (bg_color_param){0.9, 0.9, 0.9, 0};
-    chrome.base.roughness.value = 0.0;
+    bool rough = reflect == GLOSSY || reflect == SHARP, glossy = reflect == GLOSSY || reflect == GLOSSY_ROUGHNESS_0;
+    chrome.base.roughness.value = rough ? 0.15 : 0.0;
+    chrome.glossy = glossy;
     uint32_t mirror, id;
     assert_int_equal(bg_scene_add_material(s, &chrome, &mirror), BG_OK);
+    if (rough) {
+        bg_material varnish = bg_material_init(), frost = bg_material_init();
+        varnish.base.reflectance = (bg_color_param){0.2, 0.6, 0.2, 0};
+        varnish.has_coat = true;
+        varnish.coat.roughness.value = 0.05;
+        varnish.glossy = glossy;
+        frost.base.roughness.value = 0.1;
+        frost.transparency.value = 0.8;
+        frost.glossy = glossy;
+        uint32_t mv, mf;
+        assert_int_equal(bg_scene_add_material(s, &varnish, &mv), BG_OK);
+        assert_int_equal(bg_scene_add_material(s, &frost, &mf), BG_OK);
+        assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(-0.2, -0.6, 1.2), 0.4, mv, &id), BG_OK);
+        assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(2.4, -0.4, -0.5), 0.6, mf, &id), BG_OK);
+    }
     assert_int_equal(bg_scene_add_plane(s, bg_vec3_make(0, -1, 0), bg_vec3_make(0, 1, 0), floor, &id), BG_OK);
     assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(-1.2, 0, -1), 1.0, red, &id), BG_OK);
     assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(1.4, 0, -4), 1.0, blue, &id), BG_OK);
@@ -95,6 +117,11 @@ static bg_scene *spheres_scene(light_kind kind, double aperture, double focus)
     if (bg_scene_commit(s) != BG_OK)
         fail_msg("bg_scene_commit: %s", bg_scene_error_message(s));
     return s;
+}
+
+static bg_scene *spheres_scene(light_kind kind, double aperture, double focus)
+{
+    return spheres_scene_of(kind, aperture, focus, MIRROR);
 }
 
 static bg_render_settings samples_settings(int samples)
@@ -144,7 +171,7 @@ static void sample_points_fill_every_cell_once(void **state)
         bgi_sample_point p;
         bgi_sample_point_make(i % 40, i / 40, 0, 16, &p);
         bgi_sample_square(&p, BGI_DIMENSION_LENS, a);
-        bgi_sample_square(&p, BGI_DIMENSION_LIGHT0, b);
+        bgi_sample_square(&p, BGI_DIMENSION_LIGHT(0), b);
         int ca = (int)(a[1] * 4) * 4 + (int)(a[0] * 4), cb = (int)(b[1] * 4) * 4 + (int)(b[0] * 4);
         lens_cells[ca]++;
         same += ca == cb;
@@ -174,31 +201,38 @@ static void zero_is_today(void **state)
     bg_scene *today = spheres_scene(POINT_LIGHT, 0.0, 0.0);
     bg_scene *zero_radius = spheres_scene(SPHERE_OF_RADIUS_0, 0.0, 0.0);
     bg_scene *zero_aperture = spheres_scene(POINT_LIGHT, 0.0, 3.0);
+    bg_scene *zero_roughness = spheres_scene_of(POINT_LIGHT, 0.0, 0.0, GLOSSY_ROUGHNESS_0);
     const int sample_counts[] = {1, 4};
     for (int k = 0; k < 2; k++) {
         int n = sample_counts[k];
         unsigned char *a = cpu_image(today, n, W, H), *b = cpu_image(zero_radius, n, W, H),
-                      *c = cpu_image(zero_aperture, n, W, H);
+                      *c = cpu_image(zero_aperture, n, W, H), *d = cpu_image(zero_roughness, n, W, H);
         expect_same_bytes(a, b, (size_t)W * H * 4, "CPU, sphere light of radius 0");
         expect_same_bytes(a, c, (size_t)W * H * 4, "CPU, aperture 0");
+        expect_same_bytes(a, d, (size_t)W * H * 4, "CPU, glossy of roughness 0");
         free(a);
         free(b);
         free(c);
+        free(d);
         bg_render_settings set = samples_settings(n);
         for (int p = 0; p < 3; p++) {
             unsigned char *ga = util_gpu_plan_image(today, &set, plans[p], W, H, plan_names[p]);
             unsigned char *gb = util_gpu_plan_image(zero_radius, &set, plans[p], W, H, plan_names[p]);
             unsigned char *gc = util_gpu_plan_image(zero_aperture, &set, plans[p], W, H, plan_names[p]);
+            unsigned char *gd = util_gpu_plan_image(zero_roughness, &set, plans[p], W, H, plan_names[p]);
             expect_same_bytes(ga, gb, (size_t)W * H * 4, plan_names[p]);
             expect_same_bytes(ga, gc, (size_t)W * H * 4, plan_names[p]);
+            expect_same_bytes(ga, gd, (size_t)W * H * 4, plan_names[p]);
             free(ga);
             free(gb);
             free(gc);
+            free(gd);
         }
     }
     bg_scene_destroy(today);
     bg_scene_destroy(zero_radius);
     bg_scene_destroy(zero_aperture);
+    bg_scene_destroy(zero_roughness);
 }
 
 /* ---- the GPU follows the CPU ---- */
@@ -245,6 +279,26 @@ static void rectangle_lights_gpu_follow_cpu(void **state)
     (void)state;
     bg_scene *s = spheres_scene(BOTH_AREAS, 0.0, 0.0);
     gpu_follows_cpu(s, "sphere and rectangle");
+    bg_scene_destroy(s);
+}
+
+static void glossy_reflection_gpu_follows_cpu(void **state)
+{
+    (void)state;
+    bg_scene *s = spheres_scene_of(POINT_LIGHT, 0.0, 0.0, GLOSSY);
+    gpu_follows_cpu(s, "glossy");
+    /* The lobe blurs what the three spheres reflect: against the same materials reflecting as
+     * mirrors, many pixels change. */
+    bg_scene *sharp = spheres_scene_of(POINT_LIGHT, 0.0, 0.0, SHARP);
+    unsigned char *a = cpu_image(s, 16, W, H), *b = cpu_image(sharp, 16, W, H);
+    int changed = 0;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++)
+        changed += abs(a[i] - b[i]) > 8;
+    print_message("glossy against mirrors: %d channels differ by more than 8\n", changed);
+    assert_true(changed > 100);
+    free(a);
+    free(b);
+    bg_scene_destroy(sharp);
     bg_scene_destroy(s);
 }
 
@@ -468,6 +522,7 @@ int main(void)
         cmocka_unit_test(sphere_light_gpu_follows_cpu),
         cmocka_unit_test(rectangle_lights_gpu_follow_cpu),
         cmocka_unit_test(depth_of_field_gpu_follows_cpu),
+        cmocka_unit_test(glossy_reflection_gpu_follows_cpu),
         cmocka_unit_test(sphere_penumbra_converges),
         cmocka_unit_test(circle_of_confusion_follows_thin_lens),
     };

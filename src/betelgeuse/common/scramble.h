@@ -9,9 +9,11 @@
 #ifndef BG_SCRAMBLE_H
 #define BG_SCRAMBLE_H
 
-/* Dimensions: the lens, then one per light in the committed order. */
+/* Dimensions: the lens; light k of the committed order (odd); the glossy lobe of the reflection at
+ * a hit of a level-L ray (even, from 2), so that neither kind runs into the other however many. */
 #define BGI_DIMENSION_LENS 0
-#define BGI_DIMENSION_LIGHT0 16
+#define BGI_DIMENSION_LIGHT(k) (1 + 2 * (k))
+#define BGI_DIMENSION_GLOSSY(level) (2 + 2 * (level))
 
 typedef struct bgi_sample_point {
     double pixel_hash; /* the frame pixel's hash, an integer in [0, 4096) */

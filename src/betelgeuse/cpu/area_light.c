@@ -4,17 +4,6 @@
 
 #define TWO_PI 6.28318530717958647692
 
-/* Duff, Burgess, Christensen, Hery, Kensler, Liani and Villemin (2017): an orthonormal pair a, b
- * across the unit vector w, without a branch on a near-zero component. */
-static void basis_across(const double w[3], double a[3], double b[3])
-{
-    double sign = w[2] >= 0.0 ? 1.0 : -1.0;
-    double k = -1.0 / (sign + w[2]);
-    double m = w[0] * w[1] * k;
-    bg_v3_set(a, 1.0 + sign * w[0] * w[0] * k, sign * m, -sign * w[0]);
-    bg_v3_set(b, m, sign + w[1] * w[1] * k, -w[1]);
-}
-
 void bgi_cpu_sphere_light_point(const double c[3], double r, const double p[3], const double uv[2], double q[3])
 {
     double to[3] = {c[0] - p[0], c[1] - p[1], c[2] - p[2]};
@@ -31,7 +20,7 @@ void bgi_cpu_sphere_light_point(const double c[3], double r, const double p[3], 
     double sin2 = one_minus_cos * (2.0 - one_minus_cos);
     double sin_t = sqrt(sin2 > 0.0 ? sin2 : 0.0);
     double phi = TWO_PI * uv[1], a[3], b[3], dir[3];
-    basis_across(w, a, b);
+    bgi_cpu_basis_across(w, a, b);
     for (int i = 0; i < 3; i++)
         dir[i] = cos_t * w[i] + sin_t * (cos(phi) * a[i] + sin(phi) * b[i]);
     /* The nearer root of |p + t dir - c| = r. */
@@ -48,7 +37,7 @@ bool bgi_cpu_light_sample(const bg_scene_state *state, uint32_t light, const bgi
     if (src->type != BG_LIGHT_SPHERE && src->type != BG_LIGHT_RECTANGLE)
         return bgi_cpu_light_arrival(src, p, l, t_max, radiance);
     double uv[2], q[3];
-    bgi_sample_square(sample, BGI_DIMENSION_LIGHT0 + (int)light, uv);
+    bgi_sample_square(sample, BGI_DIMENSION_LIGHT((int)light), uv);
     const double corner[3] = {src->position.x, src->position.y, src->position.z};
     if (src->type == BG_LIGHT_SPHERE) {
         bgi_cpu_sphere_light_point(corner, src->radius, p, uv, q);

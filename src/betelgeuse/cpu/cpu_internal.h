@@ -48,6 +48,17 @@ static inline bool bg_v3_normalize(double v[3])
     return true;
 }
 
+/* Duff, Burgess, Christensen, Hery, Kensler, Liani and Villemin (2017): an orthonormal pair a, b
+ * across the unit vector w, without a branch on a near-zero component (docs/shading.md 7). */
+static inline void bgi_cpu_basis_across(const double w[3], double a[3], double b[3])
+{
+    double sign = w[2] >= 0.0 ? 1.0 : -1.0;
+    double k = -1.0 / (sign + w[2]);
+    double m = w[0] * w[1] * k;
+    bg_v3_set(a, 1.0 + sign * w[0] * w[0] * k, sign * m, -sign * w[0]);
+    bg_v3_set(b, m, sign + w[1] * w[1] * k, -w[1]);
+}
+
 /* ---- intersection (intersect.c) ------------------------------------------------------------ */
 
 /* Where a ray meets a prototype, in object space. Closed shapes (sphere, box, cylinder) give the
@@ -287,6 +298,11 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
  * lights' points; NULL: sample 0 of 1 of frame pixel (0, 0)). */
 void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings,
                        const bgi_sample_point *sample, const double o[3], const double d[3], double rgb[3]);
+
+/* The glossy reflection of the unit direction d off unit normal n (facing the ray) for roughness
+ * r > 0 and the unit-square point uv (docs/shading.md 9.1): d mirrored about a normal drawn from
+ * Schlick's zenith factor. False when it points below the surface (no reflected ray then). */
+bool bgi_cpu_glossy_reflect(const double d[3], const double n[3], double r, const double uv[2], double out[3]);
 
 /* Moves a pinhole ray (o at the eye, unit d) of a camera with aperture_radius > 0 onto the thin lens
  * (lens.c, docs/shading.md 1.4): through this sample's point of the lens towards where the pinhole

@@ -242,9 +242,17 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
     if (bgi_cpu_worth_following(w_refl, settings->min_weight)) {
         double dn = bg_v3_dot(d, n);
         double r[3] = {d[0] - 2.0 * dn * n[0], d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]};
+        /* A glossy material's lobe, of the coat's roughness if it has one (docs/shading.md 9.1). */
+        double lobe = surface.has_coat ? surface.coat.r : surface.base.r;
+        bool leaves = true;
+        if (material->glossy && lobe > 0.0) {
+            double uv[2];
+            bgi_sample_square(sample, BGI_DIMENSION_GLOSSY(level), uv);
+            leaves = bgi_cpu_glossy_reflect(d, n, lobe, uv, r);
+        }
         double from[3];
         bgi_cpu_leave_origin(&hit, r, from);
-        if (bg_v3_normalize(r))
+        if (leaves && bg_v3_normalize(r))
             bgi_cpu_trace(state, settings, sample, from, r, level + 1, w_refl,
                          object->mesh ? leave_skip : stays_inside ? BG_CPU_NONE : hit.object, leave_triangle,
                          stays_inside ? hit.object : BG_CPU_NONE, out);

@@ -35,6 +35,7 @@ bg_material bg_material_init(void)
     m.coverage = (bg_scalar_param){1.0, 0, 3};
     m.coverage_cutoff = 0.0;
     m.sides = BG_SIDES_SOLID;
+    m.glossy = false;
     return m;
 }
 

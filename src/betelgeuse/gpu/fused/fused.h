@@ -105,6 +105,7 @@ typedef enum gpu_fused_uniform {
 /* A material as the fused shader specialises it; only used materials get code and uniforms. */
 typedef struct gpu_fused_material {
     bool used, aniso, coat, transparent;
+    bool glossy;                          /* its reflected ray is drawn from its lobe (bg_glossy.glsl) */
     bool bounce;                          /* may spawn a secondary ray (bgi_gpu_material_may_bounce) */
     bool textured;                        /* some parameter samples a texture: its objects need UVs */
     uint32_t texture[GPU_P_COUNT_]; /* scene texture (1-based) of each parameter, 0 none */
@@ -160,6 +161,7 @@ typedef struct gpu_fused_layout {
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
     bool lens;           /* the camera has an aperture (docs/shading.md 1.4) */
     bool area;           /* some light is an area light (docs/shading.md 7) */
+    bool glossy;         /* some used material is glossy (docs/shading.md 9.1) */
 } gpu_fused_layout;
 /* Shadow tests (lights x casters) up to which lights are unrolled. Each unrolled light inlines its
  * own copy of every caster's test: at 2 lights x 17 casters (many_spheres) the program took 14 s

@@ -31,6 +31,7 @@ static const gpu_fused_need param_need[GPU_P_COUNT_] = {
 static void describe_material(const bg_material *src, gpu_fused_material *m, gpu_fused_layout *l)
 {
     m->transparent = src->transparency.value > 0.0;
+    m->glossy = src->glossy;
     m->coat = src->has_coat;
     m->aniso = bgi_gpu_material_may_be_aniso(src);
     m->bounce = bgi_gpu_material_may_bounce(src);
@@ -185,6 +186,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
             continue;
         describe_material(&state->materials[k], m, &l);
         l.transparent |= m->transparent;
+        l.glossy |= m->glossy;
         l.aniso |= m->aniso;
         l.coat |= m->coat;
         bounce |= m->bounce;

@@ -80,10 +80,12 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     if (ok && l->light_count > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     /* The distribution effects' sample points, and the frame pixel's hash they start from. */
-    if (ok && (l->lens || l->area)) {
+    if (ok && (l->lens || l->area || l->glossy)) {
         ok = bgi_gpu_text_snippet(t, "bg_scramble.glsl", seen, &n, SEEN_CAP);
         bgi_gpu_text_append(t, "float bg_ph;\n");
     }
+    if (ok && l->glossy)
+        ok = bgi_gpu_text_snippet(t, "bg_glossy.glsl", seen, &n, SEEN_CAP);
     if (ok && l->lens)
         ok = bgi_gpu_text_snippet(t, "bg_lens.glsl", seen, &n, SEEN_CAP);
     if (ok && l->area)
@@ -420,6 +422,10 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
     }
     if (bgi_gpu_fused_uniform_present(l, GPU_FUSED_U_IOR, k))
         bgi_gpu_text_printf(t, "        ior = %s;\n", uniform(l, GPU_FUSED_U_IOR, k).s);
+    /* A glossy material marks itself by a negative ior (positive in every material), which the
+     * spawn reads back as its absolute value. */
+    if (m->glossy)
+        bgi_gpu_text_append(t, "        ior = -ior;\n");
 }
 
 /* The hit attributes of a tree object, as emit_object_attributes writes them from uniforms, here
@@ -533,11 +539,11 @@ static void emit_light_term(const gpu_fused_layout *l, gpu_text *t, const char *
     }
     bgi_gpu_text_printf(t,
                     "%s{\n%s    vec4 q = bg_area_light_pos(p, bg_lpos[%s], bg_ledge_u[%s], bg_ledge_v[%s], "
-                    "bg_sample_square(bg_ph, %d.0 + float(%s), bg_sample_of));\n"
+                    "bg_sample_square(bg_ph, %d.0 + %d.0 * float(%s), bg_sample_of));\n"
                     "%s    radiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, q, "
                     "bg_area_light_radiance(p, q, bg_ledge_u[%s], bg_ledge_v[%s], bg_lrad[%s]), bg_latt[%s], bg_lspot[%s], "
                     "bg_lexp[%s]);\n%s}\n",
-                    indent, indent, i, i, i, BGI_DIMENSION_LIGHT0, i, indent, i, i, i, i, i, i, indent);
+                    indent, indent, i, i, i, BGI_DIMENSION_LIGHT(0), BGI_DIMENSION_LIGHT(1) - BGI_DIMENSION_LIGHT(0), i, indent, i, i, i, i, i, i, indent);
 }
 
 /* Every light in the scene's order (docs/shading.md 8): unrolled, or a loop of the scene's exact
@@ -569,9 +575,14 @@ static const char *const trace_call =
 static void emit_spawn(const gpu_fused_layout *l, gpu_text *t, bool transmitted, int child)
 {
     bgi_gpu_text_printf(t,
-                    "        bg_spawn(%s, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp.x, bg_xp.y, bg_rd, vec4(bg_cw.rgb, 1.0), "
+                    "        bg_spawn(%s, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp.x, %s, bg_rd, vec4(bg_cw.rgb, 1.0), "
                     "bg_min_weight, bg_o%d, bg_d%d, bg_w%d);\n",
-                    transmitted ? "true" : "false", child, child, child);
+                    transmitted ? "true" : "false", l->glossy ? "abs(bg_xp.y)" : "bg_xp.y", child, child, child);
+    /* A glossy material's reflected child, from the lobe's dimension of its level (bg_cw.a). */
+    if (l->glossy && !transmitted)
+        bgi_gpu_text_printf(t, "        if (bg_xp.y < 0.0)\n            bg_glossy_child(bg_rd.xyz, bg_nrm, bg_coat, "
+                               "bg_sample_square(bg_ph, %d.0 + %d.0 * bg_cw.a, bg_sample_of), bg_d%d, bg_w%d);\n",
+                            BGI_DIMENSION_GLOSSY(0), BGI_DIMENSION_GLOSSY(1) - BGI_DIMENSION_GLOSSY(0), child, child);
     if (l->mesh)
         bgi_gpu_text_printf(t, "        bg_mesh_leave(bg_hit, bg_o%d, bg_d%d);\n", child, child);
 }
@@ -641,7 +652,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
                        "bg_tan_half, bg_ro, bg_rd, bg_w0);\n"
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
-    if (l->lens || l->area)
+    if (l->lens || l->area || l->glossy)
         bgi_gpu_text_append(t, "bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
     if (l->lens)
         bgi_gpu_text_printf(t, "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_ph, %d.0, bg_sample_of)), bg_lens.x, bg_lens.y, "

@@ -272,7 +272,7 @@ bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
         if (w->need == GPU_FUSED_NEED_MESH)
             return l->mesh;
         if (w->need == GPU_FUSED_NEED_SCRAMBLE)
-            return l->lens || l->area;
+            return l->lens || l->area || l->glossy;
         if (w->need == GPU_FUSED_NEED_LENS)
             return l->lens;
         return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;

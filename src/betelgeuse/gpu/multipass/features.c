@@ -16,6 +16,7 @@ void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_feat
         f->coat |= m->has_coat;
         f->aniso |= bgi_gpu_material_may_be_aniso(m);
         f->bounce |= bgi_gpu_material_may_bounce(m);
+        f->glossy |= m->glossy;
     }
     f->mesh = state->mesh_object_count > 0;
     f->lens = state->camera.camera.aperture_radius > 0.0;

@@ -93,6 +93,7 @@ uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t texture
         mix_scalar(&s, &m->coverage);
         mix_double(&s, m->coverage_cutoff);
         mix(&s, (uint64_t)m->sides);
+        mix(&s, m->glossy);
     }
     mix(&s, state->light_count);
     for (uint32_t i = 0; i < state->light_count; i++) {

@@ -117,6 +117,7 @@ typedef struct member {
     int texture_count;
     bool need_uv; /* it samples some texture */
     bool mesh;    /* a mesh object: its test walks its mesh's tree */
+    bool glossy;  /* its material is glossy: a negative ior marks it in the G-buffer */
     bool declares[U_COUNT];
     char object_uniform[U_COUNT][UNIFORM_NAME_SIZE];
     char param_uniform[GPU_P_COUNT_][UNIFORM_NAME_SIZE];
@@ -145,6 +146,7 @@ static void member_describe(const bg_renderer *r, const bg_scene_state *state, u
             bgi_gpu_hit_texture_lane(mb->textures, &mb->texture_count, mb->p[i].texture);
     mb->need_uv = mb->texture_count > 0;
     mb->mesh = state->objects[object].shape == BGI_SHAPE_MESH;
+    mb->glossy = state->materials[state->objects[object].material].glossy;
 
     mb->declares[U_INDEX] = mb->declares[U_TO_OBJECT] = mb->declares[U_NORMAL_TO_WORLD] = true;
     mb->declares[U_TO_WORLD3] = f->slot[GPU_SLOT_TANGENT] || mb->mesh;
@@ -303,7 +305,7 @@ static void emit_shape_geometry(gpu_text *t, const bg_object_data *obj, const me
 }
 
 /* The winner's material parameters and index of refraction from member mb's uniforms. */
-static void emit_params(gpu_text *t, const member *mb, bool transparent, bool coat)
+static void emit_params(gpu_text *t, const member *mb, bool transparent, bool coat, bool glossy)
 {
     const param *p = mb->p;
     for (int i = 0; i < GPU_P_COUNT_; i++) {
@@ -330,18 +332,22 @@ static void emit_params(gpu_text *t, const member *mb, bool transparent, bool co
         bgi_gpu_text_printf(t, "    if (%s < 0.0) bg_coat_r = -1.0;\n", mb->param_uniform[GPU_P_COAT_R]);
     if (transparent)
         bgi_gpu_text_printf(t, "    bg_ior = %s;\n", mb->object_uniform[U_IOR]);
+    else if (glossy)
+        bgi_gpu_text_append(t, "    bg_ior = 1.0;\n");
+    if (mb->glossy)
+        bgi_gpu_text_append(t, "    bg_ior = -bg_ior;\n");
 }
 
 /* The winner's surface: normal, hit code, UV, tangent and material, all from member j's uniforms. */
 static void emit_surface(gpu_text *t, const bg_scene_state *state, const member *mb, int j, bool need_tangent,
-                         bool transparent, bool coat)
+                         bool transparent, bool coat, bool glossy)
 {
     const bg_object_data *obj = &state->objects[mb->object];
     if (mb->mesh)
         emit_mesh_geometry(t, state, mb, j, need_tangent);
     else
         emit_shape_geometry(t, obj, mb, j, need_tangent);
-    emit_params(t, mb, transparent, coat);
+    emit_params(t, mb, transparent, coat, glossy);
 }
 
 /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
@@ -422,9 +428,10 @@ static void add_uniforms(hit_pass_parts *hp)
 static void add_outputs(const bg_renderer *r, hit_pass_parts *hp)
 {
     const gpu_features *f = &r->multipass->features;
-    /* ONCE carries the ior lane only with transparency, TANGENT the coat's isotropy only with coats. */
+    /* ONCE carries the ior lane only with transparency or glossy materials (negative for these),
+     * TANGENT the coat's isotropy only with coats. */
     snprintf(hp->once_value, sizeof hp->once_value, "vec4(bg_w.rgb * (bg_emission + bg_opaque * bg_ambient), %s)",
-             f->transparent ? "bg_ior" : "1.0");
+             f->transparent || f->glossy ? "bg_ior" : "1.0");
     snprintf(hp->tangent_value, sizeof hp->tangent_value, "vec4(bg_tg, %s)", f->coat ? "bg_coat_p" : "1.0");
     /* A pass without a mesh hits none: no offset, no triangle. */
     if (hp->meshes > 0)
@@ -520,7 +527,7 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
     for (int i = 0; i < GPU_P_COUNT_; i++)
         if (p0[i].used)
             bgi_gpu_text_printf(main, "%s bg_%s;\n", p0[i].color ? "vec3" : "float", p0[i].name);
-    if (f->transparent)
+    if (f->transparent || f->glossy)
         bgi_gpu_text_append(main, "float bg_ior;\n");
     for (int j = 0; j < hp->count; j++) {
         if (hp->count == 1)
@@ -529,7 +536,7 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
             bgi_gpu_text_append(main, "else {\n");
         else
             bgi_gpu_text_printf(main, "%sif (bg_win == %d.0) {\n", j ? "else " : "", j);
-        emit_surface(main, state, &hp->members[j], j, need_tangent, f->transparent, f->coat);
+        emit_surface(main, state, &hp->members[j], j, need_tangent, f->transparent, f->coat, f->glossy);
         bgi_gpu_text_append(main, "}\n");
     }
     if (!f->transparent)

@@ -47,7 +47,7 @@ static void light_place(gpu_text *main, bool area, int i, int k, const char *ind
     }
     bgi_gpu_text_printf(main, "%svec4 bg_q%d = bg_area_light_pos(bg_h.xyz, bg_lpos[%d], bg_ledge_u[%d], bg_ledge_v[%d], "
                               "bg_sample_square(bg_ph, %d.0, bg_sample_of));\n",
-                        indent, i, i, i, i, BGI_DIMENSION_LIGHT0 + k);
+                        indent, i, i, i, i, BGI_DIMENSION_LIGHT(k));
     snprintf(pos, size, "bg_q%d", i);
     snprintf(rad, size, "bg_area_light_radiance(bg_h.xyz, bg_q%d, bg_ledge_u[%d], bg_ledge_v[%d], bg_lrad[%d])", i, i, i, i);
 }
@@ -86,7 +86,7 @@ bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
 bg_status bgi_gpu_sample_uniforms_set(bg_renderer *r)
 {
     const gpu_features *f = &r->multipass->features;
-    if (!f->lens && !f->area)
+    if (!f->lens && !f->area && !f->glossy)
         return BG_OK;
     float at[2], of[4];
     bgi_gpu_pixel_at(&r->view, at);
@@ -97,6 +97,11 @@ bg_status bgi_gpu_sample_uniforms_set(bg_renderer *r)
         ms = macs_pass_set_uniform(p->camera, "bg_pixel_at", at);
         if (!ms)
             ms = macs_pass_set_uniform(p->camera, "bg_sample_of", of);
+    }
+    if (f->glossy && p->reflect && !ms) {
+        ms = macs_pass_set_uniform(p->reflect, "bg_pixel_at", at);
+        if (!ms)
+            ms = macs_pass_set_uniform(p->reflect, "bg_sample_of", of);
     }
     for (int i = 0; f->area && i < p->shadow_count && !ms; i++) {
         if (!p->shadow[i].pass)

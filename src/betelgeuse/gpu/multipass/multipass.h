@@ -34,6 +34,8 @@ typedef struct gpu_features {
     bool mesh;        /* some object is a mesh: MESH slot, the mesh textures, the marks of short walks */
     bool lens;        /* the camera has an aperture: the camera pass samples the lens */
     bool area;        /* some light is an area light: shadow and light passes sample its point */
+    bool glossy;      /* some material is glossy: ONCE's ior lane marks it (negative), and the
+                         reflection pass draws its rays from the lobe */
     bool slot[GPU_SLOT_COUNT];
     int slot_count;
 } gpu_features;

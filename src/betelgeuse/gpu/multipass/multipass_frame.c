@@ -211,6 +211,13 @@ static bg_status spawn(frame *f, macs_pass *pass, const gpu_ray_set *set, gpu_ra
         ms = macs_pass_set_output(pass, 2, child->weight);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "preparing a child ray set");
+    /* The glossy lobe's dimension follows the parent's level (docs/shading.md 1.3). */
+    if (pass == r->multipass->passes.reflect && r->multipass->features.glossy) {
+        float lv = (float)level;
+        ms = macs_pass_set_uniform(pass, "bg_level", &lv);
+        if (ms)
+            return bgi_gpu_fail_macs(r, ms, "the reflection pass's level");
+    }
     bg_status st = bind(r, pass, GPU_SPAWN_IN_DIR, set->dir);
     if (st == BG_OK)
         st = bind(r, pass, GPU_SPAWN_IN_WEIGHT, set->weight);

@@ -185,10 +185,10 @@ static int spawn_inputs(const bg_renderer *r, int kind, macs_input_desc in[SPAWN
         in[ni].name = "bg_g_base", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_BASE];
     if (kind == SPAWN_REFLECT && f->slot[GPU_SLOT_COAT])
         in[ni].name = "bg_g_coat", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_COAT];
-    if (f->transparent) {
+    if (f->transparent)
         in[ni].name = "bg_g_xparent", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_XPARENT];
+    if (f->transparent || (kind == SPAWN_REFLECT && f->glossy))
         in[ni].name = "bg_g_once", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_ONCE];
-    }
     if (f->mesh)
         in[ni].name = "bg_g_mesh", in_tex[ni++] = r->multipass->gbuffer[GPU_SLOT_MESH];
     return ni;
@@ -207,7 +207,16 @@ static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
                     reflect ? "false" : "true", reflect ? "texture2D(bg_g_base, macs_uv)" : "vec4(0.0)",
                     reflect && f->slot[GPU_SLOT_COAT] ? "texture2D(bg_g_coat, macs_uv)" : "vec4(0.0, 0.0, 0.0, -1.0)",
                     f->transparent ? "texture2D(bg_g_xparent, macs_uv).a" : "0.0",
-                    f->transparent ? "texture2D(bg_g_once, macs_uv).a" : "1.0");
+                    !f->transparent ? "1.0" : f->glossy ? "abs(texture2D(bg_g_once, macs_uv).a)" : "texture2D(bg_g_once, macs_uv).a");
+    /* A glossy material's reflected child (a negative ior marks it), from the lobe's dimension of the
+     * parent's level, a uniform set per spawn. */
+    if (reflect && f->glossy)
+        bgi_gpu_text_printf(main, "if (texture2D(bg_g_once, macs_uv).a < 0.0)\n"
+                                  "    bg_glossy_child(texture2D(bg_ray_dir, macs_uv).xyz, texture2D(bg_g_normal, macs_uv), %s, "
+                                  "bg_sample_square(bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at), %d.0 + %d.0 * bg_level, "
+                                  "bg_sample_of), bg_o1, bg_o2);\n",
+                            f->slot[GPU_SLOT_COAT] ? "texture2D(bg_g_coat, macs_uv)" : "vec4(0.0, 0.0, 0.0, -1.0)",
+                            BGI_DIMENSION_GLOSSY(0), BGI_DIMENSION_GLOSSY(1) - BGI_DIMENSION_GLOSSY(0));
     /* A ray leaving a mesh starts off the surface on its side and skips its triangle (the lanes of
      * gpu/mesh_source.c); a pixel the CPU renders spawns nothing. */
     if (f->mesh)
@@ -228,12 +237,16 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
     macs_input_desc in[SPAWN_MAX_INPUTS];
     macs_texture *in_tex[SPAWN_MAX_INPUTS];
     int ni = spawn_inputs(r, kind, in, in_tex);
-    macs_uniform_desc u[1] = {{"bg_min_weight", MACS_UNIFORM_FLOAT, 0}};
+    bool glossy = kind == SPAWN_REFLECT && r->multipass->features.glossy;
+    macs_uniform_desc u[4] = {{"bg_min_weight", MACS_UNIFORM_FLOAT, 0}, {"bg_pixel_at", MACS_UNIFORM_VEC2, 0},
+                              {"bg_sample_of", MACS_UNIFORM_VEC4, 0}, {"bg_level", MACS_UNIFORM_FLOAT, 0}};
     macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
     macs_stencil_state s = stencil_skip(r) ? stencil_equal(GPU_STENCIL_LIVE | GPU_STENCIL_HIT,
                                                            GPU_STENCIL_LIVE | GPU_STENCIL_HIT)
                                            : stencil_equal(GPU_STENCIL_HIT, GPU_STENCIL_HIT);
-    const char *files[] = {"bg_stage_spawn.glsl", NULL};
+    const char *mirror_files[] = {"bg_stage_spawn.glsl", NULL};
+    const char *glossy_files[] = {"bg_stage_spawn.glsl", "bg_scramble.glsl", "bg_glossy.glsl", NULL};
+    const char **files = glossy ? glossy_files : mirror_files;
     gpu_text main;
     bgi_gpu_text_init(&main, &r->allocator);
     spawn_main(r, kind, &main);
@@ -242,7 +255,7 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
         st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the spawn shader");
     else
         st = simple_pass(r, kind == SPAWN_REFRACT ? "refraction pass" : "reflection pass", files, main.s, in, ni,
-                         in_tex, u, 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);
+                         in_tex, u, glossy ? 4 : 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);
     bgi_gpu_text_free(&main);
     if (st != BG_OK)
         return st;
