@@ -458,6 +458,39 @@ BG_API bg_status bg_scene_remove_light(bg_scene *scene, uint32_t light);
  * ambient colour multiplies it. */
 BG_API bg_status bg_scene_set_ambient(bg_scene *scene, const double rgb[3]);
 
+/* ---- environment --------------------------------------------------------------------------- */
+
+/* How an environment that lights the scene picks its direction at each camera sample. */
+typedef enum bg_environment_sampling {
+    BG_ENVIRONMENT_IMPORTANCE = 0, /* in proportion to each texel's luminance times its solid angle
+                                      (uniform where the image is black everywhere) */
+    BG_ENVIRONMENT_UNIFORM,        /* uniform over the sphere of directions */
+    BG_ENVIRONMENT_SAMPLING_COUNT_
+} bg_environment_sampling;
+
+/* An equirectangular image around the scene (docs/shading.md 7.1): rays that meet nothing see it in
+ * place of settings.background, at every bounce, and it may light the scene as a distant light.
+ * The image's centre column looks along -z, its top row straight up (+y), its left and right edges
+ * meet behind (+z); use BG_WRAP_REPEAT for the texture, so that the seam blends across. Defaults
+ * (bg_environment_init): none (texture 0), intensity 1, lighting off, importance sampling. */
+typedef struct bg_environment {
+    uint32_t texture;   /* a texture of the scene (bg_scene_add_texture: linear RGBA32F for HDR
+                           images); 0 = no environment: misses see settings.background */
+    double intensity;   /* finite, >= 0: scales every texel */
+    bool lights;        /* also a distant light: each camera sample sends one shadow ray to one
+                           direction of the image, drawn as sampling says */
+    bg_environment_sampling sampling;
+} bg_environment;
+
+/* The default environment described above (none). */
+BG_API bg_environment bg_environment_init(void);
+/* Sets the scene's environment (takes effect at the next commit); a texture in use by it cannot be
+ * removed. The importance tables are built here, once per texture (O(texels)). Refused, naming the
+ * field: an unknown texture, a bad intensity or sampling; BG_ERR_OUT_OF_MEMORY for the tables. The
+ * multipass plan does not draw environments: it refuses them (BG_ERR_UNSUPPORTED), and
+ * BG_PLAN_AUTO takes a fused plan for them. */
+BG_API bg_status bg_scene_set_environment(bg_scene *scene, const bg_environment *environment);
+
 /* ---- commit -------------------------------------------------------------------------------- */
 
 /* Validates the whole scene and makes it what the renderers see: computes bounds, inverse

@@ -269,6 +269,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->mesh_object_count = scene->p_mesh_objects;
     state->camera = camera;
     memcpy(state->ambient, scene->ambient, sizeof state->ambient);
+    bgi_environment_commit(scene, scene->texture_map.data, &state->environment);
     bgi_scene_tree_install(scene);
     state->commit_count++;
     state->serial = bgi_scene_next_serial();

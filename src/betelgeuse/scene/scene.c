@@ -38,6 +38,7 @@ bg_status bg_scene_create(const bg_scene_desc *desc, bg_scene **out_scene)
     bgi_pool_init(&s->textures, "texture", "a texture", sizeof(bg_texture_data));
     s->camera = bg_camera_init();
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 1.0;
+    s->environment = bg_environment_init();
     *out_scene = s;
     return BG_OK;
 }
@@ -65,6 +66,7 @@ void bg_scene_destroy(bg_scene *scene)
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
         bgi_array_release(scene, arrays[i]);
     bgi_scene_tree_release(scene);
+    bgi_environment_release(scene);
     bg_allocator a = scene->allocator;
     bgi_free(&a, scene);
 }

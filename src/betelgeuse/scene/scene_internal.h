@@ -62,12 +62,27 @@ typedef struct bg_camera_data {
                      |look_at - position| for 0); used with camera.aperture_radius > 0 only */
 } bg_camera_data;
 
+/* The committed environment (docs/shading.md 7.1). The importance tables are the cumulative sums,
+ * normalised to end at 1, of the texel weights w(i, j) = luminance x sin(theta of row j): marginal[j]
+ * over whole rows (height entries), conditional[j * width + i] along row j (width entries per row;
+ * a row of weight 0 is never drawn). NULL tables: uniform sampling (asked for, or a black image). */
+typedef struct bg_environment_data {
+    bool on;
+    uint32_t texture; /* dense 1-based index into textures */
+    double intensity;
+    bool lights;
+    bg_environment_sampling sampling;
+    const double *marginal, *conditional;
+    uint64_t tables_id; /* which tables these are: the GPU renderer uploads them once per id */
+} bg_environment_data;
+
 /* What a commit produces. Lights' directions are normalised; materials keep their public form
  * except that each texture field holds a dense 1-based index (textures[t - 1]; 0 none), not the
  * API handle. */
 typedef struct bg_scene_state {
     bg_camera_data camera;
     double ambient[3];
+    bg_environment_data environment;
     uint32_t object_count, material_count, texture_count, light_count;
     const bg_object_data *objects;
     const bg_material *materials;

@@ -12,6 +12,14 @@
 #define BG_MESSAGE_SIZE MACS_MESSAGE_SIZE
 
 /* A growable array of elem-sized items; storage is kept across commits for reuse. */
+/* An environment texture's importance tables (environment.c); texture is the API handle they were
+ * built from. */
+typedef struct bgi_environment_tables {
+    uint32_t texture;
+    uint64_t id;
+    double *marginal, *conditional;
+} bgi_environment_tables;
+
 typedef struct bg_array {
     void *data;
     uint32_t count, capacity;
@@ -71,6 +79,10 @@ struct bg_scene {
      * committed state, so they wait in retired_texels until the next successful commit. */
     bg_camera camera;
     double ambient[3];
+    /* The environment as set, and its importance tables: the pending ones (built by
+     * bg_scene_set_environment) and the committed ones, freed when no state holds them. */
+    bg_environment environment;
+    bgi_environment_tables *env_pending, *env_committed;
     bg_pool objects;   /* bg_object_item */
     bg_pool materials; /* bg_material */
     bg_pool lights;    /* bg_light */
@@ -110,6 +122,15 @@ bg_status bgi_array_reserve(bg_scene *scene, bg_array *array, uint32_t need, siz
                            const char *where);
 /* Frees the storage of an array. */
 void bgi_array_release(bg_scene *scene, bg_array *array);
+
+/* ---- environment.c ---- */
+
+/* Whether the environment uses texture (a handle), for removal. */
+bool bgi_environment_uses(const bg_scene *scene, uint32_t texture);
+/* Fills the committed environment of the pending one (texture_map translates its handle). */
+void bgi_environment_commit(bg_scene *scene, const uint32_t *texture_map, bg_environment_data *out);
+/* Frees the tables at scene destruction. */
+void bgi_environment_release(bg_scene *scene);
 
 /* ---- pool.c ---- */
 

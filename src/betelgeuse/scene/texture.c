@@ -111,6 +111,11 @@ bg_status bg_scene_remove_texture(bg_scene *scene, uint32_t texture)
         return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: texture %s is used by material %s (%s)", where,
                              bgi_handle_text(texture, t_text), bgi_handle_text(material, m_text), field);
     }
+    if (bgi_environment_uses(scene, texture)) {
+        char t_text[BG_HANDLE_TEXT_SIZE];
+        return bgi_scene_fail(scene, BG_ERR_INVALID_ARGUMENT, "%s: texture %s is the scene's environment", where,
+                              bgi_handle_text(texture, t_text));
+    }
     /* The committed state may still read the texels: they are freed by the next successful commit. */
     bg_array *retired = &scene->retired_texels;
     st = bgi_array_reserve(scene, retired, retired->count + 1, sizeof(float *), where);
