@@ -56,6 +56,12 @@ for renderer in cpu gpu; do
 	grep -v -e 'Invalid GLSL version' -e 'gitlab.freedesktop.org/mesa' "$out/err" >"$out/err.own"
 	[ -s "$out/err.own" ] && fail "render --quiet ($renderer) printed: $(cat "$out/err.own")"
 done
+# The shipped scenes of the area lights and the lens, small, on the GPU (test_scenefile_lights holds
+# the CPU to a builder).
+for scene in area_lights depth_of_field; do
+	expect 0 "render $scene" "$cli" render "$json/$scene.json" --size 64x48 -o "$out/$scene.png" --quiet
+	[ -s "$out/$scene.png" ] || fail "render $scene wrote no image"
+done
 expect 0 "render an OBJ model" "$cli" render "$root/tests/data/two_boxes.obj" --size 48x36 -o "$out/obj.png" \
 	--renderer cpu --float "$out/obj.pfm"
 head -c 2 "$out/obj.pfm" | grep -q PF || fail "--float wrote no PFM"
