@@ -58,8 +58,8 @@ typedef enum bg_scenefile_up {
  *
  * up_axis, smooth_angle_degrees and camera apply to model files (bg_scenefile_load_model); a JSON
  * scene given any of them is refused (its meshes have "transform" and "normals" of their own).
- * look_from, look_at and fov_y_degrees apply to both, after the camera is chosen. A bad value is
- * BG_ERR_INVALID_ARGUMENT with the field named ("desc->camera: ..."). */
+ * look_from, look_at, fov_y_degrees, aperture_radius and focus_distance apply to both, after the
+ * camera is chosen. A bad value is BG_ERR_INVALID_ARGUMENT with the field named ("desc->camera: ..."). */
 typedef struct bg_scenefile_desc {
     bg_logger logger;     /* errors (BG_LOG_ERROR) and what a model's materials lose (BG_LOG_WARNING) */
     const char *base_dir; /* bg_scenefile_load_string only: the folder relative paths resolve
@@ -78,6 +78,10 @@ typedef struct bg_scenefile_desc {
     const bg_vec3 *look_at;   /* not NULL: replaces the point it looks at */
     double fov_y_degrees;     /* 0: the chosen camera's; else in (0, 180), replacing it (the framing
                                  camera keeps the model in view at this angle) */
+    /* The thin lens (bg_camera): pointers, since 0 is a value to ask for (the pinhole; in focus at
+       look_at) and so cannot also mean "the file's". */
+    const double *aperture_radius; /* not NULL: finite and >= 0, replacing the camera's */
+    const double *focus_distance;  /* not NULL: finite and >= 0, replacing the camera's */
 } bg_scenefile_desc;
 
 /* The image a scene asks for. Defaults: 640 x 480, 1 sample per pixel. samples is the scene's wish:

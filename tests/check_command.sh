@@ -41,7 +41,7 @@ echo "== check-command: $cli"
 printf '{"objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}}]}' >"$out/sphere.json"
 expect 0 "--help" "$cli" --help
 for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet assemble info \
-	--up --smooth --camera --look-from --look-at --fov; do
+	--up --smooth --camera --look-from --look-at --fov --aperture --focus-distance; do
 	grep -qF -- "$option" "$out/stdout" || fail "--help does not mention $option"
 done
 expect 0 "--version" "$cli" --version
@@ -55,6 +55,12 @@ for renderer in cpu gpu; do
 	# Mesa itself notes the forced GLSL 1.10 of the test environment on stderr; nothing else may be there.
 	grep -v -e 'Invalid GLSL version' -e 'gitlab.freedesktop.org/mesa' "$out/err" >"$out/err.own"
 	[ -s "$out/err.own" ] && fail "render --quiet ($renderer) printed: $(cat "$out/err.own")"
+done
+# The shipped scenes of the area lights and the lens, small, on the GPU (test_scenefile_lights holds
+# the CPU to a builder).
+for scene in area_lights depth_of_field; do
+	expect 0 "render $scene" "$cli" render "$json/$scene.json" --size 64x48 -o "$out/$scene.png" --quiet
+	[ -s "$out/$scene.png" ] || fail "render $scene wrote no image"
 done
 expect 0 "render an OBJ model" "$cli" render "$root/tests/data/two_boxes.obj" --size 48x36 -o "$out/obj.png" \
 	--renderer cpu --float "$out/obj.pfm"
@@ -357,6 +363,32 @@ for fov in 0 180 -5 abc 1e999; do
 	expect 2 "--fov $fov" "$cli" render "$data/two_cameras.gltf" --fov $fov -o "$out/x.png"
 	said "--fov: '$fov' is not a vertical field of view" "--fov $fov"
 done
+# --aperture and --focus-distance: the chosen camera's lens, a JSON scene's too, 0 a value of each
+# (a pinhole; focus at the point looked at); info prints a lens line only for a lens.
+printf '{"camera": {"aperture_radius": 0.3, "focus_distance": 4}, "objects": [{"sphere": {}}]}' >"$out/lens.json"
+expect 0 "info of a file's lens" "$cli" info "$out/lens.json" --renderer cpu
+said_out "lens       aperture radius 0.3, in focus at distance 4" "info of a file's lens"
+expect 0 "info --aperture --focus-distance=0" "$cli" info "$out/lens.json" --aperture 0.5 --focus-distance=0 \
+	--renderer cpu
+said_out "lens       aperture radius 0.5, in focus at the point looked at" "--aperture --focus-distance=0"
+said_out "changed by" "--aperture --focus-distance=0"
+expect 0 "info --aperture 0" "$cli" info "$out/lens.json" --aperture 0 --renderer cpu
+grep -q '^lens' "$out/stdout" && fail "--aperture 0 left a lens: $(cat "$out/stdout")"
+expect 0 "render --aperture" "$cli" render "$out/sphere.json" --aperture 0.5 --focus-distance 1 --samples 4 \
+	--size 32x32 --renderer cpu -o "$out/lens.png" -q
+expect 0 "render a pinhole" "$cli" render "$out/sphere.json" --samples 4 --size 32x32 --renderer cpu \
+	-o "$out/pinhole.png" -q
+cmp -s "$out/lens.png" "$out/pinhole.png" && fail "--aperture rendered the pinhole's image"
+for bad in -0.1 abc 1e999 nan; do
+	expect 2 "--aperture $bad" "$cli" render "$out/sphere.json" --aperture $bad -o "$out/x.png"
+	said "--aperture: '$bad' is not a lens radius" "--aperture $bad"
+done
+for bad in -3 1,2; do
+	expect 2 "--focus-distance $bad" "$cli" info "$out/sphere.json" --focus-distance $bad
+	said "--focus-distance: '$bad' is not a focus distance" "--focus-distance $bad"
+done
+expect 2 "--aperture without a value" "$cli" info "$out/sphere.json" --aperture
+said "--aperture needs a value" "--aperture without a value"
 for option in "--up z" "--smooth" "--camera 1"; do
 	expect 2 "$option for a JSON scene" "$cli" render "$out/sphere.json" $option -o "$out/x.png"
 	said "${option%% *} applies to model files, not to a JSON scene" "$option for a JSON scene"

@@ -1,8 +1,9 @@
 /* What bg_scenefile_desc asks of a model beyond its file (the command's --up, --smooth, --camera,
- * --look-from, --look-at and --fov): a Z-up model turned to stand on y, with its cameras; normals
- * computed where a file has none, smooth across soft edges and creased at sharp ones; the file's Nth
- * camera or the framing one; the caller's camera parts over the chosen camera; and every bad value
- * refused by its field. The models are tests/data's (tests/data/README.md). */
+ * --look-from, --look-at, --fov, --aperture and --focus-distance): a Z-up model turned to stand on
+ * y, with its cameras; normals computed where a file has none, smooth across soft edges and creased
+ * at sharp ones; the file's Nth camera or the framing one; the caller's camera parts (lens included)
+ * over the chosen camera; and every bad value refused by its field. The models are tests/data's
+ * (tests/data/README.md). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -223,6 +224,26 @@ static void the_callers_camera_parts_replace_the_files(void **state)
     assert_true(near(r.camera.position, 1, 2, 3) && r.camera.fov_y_degrees == 20);
     assert_int_equal(r.file_cameras, 1);
     bg_scene_destroy(js);
+
+    /* The lens likewise, each part alone; 0 is a value asked for, not "the file's": it turns the
+     * file's lens into a pinhole. */
+    const char *lens = "{\"camera\": {\"aperture_radius\": 0.25, \"focus_distance\": 6}}";
+    const double zero = 0.0, focus = 2.5;
+    d = (bg_scenefile_desc){.aperture_radius = &zero};
+    assert_int_equal(bg_scene_create(NULL, &js), BG_OK);
+    assert_int_equal(bg_scenefile_load_string(lens, &d, js, &r, message, sizeof message), BG_OK);
+    assert_true(r.camera.aperture_radius == 0 && r.camera.focus_distance == 6);
+    bg_scene_destroy(js);
+    d = (bg_scenefile_desc){.focus_distance = &focus};
+    assert_int_equal(bg_scene_create(NULL, &js), BG_OK);
+    assert_int_equal(bg_scenefile_load_string(lens, &d, js, &r, message, sizeof message), BG_OK);
+    assert_true(r.camera.aperture_radius == 0.25 && r.camera.focus_distance == 2.5);
+    bg_scene_destroy(js);
+    /* A model's camera (here the framing one) takes the lens as well. */
+    d = (bg_scenefile_desc){.aperture_radius = &focus, .focus_distance = &zero};
+    s = load_ok("tests/data/tetra.ply", &d, &r);
+    assert_true(r.camera.aperture_radius == 2.5 && r.camera.focus_distance == 0);
+    bg_scene_destroy(s);
 }
 
 /* Bad values are refused by their field before any file is read; the model options are refused for
@@ -254,6 +275,13 @@ static void bad_values_are_refused_by_field(void **state)
     bg_scenefile_desc d = {.look_at = &nan3};
     assert_int_equal(load("tests/data/tetra.ply", &d, &s, &r, message, sizeof message), BG_ERR_INVALID_ARGUMENT);
     assert_non_null(strstr(message, "desc->look_at: must be finite"));
+    const double negative = -0.5, infinite = INFINITY;
+    d = (bg_scenefile_desc){.aperture_radius = &negative};
+    assert_int_equal(load("tests/data/tetra.ply", &d, &s, &r, message, sizeof message), BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(message, "desc->aperture_radius: must be finite and >= 0 (got -0.5)"));
+    d = (bg_scenefile_desc){.focus_distance = &infinite};
+    assert_int_equal(load("tests/data/tetra.ply", &d, &s, &r, message, sizeof message), BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(message, "desc->focus_distance: must be finite and >= 0"));
 
     const bg_scenefile_desc model_only[] = {{.up_axis = BG_SCENEFILE_UP_Z}, {.smooth_angle_degrees = 30},
                                             {.camera = 1}};

@@ -20,6 +20,8 @@ static const struct {
     {"--look-from", "desc->look_from"},
     {"--look-at", "desc->look_at"},
     {"--fov", "desc->fov_y_degrees"},
+    {"--aperture", "desc->aperture_radius"},
+    {"--focus-distance", "desc->focus_distance"},
 };
 
 static int bad(char *why, size_t size, const char *option, const char *value, const char *reason)
@@ -87,6 +89,19 @@ int cli_model_option(int argc, char **argv, int *i, const char *name, const char
             return bad(why, size, name, value, "is not a vertical field of view in degrees, between 0 and 180");
         return 1;
     }
+    if (strcmp(name, "--aperture") == 0) {
+        if (!cli_parse_doubles(value, '\0', 1, &o->aperture) || !(o->aperture >= 0))
+            return bad(why, size, name, value, "is not a lens radius, a number >= 0 (0: a pinhole)");
+        o->has_aperture = true;
+        return 1;
+    }
+    if (strcmp(name, "--focus-distance") == 0) {
+        if (!cli_parse_doubles(value, '\0', 1, &o->focus_distance) || !(o->focus_distance >= 0))
+            return bad(why, size, name, value,
+                       "is not a focus distance, a number >= 0 (0: the distance to the point looked at)");
+        o->has_focus_distance = true;
+        return 1;
+    }
     bool from = strcmp(name, "--look-from") == 0;
     if (!parse_point(value, from ? &o->look_from : &o->look_at))
         return bad(why, size, name, value, "is not a point X,Y,Z of three numbers");
@@ -111,7 +126,8 @@ bool cli_model_options_check(const cli_model_options *o, const char *scene, char
     const char *model_only = o->up ? "--up" : o->smooth ? "--smooth" : o->camera ? "--camera" : NULL;
     if (model_only && scene && is_json(scene)) {
         snprintf(why, size, "%s applies to model files, not to a JSON scene (its meshes have \"transform\" and "
-                 "\"normals\", and it has one \"camera\"; --look-from, --look-at and --fov apply to it)", model_only);
+                 "\"normals\", and it has one \"camera\"; --look-from, --look-at, --fov, --aperture and "
+                 "--focus-distance apply to it)", model_only);
         return false;
     }
     return true;
@@ -126,6 +142,8 @@ void cli_model_options_desc(const cli_model_options *o, bg_scenefile_desc *d)
     d->look_from = o->has_look_from ? &o->look_from : NULL;
     d->look_at = o->has_look_at ? &o->look_at : NULL;
     d->fov_y_degrees = o->fov;
+    d->aperture_radius = o->has_aperture ? &o->aperture : NULL;
+    d->focus_distance = o->has_focus_distance ? &o->focus_distance : NULL;
 }
 
 void cli_model_options_rename(char *message)

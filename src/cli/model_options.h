@@ -1,5 +1,6 @@
 /* The options that say how a model is turned, shaded and looked at (model_options.c): --up,
- * --smooth, --camera, --look-from, --look-at and --fov, parsed in one place for every subcommand
+ * --smooth, --camera, --look-from, --look-at, --fov, --aperture and --focus-distance, parsed in one
+ * place for every subcommand
  * that loads a scene (render, info, and a viewer to come), and handed to the scene-file library
  * through its desc. */
 #ifndef CLI_MODEL_OPTIONS_H
@@ -18,6 +19,8 @@ typedef struct cli_model_options {
     bool has_look_from, has_look_at;
     bg_vec3 look_from, look_at;
     double fov;                /* --fov; 0: not given */
+    bool has_aperture, has_focus_distance; /* given: 0 is a value of each (a pinhole; focus at look_at) */
+    double aperture, focus_distance;
 } cli_model_options;
 
 /* When argv[*i] (its name in name, its value in value when it was given after '=', else NULL) is one

@@ -286,7 +286,9 @@ static void camera_choice(const cli_options *o, const bg_scenefile_result *file,
 {
     int n = file->file_cameras;
     const cli_model_options *m = &o->model;
-    const char *changed = m->has_look_from || m->has_look_at || m->fov ? ", changed by --look-from/--look-at/--fov" : "";
+    const char *changed = m->has_look_from || m->has_look_at || m->fov || m->has_aperture || m->has_focus_distance
+                              ? ", changed by --look-from/--look-at/--fov/--aperture/--focus-distance"
+                              : "";
     size_t len = strlen(o->scene);
     bool json = len >= 5 && strcasecmp(o->scene + len - 5, ".json") == 0;
     if (json)
@@ -328,11 +330,19 @@ int cli_info(int argc, char **argv)
                s->bounds_max.x, s->bounds_max.y, s->bounds_max.z, s->unbounded ? ", and unbounded planes" : "");
     else
         printf("bounds     %s\n", s->unbounded ? "unbounded (planes only)" : "none (empty)");
-    char which[160];
+    char which[192];
     camera_choice(&o, &file, which, sizeof which);
     printf("camera     (%g, %g, %g) looking at (%g, %g, %g), fov_y %g degrees%s\n", file.camera.position.x,
            file.camera.position.y, file.camera.position.z, file.camera.look_at.x, file.camera.look_at.y,
            file.camera.look_at.z, file.camera.fov_y_degrees, which);
+    /* Only a lens is worth a line: a pinhole's focus distance changes nothing. */
+    if (file.camera.aperture_radius > 0) {
+        if (file.camera.focus_distance > 0)
+            printf("lens       aperture radius %g, in focus at distance %g\n", file.camera.aperture_radius,
+                   file.camera.focus_distance);
+        else
+            printf("lens       aperture radius %g, in focus at the point looked at\n", file.camera.aperture_radius);
+    }
     /* The plan is the GPU renderer's choice for this scene and these settings: one pixel shows it. */
     if (o.renderer == CLI_RENDERER_GPU) {
         gpu g;

@@ -13,7 +13,8 @@ static bool same_camera(const bg_camera *a, const bg_camera *b)
 {
     return a->position.x == b->position.x && a->position.y == b->position.y && a->position.z == b->position.z &&
            a->look_at.x == b->look_at.x && a->look_at.y == b->look_at.y && a->look_at.z == b->look_at.z &&
-           a->up.x == b->up.x && a->up.y == b->up.y && a->up.z == b->up.z && a->fov_y_degrees == b->fov_y_degrees;
+           a->up.x == b->up.x && a->up.y == b->up.y && a->up.z == b->up.z && a->fov_y_degrees == b->fov_y_degrees &&
+           a->aperture_radius == b->aperture_radius && a->focus_distance == b->focus_distance;
 }
 
 void view_reload(viewer *v)
@@ -34,7 +35,8 @@ void view_reload(viewer *v)
         cli_inputs_free(&inputs);
         return;
     }
-    /* The user's view stays across edits of the scene, unless the edit moved the file's camera. */
+    /* The user's view stays across edits of the scene, unless the edit changed the file's camera (its
+     * lens too, so that an edited aperture shows at once). */
     if (!same_camera(&file.camera, &v->file.camera))
         v->camera = file.camera;
     v->loaded = file.camera;

@@ -1,6 +1,6 @@
 /* What bg_scenefile_desc asks of a load beyond the file: checked before the file is read, so that a
  * bad value is named as the caller's field rather than found halfway; the model's up axis as a
- * rotation; the caller's camera parts over the chosen camera. */
+ * rotation; the caller's camera parts (its place, field of view and lens) over the chosen camera. */
 #include "scenefile_internal.h"
 
 #include <math.h>
@@ -30,6 +30,12 @@ bg_status bgi_sf_check_desc(bgi_sf_ctx *ctx, const bg_scenefile_desc *d, bool mo
         return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "desc->look_from: must be finite");
     if (d->look_at && !finite3(d->look_at))
         return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "desc->look_at: must be finite");
+    if (d->aperture_radius && !(*d->aperture_radius >= 0 && isfinite(*d->aperture_radius)))
+        return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "desc->aperture_radius: must be finite and >= 0 (got %g)",
+                           *d->aperture_radius);
+    if (d->focus_distance && !(*d->focus_distance >= 0 && isfinite(*d->focus_distance)))
+        return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "desc->focus_distance: must be finite and >= 0 (got %g)",
+                           *d->focus_distance);
     /* A JSON scene places each of its meshes itself ("transform", "normals") and has one camera. */
     const char *model_only = d->up_axis ? "desc->up_axis" : d->smooth_angle_degrees ? "desc->smooth_angle_degrees"
                              : d->camera                ? "desc->camera"
@@ -75,6 +81,10 @@ bg_status bgi_sf_apply_view(bgi_sf_ctx *ctx, const bg_scenefile_desc *d)
         c->position = *d->look_from;
     if (d->look_at)
         c->look_at = *d->look_at;
+    if (d->aperture_radius)
+        c->aperture_radius = *d->aperture_radius;
+    if (d->focus_distance)
+        c->focus_distance = *d->focus_distance;
     if (!d->look_from && !d->look_at)
         return BG_OK;
     const char *field = d->look_from && d->look_at ? "desc->look_from and desc->look_at"

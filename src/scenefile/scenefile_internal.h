@@ -204,8 +204,9 @@ bg_status bgi_sf_crease_normals(float **p, float **uv, size_t *nv, uint32_t *idx
 bg_status bgi_sf_check_desc(bgi_sf_ctx *ctx, const bg_scenefile_desc *desc, bool model);
 /* The rotation that turns the file's up axis to +y. */
 bg_mat4 bgi_sf_up_transform(bg_scenefile_up up);
-/* desc's look_from, look_at and fov_y_degrees over ctx->out->camera; a camera they leave without a
- * direction, or looking along its up, is refused naming them. desc may be NULL. */
+/* desc's look_from, look_at, fov_y_degrees, aperture_radius and focus_distance over
+ * ctx->out->camera; a camera they leave without a direction, or looking along its up, is refused
+ * naming them. desc may be NULL. */
 bg_status bgi_sf_apply_view(bgi_sf_ctx *ctx, const bg_scenefile_desc *desc);
 
 /* ---- summary.c ---- */

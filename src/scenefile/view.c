@@ -6,7 +6,8 @@
 
 bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v)
 {
-    static const char *const keys[] = {"position", "look_at", "up", "fov_y", NULL};
+    static const char *const keys[] = {"position", "look_at", "up", "fov_y", "aperture_radius", "focus_distance",
+                                       NULL};
     static const bgi_sf_range fov = {0.0, 180.0, true, true};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_camera *c = &ctx->out->camera;
@@ -14,6 +15,9 @@ bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v)
     BGI_SF_TRY(bgi_sf_field_vec3(ctx, v, "look_at", &c->look_at));
     BGI_SF_TRY(bgi_sf_field_vec3(ctx, v, "up", &c->up));
     BGI_SF_TRY(bgi_sf_field_number(ctx, v, "fov_y", fov, &c->fov_y_degrees));
+    /* The thin lens: 0 is the pinhole and "in focus at look_at", the library's own zeros. */
+    BGI_SF_TRY(bgi_sf_field_number(ctx, v, "aperture_radius", bgi_sf_nonneg, &c->aperture_radius));
+    BGI_SF_TRY(bgi_sf_field_number(ctx, v, "focus_distance", bgi_sf_nonneg, &c->focus_distance));
     ctx->out->camera_from_file = true;
     return BG_OK;
 }

@@ -66,6 +66,18 @@ def json_seeds():
         ' {"box": {}, "transform": {"matrix": [[0,0,0,0],[0,0,0,0],[0,0,0,0]]}},\n'
         ' {"box": {}, "transform": {"matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[1,0,0,1]]}},\n'
         ' {"cylinder": {}, "transform": [{"rotate": {"axis": [0,0,0], "degrees": 90}}, {"scale": 1e-200}]}]}\n')
+    # Area lights and a lens at the edges: the largest sphere radius the scene takes, a rectangle
+    # whose far corner leaves the double range, edges all but parallel, and both shape keys on one
+    # light; a lens far wider than the scene and focused next to the camera.
+    put("json", "adv_area_lights.json",
+        '{"lights": [\n'
+        ' {"sphere": {"center": [0, 1e300, 0], "radius": 1e100}, "spot_cutoff_degrees": 90, "direction": [0, -1, 0]},\n'
+        ' {"type": "rectangle", "rectangle": {"corner": [1e308, 0, 0], "edge_u": [1e308, 0, 0], "edge_v": [0, 0, 1]}},\n'
+        ' {"rectangle": {"edge_u": [1, 0, 0], "edge_v": [1, 1e-13, 0]}},\n'
+        ' {"sphere": {}, "rectangle": {}, "position": [0, 0, 0]}]}\n')
+    put("json", "adv_lens.json",
+        '{"camera": {"aperture_radius": 1e300, "focus_distance": 1e-300, "position": [0, 0, 1e-300]},\n'
+        ' "objects": [{"sphere": {}}], "lights": [{"sphere": {"radius": 0}}]}\n')
     # Every model format from a scene, so that the JSON target also reaches the model reader.
     put("json", "adv_models.json",
         '{"objects": [\n'

@@ -1,0 +1,164 @@
+/* Area lights and the thin lens in a JSON scene: a sphere light, a rectangle light and a lens load
+ * into the bg_light and bg_camera values a C builder gives them (the scene has no getters, so the
+ * two scenes' CPU images are compared bit for bit, at several samples so that every sample point of
+ * the lights and the lens is used); and the format's zeros are the library's: a sphere of radius 0
+ * and an aperture of 0 are the point light and the pinhole. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "betelgeuse.h"
+#include "betelgeuse_scenefile.h"
+
+enum { W = 48, H = 36, SAMPLES = 4 };
+
+/* A floor and a ball the lights shade; the lights and camera come after. */
+static const char *const objects = "\"objects\": [{\"plane\": {}}, {\"sphere\": {\"center\": [0, 1, 0]}}]";
+
+static float *render(bg_scene *scene)
+{
+    bg_render_settings set = bg_render_settings_init();
+    set.frame_width = W;
+    set.frame_height = H;
+    set.samples = SAMPLES;
+    float *px = malloc((size_t)W * H * 4 * sizeof *px);
+    assert_non_null(px);
+    bg_image im = {W, H, BG_PIXEL_RGBA32F, 0, px};
+    if (bg_render_cpu(scene, &set, &im) != BG_OK)
+        fail_msg("render: %s", bg_scene_error_message(scene));
+    return px;
+}
+
+static bg_scene *load(const char *lights_and_camera, bg_scenefile_result *r)
+{
+    char text[2048], message[1024];
+    snprintf(text, sizeof text, "{%s, %s}", objects, lights_and_camera);
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    if (bg_scenefile_load_string(text, NULL, s, r, message, sizeof message) != BG_OK)
+        fail_msg("%s: %s", text, message);
+    return s;
+}
+
+/* The objects of the text above, built in C, with the given lights and camera. */
+static bg_scene *build(const bg_light *lights, int count, const bg_camera *camera)
+{
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_material m = bg_material_init();
+    uint32_t mat, id;
+    assert_int_equal(bg_scene_add_material(s, &m, &mat), BG_OK);
+    bg_object_desc plane = bg_object_desc_init(BG_SHAPE_PLANE, mat);
+    assert_int_equal(bg_scene_add_object(s, &plane, &id), BG_OK);
+    assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(0, 1, 0), 1.0, mat, &id), BG_OK);
+    for (int i = 0; i < count; i++)
+        assert_int_equal(bg_scene_add_light(s, &lights[i], &id), BG_OK);
+    assert_int_equal(bg_scene_set_camera(s, camera), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    return s;
+}
+
+static size_t differing(const float *a, const float *b)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        n += memcmp(a + 4 * i, b + 4 * i, 4 * sizeof *a) != 0;
+    return n;
+}
+
+static void area_lights_and_a_lens_load_as_built(void **state)
+{
+    (void)state;
+    bg_scenefile_result r;
+    bg_scene *loaded = load("\"lights\": ["
+                            "{\"sphere\": {\"center\": [-2, 4, 1], \"radius\": 0.75}, \"color\": [1, 0.9, 0.8],"
+                            " \"intensity\": 0.7},"
+                            "{\"type\": \"rectangle\", \"rectangle\": {\"corner\": [1, 3, -1], \"edge_u\": [1.5, 0, 0],"
+                            " \"edge_v\": [0, 0, 2]}, \"intensity\": 0.6, \"attenuation\": [0.5, 0, 0.1]}],"
+                            "\"camera\": {\"position\": [0, 2, 6], \"look_at\": [0, 1, 0], \"aperture_radius\": 0.2,"
+                            " \"focus_distance\": 4.5}",
+                            &r);
+    assert_int_equal(r.summary.lights, 2);
+    assert_true(r.lights_from_file);
+
+    bg_camera cam = bg_camera_init();
+    cam.position = bg_vec3_make(0, 2, 6);
+    cam.look_at = bg_vec3_make(0, 1, 0);
+    cam.aperture_radius = 0.2;
+    cam.focus_distance = 4.5;
+    assert_memory_equal(&r.camera, &cam, sizeof cam);
+
+    bg_light l[2] = {bg_light_init(), bg_light_init()};
+    l[0].type = BG_LIGHT_SPHERE;
+    l[0].position = bg_vec3_make(-2, 4, 1);
+    l[0].radius = 0.75;
+    l[0].color[1] = 0.9;
+    l[0].color[2] = 0.8;
+    l[0].intensity = 0.7;
+    l[1].type = BG_LIGHT_RECTANGLE;
+    l[1].position = bg_vec3_make(1, 3, -1);
+    l[1].edge_u = bg_vec3_make(1.5, 0, 0);
+    l[1].edge_v = bg_vec3_make(0, 0, 2); /* edge_u x edge_v = (0, -3, 0): down, at the floor */
+    l[1].intensity = 0.6;
+    l[1].attenuation[0] = 0.5;
+    l[1].attenuation[2] = 0.1;
+    bg_scene *built = build(l, 2, &cam);
+
+    float *a = render(loaded), *b = render(built);
+    size_t diff = differing(a, b);
+    if (diff)
+        fail_msg("%zu of %d pixels differ from the builder's", diff, W * H);
+
+    /* The comparison sees the shapes and the lens: point lights and a pinhole give another image. */
+    bg_scene_destroy(built);
+    l[0].type = l[1].type = BG_LIGHT_POINT;
+    cam.aperture_radius = 0;
+    built = build(l, 2, &cam);
+    float *c = render(built);
+    size_t changed = differing(a, c);
+    if (changed < (size_t)W * H / 4)
+        fail_msg("only %zu of %d pixels change without the shapes and the lens", changed, W * H);
+    print_message("sphere light, rectangle light and lens: %d pixels as built; %zu differ from points and a "
+                  "pinhole\n", W * H, changed);
+    free(a);
+    free(b);
+    free(c);
+    bg_scene_destroy(built);
+    bg_scene_destroy(loaded);
+}
+
+/* Radius 0 is the point light and aperture 0 the pinhole, bit for bit, whatever the focus. */
+static void the_zeros_are_a_point_light_and_a_pinhole(void **state)
+{
+    (void)state;
+    bg_scenefile_result r;
+    bg_scene *zeros = load("\"lights\": [{\"sphere\": {\"center\": [1, 4, 2], \"radius\": 0}}],"
+                           "\"camera\": {\"position\": [0, 2, 6], \"aperture_radius\": 0, \"focus_distance\": 3}",
+                           &r);
+    assert_true(r.camera.aperture_radius == 0 && r.camera.focus_distance == 3);
+    bg_scene *plain = load("\"lights\": [{\"position\": [1, 4, 2]}], \"camera\": {\"position\": [0, 2, 6]}", &r);
+    assert_true(r.camera.aperture_radius == 0 && r.camera.focus_distance == 0);
+    float *a = render(zeros), *b = render(plain);
+    size_t diff = differing(a, b);
+    if (diff)
+        fail_msg("%zu of %d pixels differ between the zeros and the point light with a pinhole", diff, W * H);
+    free(a);
+    free(b);
+    bg_scene_destroy(zeros);
+    bg_scene_destroy(plain);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(area_lights_and_a_lens_load_as_built),
+        cmocka_unit_test(the_zeros_are_a_point_light_and_a_pinhole),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
