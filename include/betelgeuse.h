@@ -487,8 +487,8 @@ BG_API bg_environment bg_environment_init(void);
 /* Sets the scene's environment (takes effect at the next commit); a texture in use by it cannot be
  * removed. The importance tables are built here, once per texture (O(texels)). Refused, naming the
  * field: an unknown texture, a bad intensity or sampling; BG_ERR_OUT_OF_MEMORY for the tables. The
- * multipass plan does not draw environments: it refuses them (BG_ERR_UNSUPPORTED), and
- * BG_PLAN_AUTO takes a fused plan for them. */
+ * multipass plan does not draw environments: a frame that would go to it is refused (BG_ERR_LIMIT,
+ * saying why it would), and BG_PLAN_AUTO takes a fused plan for them. */
 BG_API bg_status bg_scene_set_environment(bg_scene *scene, const bg_environment *environment);
 
 /* ---- commit -------------------------------------------------------------------------------- */

@@ -339,6 +339,9 @@ static float *linear_image(bg_scene *s, int w, int h, int plan)
 #define LIGHT_R 0.5
 #define OCCLUDER_Y 2.0
 #define FLOOR_C 0.8
+/* Twice the largest errors measured (docs/shading.md 7.1). */
+#define WHITE_IMPORTANCE_MAX_ERROR 0.1
+#define WHITE_UNIFORM_MAX_ERROR 0.035
 /* Twice the largest error measured (docs/shading.md 7). */
 #define PENUMBRA_MAX_ERROR 0.016
 
@@ -514,6 +517,123 @@ static void circle_of_confusion_follows_thin_lens(void **state)
     bg_scene_destroy(s);
 }
 
+/* ---- the environment ---- */
+
+/* A 64 x 32 equirectangular sky: a blue gradient, a dark ground half, and a small bright sun up and
+ * to the right (the image's rows top first, as a caller's image has them). */
+static uint32_t sky_texture(bg_scene *s, bool sun)
+{
+    enum { EW = 64, EH = 32 };
+    static float texels[EW * EH * 4];
+    for (int y = 0; y < EH; y++)
+        for (int x = 0; x < EW; x++) {
+            float *t = texels + ((size_t)y * EW + x) * 4;
+            double up = 1.0 - (y + 0.5) / EH * 2.0; /* cos theta, roughly */
+            t[0] = up > 0.0 ? (float)(0.3 + 0.2 * up) : 0.08f;
+            t[1] = up > 0.0 ? (float)(0.5 + 0.2 * up) : 0.07f;
+            t[2] = up > 0.0 ? (float)(0.9 + 0.1 * up) : 0.05f;
+            t[3] = 1.0f;
+            if (sun && x >= 44 && x < 47 && y >= 8 && y < 11)
+                t[0] = t[1] = t[2] = 60.0f;
+        }
+    bg_image img = {EW, EH, BG_PIXEL_RGBA32F, 0, texels};
+    uint32_t id;
+    if (bg_scene_add_texture(s, &img, NULL, &id) != BG_OK)
+        fail_msg("bg_scene_add_texture: %s", bg_scene_error_message(s));
+    return id;
+}
+
+static void set_environment(bg_scene *s, uint32_t texture, bool lights, bg_environment_sampling sampling)
+{
+    bg_environment e = bg_environment_init();
+    e.texture = texture;
+    e.lights = lights;
+    e.sampling = sampling;
+    if (bg_scene_set_environment(s, &e) != BG_OK)
+        fail_msg("bg_scene_set_environment: %s", bg_scene_error_message(s));
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+}
+
+/* The spheres scene seen against the sky, lit by it (or not) and by its point light. */
+static void environment_gpu_follows_cpu(void **state)
+{
+    (void)state;
+    const struct {
+        bool lights;
+        bg_environment_sampling sampling;
+        const char *name;
+    } cases[] = {{false, BG_ENVIRONMENT_IMPORTANCE, "sky seen"},
+                 {true, BG_ENVIRONMENT_IMPORTANCE, "sky lighting, importance"},
+                 {true, BG_ENVIRONMENT_UNIFORM, "sky lighting, uniform"}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        bg_scene *s = spheres_scene_of(POINT_LIGHT, 0.0, 0.0, GLOSSY);
+        set_environment(s, sky_texture(s, true), cases[c].lights, cases[c].sampling);
+        bg_render_settings set = samples_settings(16);
+        unsigned char *cpu = util_cpu_reference(s, &set, W, H);
+        for (int p = 0; p < 2; p++) {
+            char label[64];
+            snprintf(label, sizeof label, "%s, %s", cases[c].name, plan_names[p]);
+            unsigned char *gpu = util_gpu_plan_image(s, &set, plans[p], W, H, label);
+            bg_image gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
+            util_expect_near_row(cpu, &gi, &distribution_row, label);
+            free(gpu);
+        }
+        /* The multipass refuses it, naming the environment. */
+        unsigned char px[W * H * 4];
+        bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
+        bg_renderer *r = util_renderer(util_fx.ctx);
+        set.gpu_plan = BG_PLAN_MULTIPASS;
+        assert_int_equal(bg_render_gpu(r, s, &set, &img), BG_ERR_LIMIT);
+        assert_non_null(strstr(bg_renderer_error_message(r), "environment"));
+        bg_renderer_destroy(r);
+        free(cpu);
+        bg_scene_destroy(s);
+    }
+}
+
+/* Under a uniform white environment of radiance 1 a white Lambertian floor (C = 0.8, nothing
+ * else) returns exactly C: both samplings converge to it; their largest pixel error at 256
+ * samples is printed and bounded. */
+static void white_environment_lights_floor_exactly(void **state)
+{
+    (void)state;
+    for (int sampling = 0; sampling < 2; sampling++) {
+        bg_scene *s = NULL;
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        const double none[3] = {0, 0, 0};
+        assert_int_equal(bg_scene_set_ambient(s, none), BG_OK);
+        uint32_t white = diffuse(s, FLOOR_C, FLOOR_C, FLOOR_C), id;
+        assert_int_equal(bg_scene_add_plane(s, bg_vec3_make(0, 0, 0), bg_vec3_make(0, 1, 0), white, &id), BG_OK);
+        float texels[8 * 4 * 4];
+        for (int i = 0; i < 8 * 4 * 4; i++)
+            texels[i] = 1.0f;
+        bg_image img = {8, 4, BG_PIXEL_RGBA32F, 0, texels};
+        uint32_t tex;
+        assert_int_equal(bg_scene_add_texture(s, &img, NULL, &tex), BG_OK);
+        bg_camera c = bg_camera_init();
+        c.position = bg_vec3_make(0, 1, 0);
+        c.look_at = bg_vec3_make(0, 0, 0);
+        c.up = bg_vec3_make(0, 0, -1);
+        c.fov_y_degrees = 60.0;
+        assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+        set_environment(s, tex, true, (bg_environment_sampling)sampling);
+        for (int plan = -1; plan < 2; plan++) {
+            float *px = linear_image(s, 16, 16, plan);
+            double worst = 0.0, mean = 0.0;
+            for (int i = 0; i < 16 * 16; i++) {
+                double e = fabs(px[4 * i] - FLOOR_C);
+                worst = e > worst ? e : worst;
+                mean += e / (16 * 16);
+            }
+            print_message("white environment, %s sampling, %-6s largest error %.4f, mean %.4f (exact 0.8)\n",
+                          sampling ? "uniform" : "importance", plan < 0 ? "CPU" : plan_names[plan], worst, mean);
+            assert_true(worst < (sampling ? WHITE_UNIFORM_MAX_ERROR : WHITE_IMPORTANCE_MAX_ERROR));
+            free(px);
+        }
+        bg_scene_destroy(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -525,6 +645,8 @@ int main(void)
         cmocka_unit_test(glossy_reflection_gpu_follows_cpu),
         cmocka_unit_test(sphere_penumbra_converges),
         cmocka_unit_test(circle_of_confusion_follows_thin_lens),
+        cmocka_unit_test(environment_gpu_follows_cpu),
+        cmocka_unit_test(white_environment_lights_floor_exactly),
     };
     return cmocka_run_group_tests_name("bg_distribution", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

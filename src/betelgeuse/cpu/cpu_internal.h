@@ -299,6 +299,14 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
 void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings,
                        const bgi_sample_point *sample, const double o[3], const double d[3], double rgb[3]);
 
+/* What a ray of unit direction d that meets nothing sees of the environment (environment_sample.c,
+ * docs/shading.md 7.1): the texture filtered at d, times the intensity. */
+void bgi_cpu_environment_radiance(const bg_scene_state *state, const double d[3], double rgb[3]);
+/* The environment as a light at this camera sample: its unit direction l and E_l, false when it
+ * brings nothing (the shadow segment is unbounded). */
+bool bgi_cpu_environment_light(const bg_scene_state *state, const bgi_sample_point *sample, double l[3],
+                               double radiance[3]);
+
 /* The glossy reflection of the unit direction d off unit normal n (facing the ray) for roughness
  * r > 0 and the unit-square point uv (docs/shading.md 9.1): d mirrored about a normal drawn from
  * Schlick's zenith factor. False when it points below the surface (no reflected ray then). */

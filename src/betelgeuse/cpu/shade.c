@@ -174,8 +174,11 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
 {
     bg_cpu_hit hit;
     if (!bgi_cpu_nearest_hit_except(state, o, d, skip, skip_triangle, inside, &hit)) {
+        double seen[3] = {settings->background[0], settings->background[1], settings->background[2]};
+        if (state->environment.on)
+            bgi_cpu_environment_radiance(state, d, seen);
         for (int i = 0; i < 3; i++)
-            out[i] += weight[i] * settings->background[i];
+            out[i] += weight[i] * seen[i];
         return;
     }
     const bg_object_data *object = &state->objects[hit.object];
@@ -196,9 +199,12 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
 
     /* Direct light reaches a closed object's surface only from outside. */
     if (opaque > 0.0 && v > 0.0 && (thin || hit.entering)) {
-        for (uint32_t k = 0; k < state->light_count; k++) {
-            double l[3], radiance[3], t_max;
-            if (!bgi_cpu_light_sample(state, k, sample, hit.position, l, &t_max, radiance))
+        /* The lights in order, then the environment as a distant light (7.1). */
+        uint32_t lights = state->light_count + (state->environment.on && state->environment.lights ? 1 : 0);
+        for (uint32_t k = 0; k < lights; k++) {
+            double l[3], radiance[3], t_max = DBL_MAX;
+            if (k < state->light_count ? !bgi_cpu_light_sample(state, k, sample, hit.position, l, &t_max, radiance)
+                                       : !bgi_cpu_environment_light(state, sample, l, radiance))
                 continue;
             double vl = bg_v3_dot(n, l);
             if (!(vl > 0.0))

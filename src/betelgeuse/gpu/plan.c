@@ -57,6 +57,14 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
     r->stats.plan = BG_PLAN_MULTIPASS;
     f->forced = asked == BG_PLAN_FUSED || asked == BG_PLAN_FUSED_TREE;
     const char *option = f->forced ? NULL : multipass_option(r, f->settings);
+    /* The multipass draws no environment (docs/gpu_pipeline.md): a frame that would go there is
+     * refused, saying why it would. */
+    const char *no_env = "the scene has an environment (bg_scene_set_environment), which the multipass plan does not "
+                         "draw; it would render this frame because";
+    if (f->state->environment.on && !fused)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s settings.gpu_plan asks for it", no_env);
+    if (f->state->environment.on && option)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s", no_env, option);
     if (fused && option) {
         fall_back(r, option);
     } else if (fused) {
@@ -69,6 +77,8 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
         }
         if (f->forced)
             return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s cannot render this frame: %s", fused->name, why);
+        if (f->state->environment.on)
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s declines it: %s", no_env, fused->name, why);
         fall_back(r, why);
     }
     f->forced = asked == BG_PLAN_MULTIPASS;

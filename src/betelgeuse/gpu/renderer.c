@@ -75,6 +75,7 @@ void bgi_gpu_release_all(bg_renderer *r)
     r->frame_sum = NULL;
     bgi_gpu_meshes_release(r);
     bgi_gpu_scene_textures_release(r);
+    bgi_gpu_env_tables_release(r);
     bgi_free(&r->allocator, r->readback);
     r->readback = NULL;
     r->readback_size = 0;

@@ -50,12 +50,18 @@ struct gpu_fused {
  * meshes' (bind_frame sets them in this order). */
 static int input_count(const gpu_fused_layout *l)
 {
-    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 2 : 0);
+    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 2 : 0) + (l->env_importance ? 2 : 0);
 }
 
 static int mesh_input(const gpu_fused_layout *l)
 {
     return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0);
+}
+
+/* The environment's tables come after the meshes' textures. */
+static int env_input(const gpu_fused_layout *l)
+{
+    return mesh_input(l) + (l->mesh ? 2 : 0);
 }
 
 /* False with the reason when the layout is beyond the GL limits or, for BG_PLAN_AUTO, beyond the
@@ -185,6 +191,10 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
         inputs[mesh_input(l)].name = "bg_mesh_nodes";
         inputs[mesh_input(l) + 1].name = "bg_mesh_tris";
     }
+    if (l->env_importance) {
+        inputs[env_input(l)].name = "bg_env_marginal";
+        inputs[env_input(l) + 1].name = "bg_env_conditional";
+    }
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
@@ -273,6 +283,8 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         st = bgi_gpu_meshes_prepare(r, state);
     if (st == BG_OK && walks)
         st = bgi_gpu_tree_textures_prepare(r, &f->tree, state);
+    if (st == BG_OK && l->env_importance)
+        st = bgi_gpu_env_tables_prepare(r, state);
     if (st == BG_OK)
         st = output_for(r, f, o, out);
     if (st != BG_OK)
@@ -288,6 +300,10 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, mesh_input(l), r->meshes.nodes);
     if (!ms && l->mesh)
         ms = macs_pass_set_input(f->pass, mesh_input(l) + 1, r->meshes.triangles);
+    if (!ms && l->env_importance)
+        ms = macs_pass_set_input(f->pass, env_input(l), r->env_tables.marginal);
+    if (!ms && l->env_importance)
+        ms = macs_pass_set_input(f->pass, env_input(l) + 1, r->env_tables.conditional);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)

@@ -48,7 +48,7 @@ typedef enum gpu_fused_need {
     GPU_FUSED_NEED_TANGENT,
     GPU_FUSED_NEED_UV, GPU_FUSED_NEED_USED, GPU_FUSED_NEED_ANISO, GPU_FUSED_NEED_TRANSPARENT,
     GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO,
-    GPU_FUSED_NEED_SCRAMBLE, GPU_FUSED_NEED_LENS, GPU_FUSED_NEED_AREA
+    GPU_FUSED_NEED_SCRAMBLE, GPU_FUSED_NEED_LENS, GPU_FUSED_NEED_AREA, GPU_FUSED_NEED_ENV
 } gpu_fused_need;
 
 /* Who a uniform belongs to: the frame, the light arrays (one element per light), an object, a material. */
@@ -76,6 +76,7 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(PIXEL_AT, FRAME, "bg_pixel_at", VEC2, SCRAMBLE, pixel_at)                 \
     X(SAMPLE_OF, FRAME, "bg_sample_of", VEC4, SCRAMBLE, sample_of)              \
     X(LENS, FRAME, "bg_lens", VEC2, LENS, lens)                                 \
+    X(ENV_INFO, FRAME, "bg_env_info", VEC4, ENV, env_info)                       \
     X(LIGHT_POS, LIGHTS, "bg_lpos", VEC4, LIGHTS, light_position)               \
     X(LIGHT_RAD, LIGHTS, "bg_lrad", VEC3, LIGHTS, light_radiance)               \
     X(LIGHT_ATT, LIGHTS, "bg_latt", VEC3, LIGHTS, light_attenuation)            \
@@ -162,6 +163,10 @@ typedef struct gpu_fused_layout {
     bool lens;           /* the camera has an aperture (docs/shading.md 1.4) */
     bool area;           /* some light is an area light (docs/shading.md 7) */
     bool glossy;         /* some used material is glossy (docs/shading.md 9.1) */
+    bool env;            /* misses see the environment (docs/shading.md 7.1) */
+    bool env_light;      /* the environment lights the scene too, after the lights */
+    bool env_importance; /* ... drawn from its importance tables (two more inputs) */
+    int env_sampler;     /* the environment texture's sampler, -1 none */
 } gpu_fused_layout;
 /* Shadow tests (lights x casters) up to which lights are unrolled. Each unrolled light inlines its
  * own copy of every caster's test: at 2 lights x 17 casters (many_spheres) the program took 14 s
@@ -198,6 +203,8 @@ void bgi_gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
 bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);
 /* Whether an object of the layout's material samples textures / needs a shading tangent. */
 bool bgi_gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
+/* Lights the shader evaluates at a hit: the scene's, and the environment when it lights. */
+uint32_t bgi_gpu_fused_layout_lights(const gpu_fused_layout *l);
 /* Whether the program walks a tree: the tree variant with some object in the scene's tree. */
 bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l);
 /* Whether the program's walks (the object tree's or a mesh's) share a step budget per pixel, so

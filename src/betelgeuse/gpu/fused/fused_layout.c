@@ -121,7 +121,7 @@ static int walk_budget(const gpu_fused_layout *l)
 {
     int loops = l->loop_rays * (1 + (l->light_loop ? (int)l->light_count : 0));
     /* Per ray and light: the tree's walk and one per unrolled mesh. */
-    long walks = (long)l->loop_rays * (1 + (long)l->light_count) * (1 + (long)l->unrolled_meshes);
+    long walks = (long)l->loop_rays * (1 + (long)bgi_gpu_fused_layout_lights(l)) * (1 + (long)l->unrolled_meshes);
     long left = GPU_MAX_LOOP - loops - 3 * walks - 64;
     return left > 0 ? (int)left : 0;
 }
@@ -193,10 +193,22 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
     }
     if (tree)
         describe_tree(&l);
-    l.shadows = any_shadow(&l) && l.light_count > 0;
+    const bg_environment_data *env = &state->environment;
+    l.env = env->on;
+    l.env_light = env->on && env->lights;
+    l.env_importance = l.env_light && env->marginal;
+    l.env_sampler = -1;
+    for (int k = 0; k < l.sampler_count && l.env; k++)
+        if (l.samplers[k] == env->texture)
+            l.env_sampler = k;
+    if (l.env && l.env_sampler < 0) {
+        l.env_sampler = l.sampler_count++;
+        l.samplers[l.env_sampler] = env->texture;
+    }
+    l.shadows = any_shadow(&l) && bgi_gpu_fused_layout_lights(&l) > 0;
     l.max_depth = bounce ? settings->max_depth : 0;
     l.stack = l.transparent ? l.max_depth : 0;
-    uint32_t tests = l.light_count * (casters(&l) ? casters(&l) : 1);
+    uint32_t tests = bgi_gpu_fused_layout_lights(&l) * (casters(&l) ? casters(&l) : 1);
     l.light_loop = l.light_count > 1 && tests > GPU_FUSED_UNROLLED_SHADOW_TESTS;
     /* The loop bound is a constant of the program, so it cannot depend on min_weight; the pruned
      * bound only tells whether that constant is enough (bgi_gpu_fused_render). Each ray runs the light
@@ -227,6 +239,11 @@ bool bgi_gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object)
 bool bgi_gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
 {
     return l->materials[l->objects[object].material].aniso;
+}
+
+uint32_t bgi_gpu_fused_layout_lights(const gpu_fused_layout *l)
+{
+    return l->light_count + (l->env_light ? 1u : 0u);
 }
 
 bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l)

@@ -77,10 +77,12 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         ok = bgi_gpu_text_snippet(t, "bg_tree_textures.glsl", seen, &n, SEEN_CAP);
     if (ok && l->mesh)
         ok = bgi_gpu_mesh_library(t, seen, &n, SEEN_CAP);
-    if (ok && l->light_count > 0)
+    if (ok && bgi_gpu_fused_layout_lights(l) > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->env)
+        ok = bgi_gpu_text_snippet(t, "bg_environment.glsl", seen, &n, SEEN_CAP);
     /* The distribution effects' sample points, and the frame pixel's hash they start from. */
-    if (ok && (l->lens || l->area || l->glossy)) {
+    if (ok && (l->lens || l->area || l->glossy || l->env_light)) {
         ok = bgi_gpu_text_snippet(t, "bg_scramble.glsl", seen, &n, SEEN_CAP);
         bgi_gpu_text_append(t, "float bg_ph;\n");
     }
@@ -304,7 +306,7 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
 /* Shadow segments against every caster but the object the point lies on (docs/shading.md 2.8). */
 static void emit_blocked(const gpu_fused_layout *l, gpu_text *t)
 {
-    if (l->light_count == 0)
+    if (bgi_gpu_fused_layout_lights(l) == 0)
         return;
     bgi_gpu_text_append(t, "// ---- generated: shadow casters\n"
                        "bool bg_fused_blocked(vec3 p, vec3 l, float dist, float self)\n{\n");
@@ -563,13 +565,41 @@ static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
             emit_light_term(l, t, k, "    ");
         }
     }
+    /* The environment last, as a directional light of its direction at this sample (7.1). */
+    if (l->env_light)
+        bgi_gpu_text_printf(t, "    vec3 env_l, env_e;\n"
+                               "    if (bg_env_light(bg_sample_square(bg_ph, %d.0, bg_sample_of), bg_tex%d, %s, %s, bg_env_info, "
+                               "env_l, env_e))\n"
+                               "        radiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, vec4(-env_l, 1.0), "
+                               "env_e, vec3(1.0, 0.0, 0.0), vec4(0.0, 0.0, 0.0, -2.0), 0.0);\n",
+                            BGI_DIMENSION_LIGHT((int)l->light_count), l->env_sampler,
+                            l->env_importance ? "bg_env_marginal" : "bg_tex0", l->env_importance ? "bg_env_conditional" : "bg_tex0");
     bgi_gpu_text_append(t, "}\n");
+}
+
+/* With an environment, a miss sees it: the ray function of the other scenes, called with a black
+ * background, and the environment added on a miss. */
+static void emit_environment_ray(const gpu_fused_layout *l, gpu_text *t)
+{
+    if (!l->env)
+        return;
+    bgi_gpu_text_printf(t, "// ---- generated: the environment on a miss\n"
+                           "bool bg_fused_ray_env(vec4 ro, vec4 rd, vec3 w, inout vec3 radiance, out vec4 hit, out vec4 nrm, "
+                           "out vec4 base, out vec4 coat, out vec2 xparent)\n{\n"
+                           "    if (bg_fused_ray(ro, rd, w, vec3(0.0), radiance, hit, nrm, base, coat, xparent))\n"
+                           "        return true;\n"
+                           "    radiance += w * bg_env_radiance(rd.xyz, bg_tex%d, bg_env_info);\n"
+                           "    return false;\n}\n",
+                        l->env_sampler);
 }
 
 /* ---- main ---- */
 
-static const char *const trace_call =
-    "bg_fused_ray(bg_ro, bg_rd, bg_cw.rgb, bg_background, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp)";
+static const char *trace_call_of(const gpu_fused_layout *l)
+{
+    return l->env ? "bg_fused_ray_env(bg_ro, bg_rd, bg_cw.rgb, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp)"
+                  : "bg_fused_ray(bg_ro, bg_rd, bg_cw.rgb, bg_background, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, bg_xp)";
+}
 
 /* The children of the hit just traced (docs/shading.md 9), by the multipass spawn function. */
 static void emit_spawn(const gpu_fused_layout *l, gpu_text *t, bool transmitted, int child)
@@ -598,7 +628,7 @@ static void emit_follow(gpu_text *t, int c, const char *indent)
 static void emit_chain(const gpu_fused_layout *l, gpu_text *t)
 {
     bgi_gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n", l->loop_rays);
-    bgi_gpu_text_printf(t, "    if (!%s || bg_cw.a >= %d.0)\n        break;\n", trace_call, l->max_depth);
+    bgi_gpu_text_printf(t, "    if (!%s || bg_cw.a >= %d.0)\n        break;\n", trace_call_of(l), l->max_depth);
     bgi_gpu_text_append(t, "    vec4 bg_o1, bg_d1, bg_w1;\n    {\n");
     emit_spawn(l, t, false, 1);
     bgi_gpu_text_append(t, "    }\n    if (bg_w1.a <= 0.0)\n        break;\n");
@@ -619,7 +649,7 @@ static void emit_tree(const gpu_fused_layout *l, gpu_text *t)
         bgi_gpu_text_printf(t, "vec4 bg_s%d_o = vec4(0.0), bg_s%d_d = vec4(0.0), bg_s%d_w = vec4(0.0);\n", k, k, k);
     bgi_gpu_text_append(t, "int bg_pending = 0;\n");
     bgi_gpu_text_printf(t, "for (int bg_i = 0; bg_i < %d; bg_i++) {\n    bool bg_next = false;\n", l->loop_rays);
-    bgi_gpu_text_printf(t, "    if (%s && bg_cw.a < %d.0) {\n", trace_call, l->max_depth);
+    bgi_gpu_text_printf(t, "    if (%s && bg_cw.a < %d.0) {\n", trace_call_of(l), l->max_depth);
     bgi_gpu_text_append(t, "        vec4 bg_o1, bg_d1, bg_w1, bg_o2, bg_d2, bg_w2;\n");
     emit_spawn(l, t, false, 1);
     emit_spawn(l, t, true, 2);
@@ -652,7 +682,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
                        "bg_tan_half, bg_ro, bg_rd, bg_w0);\n"
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
-    if (l->lens || l->area || l->glossy)
+    if (l->lens || l->area || l->glossy || l->env_light)
         bgi_gpu_text_append(t, "bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
     if (l->lens)
         bgi_gpu_text_printf(t, "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_ph, %d.0, bg_sample_of)), bg_lens.x, bg_lens.y, "
@@ -660,7 +690,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
     if (bgi_gpu_fused_layout_budgeted(l))
         bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
     if (l->max_depth == 0)
-        bgi_gpu_text_printf(t, "%s;\n", trace_call);
+        bgi_gpu_text_printf(t, "%s;\n", trace_call_of(l));
     else if (l->stack == 0)
         emit_chain(l, t);
     else
@@ -681,6 +711,7 @@ bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_te
     emit_blocked(l, functions);
     emit_surface(l, functions);
     emit_direct(l, functions);
+    emit_environment_ray(l, functions);
     emit_main(l, main);
     *output = "bg_out";
     return ok && !functions->failed && !main->failed;

@@ -66,6 +66,12 @@ static void lens(const gpu_fused_values *v, uint32_t i, float *out)
     bgi_gpu_lens(v->state, out);
 }
 
+static void env_info(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    bgi_gpu_env_info(v->state, out);
+}
+
 static void camera_forward(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
@@ -272,7 +278,9 @@ bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
         if (w->need == GPU_FUSED_NEED_MESH)
             return l->mesh;
         if (w->need == GPU_FUSED_NEED_SCRAMBLE)
-            return l->lens || l->area || l->glossy;
+            return l->lens || l->area || l->glossy || l->env_light;
+        if (w->need == GPU_FUSED_NEED_ENV)
+            return l->env;
         if (w->need == GPU_FUSED_NEED_LENS)
             return l->lens;
         return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;

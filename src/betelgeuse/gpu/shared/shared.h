@@ -76,6 +76,12 @@ typedef struct gpu_marks {
 struct gpu_fused;     /* fused/fused.h: the fused plan's cached program and targets */
 struct gpu_multipass; /* multipass/multipass.h: the multipass's targets, passes and cache key */
 
+/* The environment's importance tables on the GPU (environment_tables.c). */
+typedef struct gpu_env_tables {
+    macs_texture *marginal, *conditional;
+    uint64_t id; /* bg_environment_data.tables_id of what they hold; 0 none */
+} gpu_env_tables;
+
 struct bg_renderer {
     bg_allocator allocator;
     bg_logger logger;
@@ -97,6 +103,7 @@ struct bg_renderer {
                                           kept between frames with its add pass, so that the pass's
                                           program stays in MACS's cache; NULL until one */
     gpu_scene_textures scene_textures; /* scene_textures.c: likewise */
+    gpu_env_tables env_tables;         /* environment_tables.c: likewise */
 
     /* Each plan's own objects, NULL until the plan first runs; each plan frees only its own. */
     struct gpu_fused *fused;
@@ -240,6 +247,15 @@ void bgi_gpu_pixel_at(const gpu_view *view, float out[2]);
 void bgi_gpu_sample_of(const gpu_view *view, float out[4]);
 void bgi_gpu_lens(const bg_scene_state *state, float out[2]);
 gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
+
+/* ---- environment_tables.c ---- */
+/* Makes r->env_tables hold the committed environment's importance tables (one value per texel, in
+ * R: the marginal as one row of height texels, the conditional as width x height), uploading them
+ * only when the scene's tables changed; nothing without importance sampling. */
+bg_status bgi_gpu_env_tables_prepare(bg_renderer *r, const bg_scene_state *state);
+void bgi_gpu_env_tables_release(bg_renderer *r);
+/* The environment's uniform bg_env_info: (intensity, width, height, 1 with importance tables). */
+void bgi_gpu_env_info(const bg_scene_state *state, float out[4]);
 
 /* ---- scene_textures.c ---- */
 /* Makes r->scene_textures hold the committed scene's textures, uploading them only when what they

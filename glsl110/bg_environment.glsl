@@ -1,0 +1,76 @@
+#version 110
+// requires: bg_common.glsl
+// The environment (docs/shading.md 7.1), the twin of src/betelgeuse/cpu/environment_sample.c:
+// what a ray that meets nothing sees, and the environment's direction at a camera sample when it
+// lights the scene. info = (intensity, width, height, 1.0 with importance tables); the textures come
+// as arguments, since the pass declares its samplers (MACS inputs): the image (filtered, repeating),
+// the marginal table (one row of height texels) and the conditional one (width x height), NEAREST.
+
+vec3 bg_env_radiance(vec3 d, sampler2D env, vec4 info)
+{
+    float y = clamp(d.y, -1.0, 1.0);
+    // Straight up or down the azimuth is any: the centre column, as on the CPU.
+    float u = abs(d.x) + abs(d.z) > 0.0 ? 0.5 + atan(d.x, -d.z) / 6.283185307 : 0.5;
+    float lo = 0.5 / info.z;
+    float v = clamp(1.0 - acos(y) / 3.141592654, lo, 1.0 - lo);
+    return info.x * texture2D(env, vec2(u, v)).rgb;
+}
+
+// Value k of row `row` of a table texture of size `size`.
+float bg_env_table(sampler2D table, float k, float row, vec2 size)
+{
+    return texture2D(table, vec2((k + 0.5) / size.x, (row + 0.5) / size.y)).r;
+}
+
+// The first index of the nondecreasing row (n values) whose value exceeds xi: halving steps from
+// 2^13, as the CPU's first_above, unrolled by the compiler (a constant bound).
+float bg_env_first_above(sampler2D table, float n, float row, vec2 size, float xi)
+{
+    float lo = 0.0;
+    float step = 8192.0;
+    for (int k = 0; k < 14; k++) {
+        if (lo + step <= n && bg_env_table(table, lo + step - 1.0, row, size) <= xi)
+            lo += step;
+        step *= 0.5;
+    }
+    return lo;
+}
+
+// The environment as a light at the unit-square point xi: its unit direction l and E_l (false when
+// it brings nothing).
+bool bg_env_light(vec2 xi, sampler2D env, sampler2D marginal, sampler2D conditional, vec4 info, out vec3 l,
+                  out vec3 e)
+{
+    const float pi = 3.141592654;
+    float w = info.y, h = info.z;
+    float i, j, u, v, pdf;
+    l = vec3(0.0);
+    e = vec3(0.0);
+    if (info.w > 0.5) {
+        j = bg_env_first_above(marginal, h, 0.0, vec2(h, 1.0), xi.x);
+        float m1 = bg_env_table(marginal, j, 0.0, vec2(h, 1.0));
+        float m0 = j > 0.0 ? bg_env_table(marginal, j - 1.0, 0.0, vec2(h, 1.0)) : 0.0;
+        i = bg_env_first_above(conditional, w, j, vec2(w, h), xi.y);
+        float c1 = bg_env_table(conditional, i, j, vec2(w, h));
+        float c0 = i > 0.0 ? bg_env_table(conditional, i - 1.0, j, vec2(w, h)) : 0.0;
+        if (!(m1 > m0) || !(c1 > c0))
+            return false;
+        v = (j + (xi.x - m0) / (m1 - m0)) / h;
+        u = (i + (xi.y - c0) / (c1 - c0)) / w;
+        float sin_t = sin(pi * v);
+        if (!(sin_t > 0.0))
+            return false;
+        pdf = (m1 - m0) * (c1 - c0) * w * h / (2.0 * pi * pi * sin_t);
+    } else {
+        float y = 1.0 - 2.0 * xi.x;
+        u = xi.y;
+        v = 1.0 - acos(y) / pi;
+        i = min(floor(u * w), w - 1.0);
+        j = clamp(floor(v * h), 0.0, h - 1.0);
+        pdf = 1.0 / (4.0 * pi);
+    }
+    float theta = pi * (1.0 - v), phi = 2.0 * pi * (u - 0.5);
+    l = vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+    e = texture2D(env, vec2((i + 0.5) / w, (j + 0.5) / h)).rgb * (info.x / (pi * pdf));
+    return bg_max3(e) > 0.0;
+}
