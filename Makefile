@@ -52,9 +52,10 @@ SF_SRC   := $(sort $(wildcard src/scenefile/*.c))
 MACS_OBJ := $(MACS_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/macs_shaders.o
 BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
 SF_OBJ   := $(SF_SRC:%.c=$(BUILD)/%.o)
-SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp libpng libturbojpeg 2>/dev/null || echo -I/usr/include/cjson)
-SF_LIBS   := $(shell pkg-config --libs libcjson assimp libpng libturbojpeg 2>/dev/null || \
-               echo -lcjson -lassimp -lpng16 -lturbojpeg)
+SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp libpng libturbojpeg stb 2>/dev/null || \
+               echo -I/usr/include/cjson -I/usr/include/stb)
+SF_LIBS   := $(shell pkg-config --libs libcjson assimp libpng libturbojpeg stb 2>/dev/null || \
+               echo -lcjson -lassimp -lpng16 -lturbojpeg -lstb)
 # The command (src/cli, docs/command.md) on the three libraries.
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)

@@ -103,7 +103,7 @@ static bg_status layer(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, bg_sc
 static bg_status read_material(bgi_sf_ctx *ctx, const cJSON *v, const char *name)
 {
     static const char *const keys[] = {"base", "coat", "ambient", "emission", "transparency", "ior",
-                                       "coverage", "coverage_cutoff", "sides", NULL};
+                                       "coverage", "coverage_cutoff", "sides", "glossy", NULL};
     static const char *const sides[] = {"solid", "front", "both", NULL};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_material m = bg_material_init();
@@ -118,6 +118,7 @@ static bg_status read_material(bgi_sf_ctx *ctx, const cJSON *v, const char *name
     int s = (int)m.sides;
     BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "sides", sides, &s));
     m.sides = (bg_mesh_sides)s;
+    BGI_SF_TRY(bgi_sf_field_bool(ctx, v, "glossy", &m.glossy));
     uint32_t handle;
     bg_status st = bg_scene_add_material(ctx->scene, &m, &handle);
     if (st != BG_OK)

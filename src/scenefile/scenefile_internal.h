@@ -162,6 +162,11 @@ bg_status bgi_sf_field_enum(bgi_sf_ctx *ctx, const cJSON *obj, const char *key, 
 bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v);
 bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v);
 bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v);
+/* "settings.environment": {"file", "intensity", "light", "sampling"} (environment.c). */
+bg_status bgi_sf_read_environment(bgi_sf_ctx *ctx, const cJSON *v);
+/* Loads an environment image file (a Radiance .hdr, or a PNG decoded from sRGB) into a texture of the
+ * scene; BG_ERR_IO naming the file and the reason (environment.c). */
+bg_status bgi_sf_load_environment_image(bgi_sf_ctx *ctx, const char *path, uint32_t *out_texture);
 bg_status bgi_sf_read_textures(bgi_sf_ctx *ctx, const cJSON *v);
 bg_status bgi_sf_read_materials(bgi_sf_ctx *ctx, const cJSON *v);
 bg_status bgi_sf_read_objects(bgi_sf_ctx *ctx, const cJSON *v);

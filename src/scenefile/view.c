@@ -34,7 +34,7 @@ bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v)
 
 bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v)
 {
-    static const char *const keys[] = {"max_depth", "background", "ambient", "encoding", NULL};
+    static const char *const keys[] = {"max_depth", "background", "ambient", "encoding", "environment", NULL};
     static const char *const encodings[] = {"srgb", "linear", NULL};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_render_settings *s = &ctx->out->settings;
@@ -44,5 +44,11 @@ bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v)
     int e = (int)s->encoding;
     BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "encoding", encodings, &e));
     s->encoding = (bg_output_encoding)e;
-    return BG_OK;
+    const cJSON *env = bgi_sf_member(v, "environment");
+    if (!env)
+        return BG_OK;
+    size_t at = bgi_sf_push_key(ctx, "environment");
+    bg_status st = bgi_sf_read_environment(ctx, env);
+    bgi_sf_pop(ctx, at);
+    return st;
 }
