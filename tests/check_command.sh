@@ -56,9 +56,10 @@ for renderer in cpu gpu; do
 	grep -v -e 'Invalid GLSL version' -e 'gitlab.freedesktop.org/mesa' "$out/err" >"$out/err.own"
 	[ -s "$out/err.own" ] && fail "render --quiet ($renderer) printed: $(cat "$out/err.own")"
 done
-# The shipped scenes of the area lights and the lens, small, on the GPU (test_scenefile_lights holds
-# the CPU to a builder).
-for scene in area_lights depth_of_field; do
+# The shipped scenes of the area lights, the lens, glossy reflection and the environment, small, on the GPU
+# (test_scenefile_lights and test_scenefile_environment hold the CPU to builders and the GPU to the CPU;
+# the multipass draws no environment, so the GPU plan is the automatic one).
+for scene in area_lights depth_of_field glossy environment; do
 	expect 0 "render $scene" "$cli" render "$json/$scene.json" --size 64x48 -o "$out/$scene.png" --quiet
 	[ -s "$out/$scene.png" ] || fail "render $scene wrote no image"
 done
