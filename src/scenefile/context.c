@@ -139,6 +139,13 @@ void bgi_sf_set_dir_of(bgi_sf_ctx *ctx, const char *file)
     ctx->dir[n] = '\0';
 }
 
+bg_status bgi_sf_file_path(bgi_sf_ctx *ctx, const cJSON *v, char *out)
+{
+    const char *file = NULL;
+    bg_status st = bgi_sf_string(ctx, v, &file);
+    return st == BG_OK ? bgi_sf_resolve(ctx, file, out) : st;
+}
+
 bg_status bgi_sf_resolve(bgi_sf_ctx *ctx, const char *path, char *out)
 {
     if (!*path)

@@ -110,11 +110,8 @@ bg_status bgi_sf_read_environment(bgi_sf_ctx *ctx, const cJSON *v)
     BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "sampling", samplings, &sampling));
     e.sampling = (bg_environment_sampling)sampling;
     size_t at = bgi_sf_push_key(ctx, "file");
-    const char *file = NULL;
     char path[BGI_SF_PATH_MAX];
-    bg_status st = bgi_sf_string(ctx, f, &file);
-    if (st == BG_OK)
-        st = bgi_sf_resolve(ctx, file, path);
+    bg_status st = bgi_sf_file_path(ctx, f, path);
     if (st == BG_OK)
         st = bgi_sf_load_environment_image(ctx, path, &e.texture);
     bgi_sf_pop(ctx, at);

@@ -74,6 +74,8 @@ size_t bgi_sf_push_index(bgi_sf_ctx *ctx, size_t index);
 void bgi_sf_pop(bgi_sf_ctx *ctx, size_t length);
 /* Joins a relative path to ctx->dir (absolute paths stay) into out (BGI_SF_PATH_MAX). */
 bg_status bgi_sf_resolve(bgi_sf_ctx *ctx, const char *path, char *out);
+/* A file name value (a string) resolved as bgi_sf_resolve does, into out (BGI_SF_PATH_MAX bytes). */
+bg_status bgi_sf_file_path(bgi_sf_ctx *ctx, const cJSON *v, char *out);
 /* Sets ctx->dir to the folder of file ("" for a bare name). */
 void bgi_sf_set_dir_of(bgi_sf_ctx *ctx, const char *file);
 bg_status bgi_sf_names_add(bgi_sf_ctx *ctx, bgi_sf_names *names, const char *name, uint32_t handle);

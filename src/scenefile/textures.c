@@ -18,11 +18,8 @@ static bg_status read_texture(bgi_sf_ctx *ctx, const cJSON *v, const char *name)
     BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "encoding", encodings, &enc));
     BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "filter", filters, &filter));
     size_t at = bgi_sf_push_key(ctx, "file");
-    const char *file = NULL;
     char path[BGI_SF_PATH_MAX];
-    bg_status st = bgi_sf_string(ctx, f, &file);
-    if (st == BG_OK)
-        st = bgi_sf_resolve(ctx, file, path);
+    bg_status st = bgi_sf_file_path(ctx, f, path);
     uint32_t handle = 0;
     if (st == BG_OK) {
         bg_texture_desc d = {(bg_texture_wrap)wrap, (bg_texture_encoding)enc, (bg_texture_filter)filter};

@@ -15,17 +15,10 @@ static bg_status upload(bg_renderer *r, const double *values, int w, int h, macs
     memset(texels, 0, n * 4 * sizeof *texels);
     for (size_t k = 0; k < n; k++)
         texels[4 * k] = (float)values[k];
-    macs_texture_desc d;
-    memset(&d, 0, sizeof d);
-    d.width = w;
-    d.height = h;
-    d.format = MACS_FORMAT_RGBA32F;
-    d.filter = MACS_FILTER_NEAREST;
-    d.wrap = MACS_WRAP_CLAMP_TO_EDGE;
-    d.data = texels;
-    macs_status ms = macs_texture_create(r->ctx, &d, out);
+    bg_status st = bgi_gpu_float_texture(r, w, h, MACS_FILTER_NEAREST, MACS_WRAP_CLAMP_TO_EDGE, texels,
+                                         "environment tables", out);
     bgi_free(&r->allocator, texels);
-    return ms ? bgi_gpu_fail_macs(r, ms, "environment tables") : BG_OK;
+    return st;
 }
 
 bg_status bgi_gpu_env_tables_prepare(bg_renderer *r, const bg_scene_state *state)

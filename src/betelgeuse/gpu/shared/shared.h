@@ -268,6 +268,10 @@ uint64_t bgi_gpu_hash_mix(uint64_t h, uint64_t v);
 /* ---- texture_upload.c ---- */
 /* Creates *out as a w x h texture of format unless it exists; what names it in a failure. */
 bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what);
+/* Creates *out as a w x h RGBA32F texture holding texels (GL row order) with the filter and wrap;
+ * what names it in a failure. */
+bg_status bgi_gpu_float_texture(bg_renderer *r, int w, int h, macs_filter filter, macs_wrap wrap, const float *texels,
+                                const char *what, macs_texture **out);
 /* Uploads one scene texture as the samplers read it (RGBA32F, GL_LINEAR, its wrap). */
 bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
 

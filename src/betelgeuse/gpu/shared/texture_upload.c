@@ -17,16 +17,26 @@ bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format forma
     return ms ? bgi_gpu_fail_macs(r, ms, what) : BG_OK;
 }
 
-bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
+bg_status bgi_gpu_float_texture(bg_renderer *r, int w, int h, macs_filter filter, macs_wrap wrap, const float *texels,
+                                const char *what, macs_texture **out)
 {
     macs_texture_desc d;
     memset(&d, 0, sizeof d);
-    d.width = t->width;
-    d.height = t->height;
+    d.width = w;
+    d.height = h;
     d.format = MACS_FORMAT_RGBA32F;
-    d.filter = t->filter == BG_FILTER_NEAREST ? MACS_FILTER_NEAREST : MACS_FILTER_LINEAR; /* no mipmaps: docs/shading.md 5 */
-    d.wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
-    d.data = t->texels; /* both are GL row order: row 0 is v = 0 */
+    d.filter = filter;
+    d.wrap = wrap;
+    d.data = texels;
     macs_status ms = macs_texture_create(r->ctx, &d, out);
-    return ms ? bgi_gpu_fail_macs(r, ms, "scene texture") : BG_OK;
+    return ms ? bgi_gpu_fail_macs(r, ms, what) : BG_OK;
+}
+
+bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
+{
+    /* No mipmaps (docs/shading.md 5); both are GL row order: row 0 is v = 0. */
+    return bgi_gpu_float_texture(r, t->width, t->height,
+                                 t->filter == BG_FILTER_NEAREST ? MACS_FILTER_NEAREST : MACS_FILTER_LINEAR,
+                                 t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE, t->texels,
+                                 "scene texture", out);
 }
