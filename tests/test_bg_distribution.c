@@ -634,6 +634,88 @@ static void white_environment_lights_floor_exactly(void **state)
     }
 }
 
+/* ---- bad values ---- */
+
+static void expect_refused(bg_scene *s, bg_status st, const char *field)
+{
+    assert_int_equal(st, BG_ERR_INVALID_ARGUMENT);
+    const char *m = bg_scene_error_message(s);
+    print_message("%s\n", m);
+    if (!strstr(m, field))
+        fail_msg("the message does not name %s: %s", field, m);
+    bg_scene_clear_error(s);
+}
+
+/* Each bad value of the new fields is refused, naming the field and the reason. */
+static void bad_values_are_refused(void **state)
+{
+    (void)state;
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_camera c = bg_camera_init();
+    c.aperture_radius = -0.1;
+    expect_refused(s, bg_scene_set_camera(s, &c), "aperture_radius");
+    c.aperture_radius = 0.1;
+    c.focus_distance = NAN;
+    expect_refused(s, bg_scene_set_camera(s, &c), "focus_distance");
+    uint32_t id;
+    bg_light l = bg_light_init();
+    l.type = BG_LIGHT_SPHERE;
+    l.radius = -1.0;
+    expect_refused(s, bg_scene_add_light(s, &l, &id), "radius");
+    l.radius = INFINITY;
+    expect_refused(s, bg_scene_add_light(s, &l, &id), "radius");
+    l = bg_light_init();
+    l.type = BG_LIGHT_RECTANGLE;
+    l.edge_v = bg_vec3_make(2, 0, 0);
+    expect_refused(s, bg_scene_add_light(s, &l, &id), "parallel");
+    l.edge_v = bg_vec3_make(0, 0, 1);
+    l.edge_u = bg_vec3_make(NAN, 0, 0);
+    expect_refused(s, bg_scene_add_light(s, &l, &id), "edge_u");
+    l.edge_u = bg_vec3_make(1, 0, 0);
+    l.spot_cutoff_degrees = 45.0;
+    expect_refused(s, bg_scene_add_light(s, &l, &id), "spot_cutoff_degrees");
+    bg_environment e = bg_environment_init();
+    e.texture = 12345;
+    expect_refused(s, bg_scene_set_environment(s, &e), "texture");
+    e.texture = 0;
+    e.intensity = -1.0;
+    expect_refused(s, bg_scene_set_environment(s, &e), "intensity");
+    e.intensity = 1.0;
+    e.sampling = (bg_environment_sampling)7;
+    expect_refused(s, bg_scene_set_environment(s, &e), "sampling");
+    assert_int_equal(bg_scene_set_environment(s, NULL), BG_ERR_INVALID_ARGUMENT);
+    bg_scene_clear_error(s);
+    bg_scene_destroy(s);
+}
+
+/* The environment's tables follow its texture through sets, commits and a removal that is refused
+ * while the environment uses the texture (the sanitizer run checks that nothing leaks). */
+static void environment_follows_its_texture(void **state)
+{
+    (void)state;
+    bg_scene *s = spheres_scene(POINT_LIGHT, 0.0, 0.0);
+    uint32_t sky = sky_texture(s, true), plain = sky_texture(s, false);
+    set_environment(s, sky, true, BG_ENVIRONMENT_IMPORTANCE);
+    unsigned char *a = cpu_image(s, 4, W, H);
+    expect_refused(s, bg_scene_remove_texture(s, sky), "environment");
+    set_environment(s, plain, true, BG_ENVIRONMENT_IMPORTANCE);
+    set_environment(s, 0, false, BG_ENVIRONMENT_IMPORTANCE);
+    assert_int_equal(bg_scene_remove_texture(s, sky), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    /* Without an environment the image is the plain scene's again. */
+    bg_scene *plain_scene = spheres_scene(POINT_LIGHT, 0.0, 0.0);
+    unsigned char *b = cpu_image(s, 4, W, H), *c = cpu_image(plain_scene, 4, W, H);
+    expect_same_bytes(b, c, (size_t)W * H * 4, "no environment");
+    assert_true(memcmp(a, b, (size_t)W * H * 4) != 0);
+    set_environment(s, plain, true, BG_ENVIRONMENT_UNIFORM);
+    free(a);
+    free(b);
+    free(c);
+    bg_scene_destroy(plain_scene);
+    bg_scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -647,6 +729,8 @@ int main(void)
         cmocka_unit_test(circle_of_confusion_follows_thin_lens),
         cmocka_unit_test(environment_gpu_follows_cpu),
         cmocka_unit_test(white_environment_lights_floor_exactly),
+        cmocka_unit_test(bad_values_are_refused),
+        cmocka_unit_test(environment_follows_its_texture),
     };
     return cmocka_run_group_tests_name("bg_distribution", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }
