@@ -42,11 +42,43 @@ float bg_pixel_hash(vec2 frag, vec2 pixel_at)
     return bg_scramble_mix(h, floor(x / 4096.0) * 4.0 + floor(y / 4096.0));
 }
 
-// The unit-square point of a dimension at camera sample sample_of = (s, n, columns, rows).
-vec2 bg_sample_square(float pixel_hash, float dimension, vec4 sample_of)
+// One round of the cell permutation on [0, 2^k), perm = (2^k, the prime = 2 mod 3 below it, 2^r,
+// 2^(k - r)) with r = floor(k / 2): add the key, multiply and add, rotate the k bits by r, cube.
+float bg_perm_round(float h, float key, vec4 perm)
+{
+    h = mod(h + key, perm.x);
+    h = mod(h * 2653.0 + 2731.0, perm.x);
+    float low = mod(h, perm.z);
+    h = low * perm.w + (h - low) / perm.z;
+    if (h < perm.y)
+        h = bg_mod_exact(bg_mod_exact(h * h, perm.y) * h, perm.y);
+    return h;
+}
+
+// Sample s's cell of n: three rounds, again while the result is no cell (cycle walking); after 32
+// walks (one cell in 2^32) the sample keeps its own index, as on the CPU.
+float bg_sample_cell(float s, float n, float key, vec4 perm)
+{
+    float t = s;
+    // Each round adds other bits of the key, rotated by 7 from round to round, as on the CPU.
+    float low = mod(key, 128.0);
+    float key2 = low * 32.0 + (key - low) / 128.0;
+    low = mod(key2, 128.0);
+    float key3 = low * 32.0 + (key2 - low) / 128.0;
+    for (int walk = 0; walk < 32; walk++) {
+        t = bg_perm_round(bg_perm_round(bg_perm_round(t, key, perm), key2, perm), key3, perm);
+        if (t < n)
+            return t;
+    }
+    return s;
+}
+
+// The unit-square point of a dimension at camera sample sample_of = (s, n, columns, rows), its
+// cells permuted by perm (bg_perm_round).
+vec2 bg_sample_square(float pixel_hash, float dimension, vec4 sample_of, vec4 perm)
 {
     float h = bg_scramble_mix(pixel_hash, dimension);
-    float cell = bg_mod_exact(sample_of.x + bg_mod_exact(h, sample_of.y), sample_of.y);
+    float cell = bg_sample_cell(sample_of.x, sample_of.y, h, perm);
     float g1 = bg_scramble_mix(h, sample_of.x);
     float g2 = bg_scramble_mix(g1, 1.0);
     float column = bg_mod_exact(cell, sample_of.z);

@@ -340,7 +340,7 @@ static float *linear_image(bg_scene *s, int w, int h, int plan)
 #define OCCLUDER_Y 2.0
 #define FLOOR_C 0.8
 /* Twice the largest errors measured (docs/shading.md 7.1). */
-#define WHITE_IMPORTANCE_MAX_ERROR 0.1
+#define WHITE_IMPORTANCE_MAX_ERROR 0.15
 #define WHITE_UNIFORM_MAX_ERROR 0.035
 /* Twice the largest error measured (docs/shading.md 7). */
 #define PENUMBRA_MAX_ERROR 0.016
@@ -468,8 +468,8 @@ static void sphere_penumbra_converges(void **state)
 #define DOT_R 0.1
 #define FOCUS 8.0
 #define APERTURE 0.5
-/* Twice the largest relative error measured (docs/shading.md 1.4). */
-#define COC_MAX_ERROR 0.01
+/* Measured 0.06 % (docs/shading.md 1.4); an earlier pairing of the lens cells gave 0.34 %. */
+#define COC_MAX_ERROR 0.005
 
 static void circle_of_confusion_follows_thin_lens(void **state)
 {

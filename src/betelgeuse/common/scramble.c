@@ -1,57 +1,102 @@
-/* The sample scramble of docs/shading.md 1.3. Every value is an integer below 2^24 (or a multiple
- * of 2^-13 below 2^14), which float holds exactly, so the GLSL twin (glsl110/bg_scramble.glsl)
- * reaches the same integers; the hash is a small permutation network on 12-bit integers
- * (multiply by an odd constant and add, modulo 4096, rotate the 12 bits by 7, cube modulo 4091),
- * three rounds per value mixed in, since GLSL 1.10 has no bitwise operators to build a better-known hash from. */
+/* The sample scramble of docs/shading.md 1.3. Every value is an integer below 2^24, which float holds
+ * exactly, so the GLSL twin (glsl110/bg_scramble.glsl) reaches the same integers computing in float;
+ * here they are plain integers (glibc's fmod made the CPU reference three to five times slower). The
+ * hash is a small permutation network on 12-bit integers (multiply by an odd constant and add, modulo
+ * 4096, rotate the 12 bits by 7, cube modulo 4091), three rounds per value mixed in, since GLSL 1.10
+ * has no bitwise operators to build a better-known hash from. A dimension pairs the pixel's samples
+ * with its cells by a permutation of the n cells made the same way on the next power of two (cycle
+ * walking): a fresh-looking Latin pairing per pixel and dimension. */
 #include <math.h>
 
 #include "render_view.h"
 #include "scramble.h"
 
-#define M 4096.0
-
+#define M 4096u
 /* The prime of the cube step: 4091 = 2 mod 3, so cubing permutes [0, 4091); 4090^2 < 2^24. */
-#define P 4091.0
+#define P 4091u
 
-/* One round: a permutation of [0, 4096). An affine map modulo 4096 (h * 2653 + 2731 < 2^24) and a
- * rotation of the 12 bits mix the bits; the cube modulo a prime is what makes the round nonlinear
- * (without it the lens and a light fell in one cell at half the rate chance gives). */
-static double round_(double h)
+/* One round: a permutation of [0, 4096). h * 2653 + 2731 < 2^24. The cube modulo a prime is what
+ * makes the round nonlinear (without it the lens and a light fell in one cell at half the rate chance
+ * gives). */
+static uint32_t rotate7(uint32_t h);
+
+static uint32_t round_(uint32_t h)
 {
-    h = fmod(h * 2653.0 + 2731.0, M);
-    double low = fmod(h, 128.0);
-    h = low * 32.0 + (h - low) / 128.0;
+    h = rotate7((h * 2653u + 2731u) % M);
     if (h < P)
-        h = fmod(fmod(h * h, P) * h, P);
+        h = (h * h % P) * h % P;
     return h;
 }
 
-/* h and a value v >= 0 (below 2^24) mixed into a new hash in [0, 4096). */
-static double mix(double h, double v)
+/* h and a value v >= 0 mixed into a new hash in [0, 4096). */
+static uint32_t mix(uint32_t h, uint32_t v)
 {
-    h = fmod(h + fmod(v, M), M);
+    h = (h + v % M) % M;
     return round_(round_(round_(h)));
 }
 
+/* Primes = 2 mod 3 below 2^k (2 for k < 3), for the cube step of the cell permutation. */
+static const uint32_t cube_prime[9] = {1, 2, 2, 5, 11, 29, 59, 113, 251};
+
 void bgi_sample_point_make(int x, int y, int s, int n, bgi_sample_point *out)
 {
-    double h = mix(mix(0.0, (double)x), (double)y);
-    out->pixel_hash = mix(h, floor(x / M) * 4.0 + floor(y / M));
+    uint32_t h = mix(mix(0u, (uint32_t)x), (uint32_t)y);
+    out->pixel_hash = mix(h, (uint32_t)(x / 4096) * 4u + (uint32_t)(y / 4096));
     out->sample = s;
     out->samples = n > 1 ? n : 1;
     out->rows = bgi_sample_rows(out->samples);
     out->columns = out->samples / out->rows;
+    int k = 0;
+    while ((1 << k) < out->samples)
+        k++;
+    out->perm_bits = k;
+    out->perm_prime = cube_prime[k];
+}
+
+/* One round of the cell permutation on [0, 2^k): add the key, multiply and add, rotate the k bits by
+ * floor(k / 2), cube modulo the prime below 2^k. */
+static uint32_t perm_round(uint32_t h, uint32_t key, const bgi_sample_point *p)
+{
+    uint32_t size = 1u << p->perm_bits, r = (uint32_t)p->perm_bits / 2u;
+    h = (h + key) % size;
+    h = (h * 2653u + 2731u) % size;
+    h = (h % (1u << r)) * (size >> r) + (h >> r);
+    if (h < p->perm_prime)
+        h = (h * h % p->perm_prime) * h % p->perm_prime;
+    return h;
+}
+
+/* The 12 bits of h rotated by 7. */
+static uint32_t rotate7(uint32_t h)
+{
+    return (h % 128u) * 32u + h / 128u;
+}
+
+/* Sample s's cell: three rounds on [0, 2^k), again while the result is not a cell (cycle walking, a
+ * permutation of the n cells; each walk leaves [0, n) with chance below 1/2, so 32 walks settle all
+ * but one cell in 2^32, which then keeps its own index on both renderers alike). Each round adds
+ * other bits of the key (rotated by 7 from round to round): with the same low bits in every round,
+ * n = 16 had only 16 permutations, and sample 0 fell in 8 of the 16 cells. */
+static uint32_t cell_of(const bgi_sample_point *p, uint32_t key)
+{
+    uint32_t n = (uint32_t)p->samples, t = (uint32_t)p->sample;
+    uint32_t key2 = rotate7(key), key3 = rotate7(key2);
+    for (int walk = 0; walk < 32; walk++) {
+        t = perm_round(perm_round(perm_round(t, key, p), key2, p), key3, p);
+        if (t < n)
+            return t;
+    }
+    return (uint32_t)p->sample;
 }
 
 void bgi_sample_square(const bgi_sample_point *point, int dimension, double uv[2])
 {
-    double n = (double)point->samples;
-    double h = mix(point->pixel_hash, (double)dimension);
-    double cell = fmod((double)point->sample + fmod(h, n), n);
-    double g1 = mix(h, (double)point->sample), g2 = mix(g1, 1.0);
-    double column = fmod(cell, (double)point->columns), row = (cell - column) / point->columns;
-    uv[0] = (column + (g1 + 0.5) / M) / point->columns;
-    uv[1] = (row + (g2 + 0.5) / M) / point->rows;
+    uint32_t h = mix(point->pixel_hash, (uint32_t)dimension);
+    uint32_t cell = cell_of(point, h);
+    uint32_t g1 = mix(h, (uint32_t)point->sample), g2 = mix(g1, 1u);
+    uint32_t column = cell % (uint32_t)point->columns, row = cell / (uint32_t)point->columns;
+    uv[0] = ((double)column + (g1 + 0.5) / M) / point->columns;
+    uv[1] = ((double)row + (g2 + 0.5) / M) / point->rows;
 }
 
 void bgi_sample_disc(const double uv[2], double xy[2])

@@ -1,13 +1,16 @@
 /* The stratified, scrambled sample points the distribution effects spend (docs/shading.md 1.3): for
  * each frame pixel, camera sample s of n and dimension (the lens, one light), a point of the unit
  * square. Over a pixel's n samples every dimension visits each of the n cells of the pixel pattern's
- * grid once, in an order rotated per pixel and dimension, at a jittered place in the cell, so that
+ * grid once, in an order permuted per pixel and dimension, at a jittered place in the cell, so that
  * the dimensions are decorrelated from each other and from the sample's place in the pixel.
  * Everything is small integers held exactly in float, so that glsl110/bg_scramble.glsl computes
  * the same points in GLSL 1.10 (which has no integer bit operations) up to the rounding of the
  * last division. */
 #ifndef BG_SCRAMBLE_H
 #define BG_SCRAMBLE_H
+
+#include <stdint.h>
+
 
 /* Dimensions: the lens; light k of the committed order (odd); the glossy lobe of the reflection at
  * a hit of a level-L ray (even, from 2), so that neither kind runs into the other however many. */
@@ -16,10 +19,12 @@
 #define BGI_DIMENSION_GLOSSY(level) (2 + 2 * (level))
 
 typedef struct bgi_sample_point {
-    double pixel_hash; /* the frame pixel's hash, an integer in [0, 4096) */
-    int sample;        /* s, 0 .. samples - 1 */
-    int samples;       /* n >= 1 */
-    int columns, rows; /* the pixel pattern's grid of n cells */
+    uint32_t pixel_hash; /* the frame pixel's hash, in [0, 4096) */
+    int sample;          /* s, 0 .. samples - 1 */
+    int samples;         /* n >= 1 */
+    int columns, rows;   /* the pixel pattern's grid of n cells */
+    int perm_bits;       /* k: the cells are permuted on [0, 2^k), 2^k the power of two >= n */
+    uint32_t perm_prime; /* the prime = 2 mod 3 below 2^k of the permutation's cube step */
 } bgi_sample_point;
 
 /* Sample s of n of frame pixel (x, y) (x right, y down from the frame's top-left, each < 16384). */

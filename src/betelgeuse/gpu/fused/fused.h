@@ -75,6 +75,7 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(MESH_DIMS, FRAME, "bg_mesh_dims", VEC4, MESH, tree_mesh_dims)             \
     X(PIXEL_AT, FRAME, "bg_pixel_at", VEC2, SCRAMBLE, pixel_at)                 \
     X(SAMPLE_OF, FRAME, "bg_sample_of", VEC4, SCRAMBLE, sample_of)              \
+    X(SAMPLE_PERM, FRAME, "bg_sample_perm", VEC4, SCRAMBLE, sample_perm)        \
     X(LENS, FRAME, "bg_lens", VEC2, LENS, lens)                                 \
     X(ENV_INFO, FRAME, "bg_env_info", VEC4, ENV, env_info)                       \
     X(LIGHT_POS, LIGHTS, "bg_lpos", VEC4, LIGHTS, light_position)               \

@@ -541,7 +541,7 @@ static void emit_light_term(const gpu_fused_layout *l, gpu_text *t, const char *
     }
     bgi_gpu_text_printf(t,
                     "%s{\n%s    vec4 q = bg_area_light_pos(p, bg_lpos[%s], bg_ledge_u[%s], bg_ledge_v[%s], "
-                    "bg_sample_square(bg_ph, %d.0 + %d.0 * float(%s), bg_sample_of));\n"
+                    "bg_sample_square(bg_ph, %d.0 + %d.0 * float(%s), bg_sample_of, bg_sample_perm));\n"
                     "%s    radiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, q, "
                     "bg_area_light_radiance(p, q, bg_ledge_u[%s], bg_ledge_v[%s], bg_lrad[%s]), bg_latt[%s], bg_lspot[%s], "
                     "bg_lexp[%s]);\n%s}\n",
@@ -568,7 +568,7 @@ static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
     /* The environment last, as a directional light of its direction at this sample (7.1). */
     if (l->env_light)
         bgi_gpu_text_printf(t, "    vec3 env_l, env_e;\n"
-                               "    if (bg_env_light(bg_sample_square(bg_ph, %d.0, bg_sample_of), bg_tex%d, %s, %s, bg_env_info, "
+                               "    if (bg_env_light(bg_sample_square(bg_ph, %d.0, bg_sample_of, bg_sample_perm), bg_tex%d, %s, %s, bg_env_info, "
                                "env_l, env_e))\n"
                                "        radiance += lw * bg_fused_light(p, nrm, base, coat, tangent, view, self, vec4(-env_l, 1.0), "
                                "env_e, vec3(1.0, 0.0, 0.0), vec4(0.0, 0.0, 0.0, -2.0), 0.0);\n",
@@ -611,7 +611,7 @@ static void emit_spawn(const gpu_fused_layout *l, gpu_text *t, bool transmitted,
     /* A glossy material's reflected child, from the lobe's dimension of its level (bg_cw.a). */
     if (l->glossy && !transmitted)
         bgi_gpu_text_printf(t, "        if (bg_xp.y < 0.0)\n            bg_glossy_child(bg_rd.xyz, bg_nrm, bg_coat, "
-                               "bg_sample_square(bg_ph, %d.0 + %d.0 * bg_cw.a, bg_sample_of), bg_d%d, bg_w%d);\n",
+                               "bg_sample_square(bg_ph, %d.0 + %d.0 * bg_cw.a, bg_sample_of, bg_sample_perm), bg_d%d, bg_w%d);\n",
                             BGI_DIMENSION_GLOSSY(0), BGI_DIMENSION_GLOSSY(1) - BGI_DIMENSION_GLOSSY(0), child, child);
     if (l->mesh)
         bgi_gpu_text_printf(t, "        bg_mesh_leave(bg_hit, bg_o%d, bg_d%d);\n", child, child);
@@ -685,7 +685,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
     if (l->lens || l->area || l->glossy || l->env_light)
         bgi_gpu_text_append(t, "bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
     if (l->lens)
-        bgi_gpu_text_printf(t, "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_ph, %d.0, bg_sample_of)), bg_lens.x, bg_lens.y, "
+        bgi_gpu_text_printf(t, "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_ph, %d.0, bg_sample_of, bg_sample_perm)), bg_lens.x, bg_lens.y, "
                                "bg_forward, bg_right, bg_up, bg_ro, bg_rd);\n", BGI_DIMENSION_LENS);
     if (bgi_gpu_fused_layout_budgeted(l))
         bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);

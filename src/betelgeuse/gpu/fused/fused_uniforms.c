@@ -60,6 +60,12 @@ static void sample_of(const gpu_fused_values *v, uint32_t i, float *out)
     bgi_gpu_sample_of(v->view, out);
 }
 
+static void sample_perm(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    bgi_gpu_sample_perm(v->view, out);
+}
+
 static void lens(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;

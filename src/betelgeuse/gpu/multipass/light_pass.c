@@ -16,7 +16,7 @@ static int group_size(const bg_scene_state *state, int group)
 }
 
 /* The most uniforms light_uniforms declares. */
-#define LIGHT_UNIFORM_COUNT 9
+#define LIGHT_UNIFORM_COUNT 10
 
 /* The uniform arrays of a group of `count` lights, appended to u[*n ..]; with area lights, their
  * shapes and the uniforms of the sample that places their points. */
@@ -33,6 +33,7 @@ static void light_uniforms(macs_uniform_desc *u, int *n, int count, bool area)
     u[(*n)++] = (macs_uniform_desc){"bg_ledge_v", MACS_UNIFORM_VEC4, count};
     u[(*n)++] = (macs_uniform_desc){"bg_pixel_at", MACS_UNIFORM_VEC2, 0};
     u[(*n)++] = (macs_uniform_desc){"bg_sample_of", MACS_UNIFORM_VEC4, 0};
+    u[(*n)++] = (macs_uniform_desc){"bg_sample_perm", MACS_UNIFORM_VEC4, 0};
 }
 
 /* Where light i of a group (k in the scene) is at this sample, as the arguments of bg_light_at:
@@ -46,7 +47,7 @@ static void light_place(gpu_text *main, bool area, int i, int k, const char *ind
         return;
     }
     bgi_gpu_text_printf(main, "%svec4 bg_q%d = bg_area_light_pos(bg_h.xyz, bg_lpos[%d], bg_ledge_u[%d], bg_ledge_v[%d], "
-                              "bg_sample_square(bg_ph, %d.0, bg_sample_of));\n",
+                              "bg_sample_square(bg_ph, %d.0, bg_sample_of, bg_sample_perm));\n",
                         indent, i, i, i, i, BGI_DIMENSION_LIGHT(k));
     snprintf(pos, size, "bg_q%d", i);
     snprintf(rad, size, "bg_area_light_radiance(bg_h.xyz, bg_q%d, bg_ledge_u[%d], bg_ledge_v[%d], bg_lrad[%d])", i, i, i, i);
@@ -83,40 +84,36 @@ bg_status bgi_gpu_set_light_uniforms(bg_renderer *r, macs_pass *pass, const bg_s
     return ms ? bgi_gpu_fail_macs(r, ms, "light uniforms") : BG_OK;
 }
 
+/* The three uniforms of the view's sample on one pass (NULL: none to set). */
+static macs_status set_sample(macs_pass *pass, const float at[2], const float of[4], const float perm[4])
+{
+    if (!pass)
+        return MACS_OK;
+    macs_status ms = macs_pass_set_uniform(pass, "bg_pixel_at", at);
+    if (!ms)
+        ms = macs_pass_set_uniform(pass, "bg_sample_of", of);
+    if (!ms)
+        ms = macs_pass_set_uniform(pass, "bg_sample_perm", perm);
+    return ms;
+}
+
 bg_status bgi_gpu_sample_uniforms_set(bg_renderer *r)
 {
     const gpu_features *f = &r->multipass->features;
     if (!f->lens && !f->area && !f->glossy)
         return BG_OK;
-    float at[2], of[4];
+    float at[2], of[4], perm[4];
     bgi_gpu_pixel_at(&r->view, at);
     bgi_gpu_sample_of(&r->view, of);
+    bgi_gpu_sample_perm(&r->view, perm);
     gpu_passes *p = &r->multipass->passes;
-    macs_status ms = MACS_OK;
-    if (f->lens) {
-        ms = macs_pass_set_uniform(p->camera, "bg_pixel_at", at);
-        if (!ms)
-            ms = macs_pass_set_uniform(p->camera, "bg_sample_of", of);
-    }
-    if (f->glossy && p->reflect && !ms) {
-        ms = macs_pass_set_uniform(p->reflect, "bg_pixel_at", at);
-        if (!ms)
-            ms = macs_pass_set_uniform(p->reflect, "bg_sample_of", of);
-    }
-    for (int i = 0; f->area && i < p->shadow_count && !ms; i++) {
-        if (!p->shadow[i].pass)
-            continue;
-        ms = macs_pass_set_uniform(p->shadow[i].pass, "bg_pixel_at", at);
-        if (!ms)
-            ms = macs_pass_set_uniform(p->shadow[i].pass, "bg_sample_of", of);
-    }
-    for (int g = 0; f->area && g < p->group_count && !ms; g++) {
-        if (!p->light[g])
-            continue;
-        ms = macs_pass_set_uniform(p->light[g], "bg_pixel_at", at);
-        if (!ms)
-            ms = macs_pass_set_uniform(p->light[g], "bg_sample_of", of);
-    }
+    macs_status ms = f->lens ? set_sample(p->camera, at, of, perm) : MACS_OK;
+    if (!ms && f->glossy)
+        ms = set_sample(p->reflect, at, of, perm);
+    for (int i = 0; f->area && i < p->shadow_count && !ms; i++)
+        ms = set_sample(p->shadow[i].pass, at, of, perm);
+    for (int g = 0; f->area && g < p->group_count && !ms; g++)
+        ms = set_sample(p->light[g], at, of, perm);
     return ms ? bgi_gpu_fail_macs(r, ms, "sample uniforms") : BG_OK;
 }
 

@@ -91,11 +91,12 @@ bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *stat
 static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, const gpu_ray_set *set0)
 {
     bool lens = r->multipass->features.lens;
-    macs_uniform_desc u[10] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
+    macs_uniform_desc u[11] = {{"bg_size", MACS_UNIFORM_VEC2, 0},    {"bg_eye", MACS_UNIFORM_VEC3, 0},
                                {"bg_forward", MACS_UNIFORM_VEC3, 0}, {"bg_right", MACS_UNIFORM_VEC3, 0},
                                {"bg_up", MACS_UNIFORM_VEC3, 0},      {"bg_tan_half", MACS_UNIFORM_VEC2, 0},
                                {"bg_shift", MACS_UNIFORM_VEC2, 0},   {"bg_pixel_at", MACS_UNIFORM_VEC2, 0},
-                               {"bg_sample_of", MACS_UNIFORM_VEC4, 0}, {"bg_lens", MACS_UNIFORM_VEC2, 0}};
+                               {"bg_sample_of", MACS_UNIFORM_VEC4, 0}, {"bg_sample_perm", MACS_UNIFORM_VEC4, 0},
+                               {"bg_lens", MACS_UNIFORM_VEC2, 0}};
     macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
     const char *pinhole[] = {"bg_stage_camera.glsl", NULL};
     const char *thin_lens[] = {"bg_stage_camera.glsl", "bg_lens.glsl", NULL};
@@ -108,9 +109,9 @@ static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, 
     if (lens)
         snprintf(main + n, sizeof main - (size_t)n,
                  "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at), %d.0, "
-                 "bg_sample_of)), bg_lens.x, bg_lens.y, bg_forward, bg_right, bg_up, bg_o0, bg_o1);\n",
+                 "bg_sample_of, bg_sample_perm)), bg_lens.x, bg_lens.y, bg_forward, bg_right, bg_up, bg_o0, bg_o1);\n",
                  BGI_DIMENSION_LENS);
-    bg_status st = simple_pass(r, "camera pass", lens ? thin_lens : pinhole, main, NULL, 0, NULL, u, lens ? 10 : 7, NULL,
+    bg_status st = simple_pass(r, "camera pass", lens ? thin_lens : pinhole, main, NULL, 0, NULL, u, lens ? 11 : 7, NULL,
                                outs, 3, MACS_BLEND_NONE, NULL, &r->multipass->passes.camera);
     return st == BG_OK ? bgi_gpu_camera_uniforms_set(r, state) : st;
 }
@@ -214,7 +215,7 @@ static void spawn_main(const bg_renderer *r, int kind, gpu_text *main)
         bgi_gpu_text_printf(main, "if (texture2D(bg_g_once, macs_uv).a < 0.0)\n"
                                   "    bg_glossy_child(texture2D(bg_ray_dir, macs_uv).xyz, texture2D(bg_g_normal, macs_uv), %s, "
                                   "bg_sample_square(bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at), %d.0 + %d.0 * bg_level, "
-                                  "bg_sample_of), bg_o1, bg_o2);\n",
+                                  "bg_sample_of, bg_sample_perm), bg_o1, bg_o2);\n",
                             f->slot[GPU_SLOT_COAT] ? "texture2D(bg_g_coat, macs_uv)" : "vec4(0.0, 0.0, 0.0, -1.0)",
                             BGI_DIMENSION_GLOSSY(0), BGI_DIMENSION_GLOSSY(1) - BGI_DIMENSION_GLOSSY(0));
     /* A ray leaving a mesh starts off the surface on its side and skips its triangle (the lanes of
@@ -238,8 +239,9 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
     macs_texture *in_tex[SPAWN_MAX_INPUTS];
     int ni = spawn_inputs(r, kind, in, in_tex);
     bool glossy = kind == SPAWN_REFLECT && r->multipass->features.glossy;
-    macs_uniform_desc u[4] = {{"bg_min_weight", MACS_UNIFORM_FLOAT, 0}, {"bg_pixel_at", MACS_UNIFORM_VEC2, 0},
-                              {"bg_sample_of", MACS_UNIFORM_VEC4, 0}, {"bg_level", MACS_UNIFORM_FLOAT, 0}};
+    macs_uniform_desc u[5] = {{"bg_min_weight", MACS_UNIFORM_FLOAT, 0}, {"bg_pixel_at", MACS_UNIFORM_VEC2, 0},
+                              {"bg_sample_of", MACS_UNIFORM_VEC4, 0}, {"bg_sample_perm", MACS_UNIFORM_VEC4, 0},
+                              {"bg_level", MACS_UNIFORM_FLOAT, 0}};
     macs_texture *outs[3] = {set0->origin, set0->dir, set0->weight};
     macs_stencil_state s = stencil_skip(r) ? stencil_equal(GPU_STENCIL_LIVE | GPU_STENCIL_HIT,
                                                            GPU_STENCIL_LIVE | GPU_STENCIL_HIT)
@@ -255,7 +257,7 @@ static bg_status build_spawn_pass(bg_renderer *r, int kind, const gpu_ray_set *s
         st = bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the spawn shader");
     else
         st = simple_pass(r, kind == SPAWN_REFRACT ? "refraction pass" : "reflection pass", files, main.s, in, ni,
-                         in_tex, u, glossy ? 4 : 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);
+                         in_tex, u, glossy ? 5 : 1, NULL, outs, 3, MACS_BLEND_NONE, &s, out);
     bgi_gpu_text_free(&main);
     if (st != BG_OK)
         return st;

@@ -52,26 +52,3 @@ bool bgi_gpu_scene_has_area_lights(const bg_scene_state *state)
             return true;
     return false;
 }
-
-void bgi_gpu_pixel_at(const gpu_view *view, float out[2])
-{
-    /* gl_FragCoord's floor is the window's GL column and row; frame row y counts down from the top,
-     * and the window's bottom GL row is its last image row, y0 + height - 1. */
-    out[0] = (float)view->pixels.x0;
-    out[1] = (float)(view->pixels.y0 + view->pixels.height - 1);
-}
-
-void bgi_gpu_sample_of(const gpu_view *view, float out[4])
-{
-    int n = view->pixels.samples, rows = bgi_sample_rows(n);
-    out[0] = (float)view->pixels.sample_first;
-    out[1] = (float)n;
-    out[2] = (float)(n / rows);
-    out[3] = (float)rows;
-}
-
-void bgi_gpu_lens(const bg_scene_state *state, float out[2])
-{
-    out[0] = (float)state->camera.camera.aperture_radius;
-    out[1] = (float)state->camera.focus;
-}

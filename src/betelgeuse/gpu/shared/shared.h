@@ -245,6 +245,8 @@ bool bgi_gpu_scene_has_area_lights(const bg_scene_state *state);
  * columns, rows) of the view's sample; bg_lens, (aperture_radius, focus). */
 void bgi_gpu_pixel_at(const gpu_view *view, float out[2]);
 void bgi_gpu_sample_of(const gpu_view *view, float out[4]);
+/* bg_sample_perm: the cell permutation's constants for the view's sample count (bg_scramble.glsl). */
+void bgi_gpu_sample_perm(const gpu_view *view, float out[4]);
 void bgi_gpu_lens(const bg_scene_state *state, float out[2]);
 gpu_packed_light bgi_gpu_light_pack(const bg_scene_state *state, uint32_t k);
 
