@@ -38,8 +38,10 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
         bgi_sample_position(view->samples, s, &px, &py);
         bgi_cpu_frame_ray(&state->camera, view->frame_width, view->frame_height, (double)(view->x0 + x) + px,
                           (double)(view->y0 + y) + py, o, d);
-        bgi_sample_point sample;
-        bgi_sample_point_make(view->x0 + x, view->y0 + y, s, view->samples, &sample);
+        /* The sample points cost a few hashes a sample: only a scene that spends them makes them. */
+        bgi_sample_point sample = {0};
+        if (state->distribution)
+            bgi_sample_point_make(view->x0 + x, view->y0 + y, s, view->samples, &sample);
         if (state->camera.camera.aperture_radius > 0.0)
             bgi_cpu_lens_ray(&state->camera, &sample, o, d);
         bgi_cpu_shade_ray(state, settings, &sample, o, d, one);

@@ -270,6 +270,11 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->camera = camera;
     memcpy(state->ambient, scene->ambient, sizeof state->ambient);
     bgi_environment_commit(scene, scene->texture_map.data, &state->environment);
+    state->distribution = camera.camera.aperture_radius > 0.0 || (state->environment.on && state->environment.lights);
+    for (uint32_t k = 0; k < state->light_count; k++)
+        state->distribution |= state->lights[k].type == BG_LIGHT_SPHERE || state->lights[k].type == BG_LIGHT_RECTANGLE;
+    for (uint32_t k = 0; k < state->material_count; k++)
+        state->distribution |= state->materials[k].glossy;
     bgi_scene_tree_install(scene);
     state->commit_count++;
     state->serial = bgi_scene_next_serial();

@@ -83,6 +83,10 @@ typedef struct bg_scene_state {
     bg_camera_data camera;
     double ambient[3];
     bg_environment_data environment;
+    /* The scene spends camera samples on a distribution effect: a lens, an area light, a glossy
+     * material or the environment's light (docs/shading.md 1.3). Without one the CPU reference does
+     * not compute the sample points at all. */
+    bool distribution;
     uint32_t object_count, material_count, texture_count, light_count;
     const bg_object_data *objects;
     const bg_material *materials;
