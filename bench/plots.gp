@@ -81,3 +81,35 @@ do for [s in scenes] {
 }
 unset multiplot
 unset arrow 1
+
+# Distribution ray tracing (bench_distribution): RMSE against samples per pixel, one colour per scene,
+# the GPU's as lines and the CPU reference's as open circles (the same sample points, so they fall on
+# the lines), beside a line of slope -1/2, plain Monte Carlo noise, through the largest 1-sample error.
+# The scenes come from the CSV's first column, so a scene added to the program needs no line here.
+# Columns of distribution_error.csv: 1 scene, 2 size, 3 samples, 4 GPU RMSE, 5 CPU RMSE, 8 reference samples.
+distribution = dir.'/distribution_error.csv'
+# stats honours the ranges, so the skips plot's xrange must go first.
+set xrange [*:*]
+set yrange [*:*]
+dscenes = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | uniq | tr '\\n' ' '", distribution))
+stats distribution using ($3 == 1 ? $4 : 1/0) nooutput
+anchor = STATS_max
+stats distribution using 2:8 nooutput
+set output dir.'/distribution_error.png'
+set terminal pngcairo size 900,600 font 'sans,10' noenhanced
+set title sprintf('RMSE against samples per pixel at %.0fx%.0f (linear radiance, against a CPU reference of %.0f samples)', \
+                 STATS_max_x, STATS_max_x, STATS_max_y)
+set xlabel 'samples per pixel'
+set ylabel 'RMSE'
+set style fill empty
+set logscale x 2
+set logscale y
+set format y '%g'
+set key top right
+plot for [i=1:words(dscenes)] distribution using (strcol(1) eq word(dscenes, i) ? $3 : 1/0):4 \
+         with linespoints lc i pt 7 title word(dscenes, i).' (GPU)', \
+     for [i=1:words(dscenes)] '' using (strcol(1) eq word(dscenes, i) ? $3 : 1/0):5 with points lc i pt 6 ps 1.6 \
+         title word(dscenes, i).' (CPU reference)', \
+     anchor / sqrt(x) with lines dt 2 lc 'black' title 'slope -1/2'
+unset logscale
+set format y '% h'

@@ -1,0 +1,25 @@
+/* The scenes of bench_distribution: one per effect of distribution ray tracing (docs/shading.md 1.3,
+ * 1.4, 7 and 9.1), each the size of the example scenes (examples/scenes/json: a few objects, one or
+ * two lights), so that a sample's cost compares with those scenes' frames in the other tables. Each
+ * scene holds its own effect only (point lights and a pinhole where the effect is another), so a
+ * row measures that effect. */
+#ifndef DISTRIBUTION_SCENES_H
+#define DISTRIBUTION_SCENES_H
+
+#include "betelgeuse.h"
+
+/* Each fills an empty scene, without committing (the caller commits and reports the scene's message),
+ * and returns the first failure. Deterministic. */
+
+/* A floor, two spheres, a box and a cylinder under a sphere light and a rectangle light, no mirrors:
+ * the soft shadows are the only noise. */
+bg_status distribution_area_lights(bg_scene *scene);
+/* Five spheres receding over a checkered floor, a thin lens focused on the middle one (the earth
+ * texture, sharp), the nearer and farther ones blurred by up to about 20 pixels at 512x512; two
+ * point lights, one mirror sphere. */
+bg_status distribution_depth_of_field(bg_scene *scene);
+/* Glossy spheres of roughness 0.1 and 0.25 and a glossy coated one, reflecting a checkered floor, a
+ * two-colour checkered wall and diffuse spheres; two point lights, a pinhole. */
+bg_status distribution_glossy(bg_scene *scene);
+
+#endif
