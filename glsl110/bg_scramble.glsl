@@ -3,11 +3,12 @@
 // The sample scramble (docs/shading.md 1.3), the twin of src/betelgeuse/common/scramble.c: every
 // value an integer below 2^24, which float holds exactly, so both reach the same integers. mod by a
 // power of two is exact (x / 4096.0 and floor are); by another n it is corrected by hand, since
-// GLSL 1.10 does not promise a correctly rounded division.
+// GLSL 1.10 does not promise a correctly rounded division, and so may multiply by 1 / n, which
+// llvmpipe does faster than it divides (the quotient is off by at most one either way).
 
 float bg_mod_exact(float a, float n)
 {
-    float r = a - floor(a / n) * n;
+    float r = a - floor(a * (1.0 / n)) * n;
     if (r < 0.0)
         r += n;
     if (r >= n)

@@ -1,6 +1,8 @@
 /* The distribution benchmark's scenes: see distribution_scenes.h. Placed like examples/scenes'
  * mirror and glass scenes (a floor at y = -1, the camera about 6 units away, 45 degrees), with the
  * same kind of materials, so that their frames cost what those scenes' do but for the effect. */
+#include <math.h>
+
 #include "distribution_scenes.h"
 
 #include "scenes/scenes.h"
@@ -200,4 +202,59 @@ bg_status distribution_glossy(bg_scene *scene)
     ambient(&b, 0.5);
     camera(&b, camera_at(bg_vec3_make(0, 1.4, 6.2), bg_vec3_make(0, -0.2, 0)));
     return b.status;
+}
+
+/* A 128 x 64 equirectangular sky (linear floats): a blue gradient over a dark ground and a sun of
+ * radiance 400 and 3 degrees' radius, 35 degrees up: most of the light in one small spot, the case
+ * importance sampling is for. Rows top first, as a caller's image has them. */
+static uint32_t sky(builder *b)
+{
+    enum { W = 128, H = 64 };
+    static float texels[W * H * 4];
+    const double pi = 3.14159265358979323846, sun_theta = 55.0 * pi / 180.0, sun_phi = 40.0 * pi / 180.0;
+    double s[3] = {sin(sun_theta) * sin(sun_phi), cos(sun_theta), -sin(sun_theta) * cos(sun_phi)};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double theta = pi * (y + 0.5) / H, phi = 2.0 * pi * ((x + 0.5) / W - 0.5), up = cos(theta);
+            double d[3] = {sin(theta) * sin(phi), up, -sin(theta) * cos(phi)};
+            float *t = texels + ((size_t)y * W + x) * 4;
+            bool sun = d[0] * s[0] + d[1] * s[1] + d[2] * s[2] > cos(3.0 * pi / 180.0);
+            t[0] = sun ? 400.0f : up > 0.0 ? (float)(0.25 + 0.35 * (1.0 - up)) : 0.12f;
+            t[1] = sun ? 380.0f : up > 0.0 ? (float)(0.45 + 0.3 * (1.0 - up)) : 0.09f;
+            t[2] = sun ? 340.0f : up > 0.0 ? 0.95f : 0.06f;
+            t[3] = 1.0f;
+        }
+    bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, texels};
+    uint32_t id = 0;
+    if (b->status == BG_OK)
+        b->status = bg_scene_add_texture(b->scene, &img, NULL, &id);
+    return id;
+}
+
+static bg_status environment_scene(bg_scene *scene, bg_environment_sampling sampling)
+{
+    builder b = {scene, BG_OK};
+    floor_plane(&b, material(&b, diffuse(0.6, 0.6, 0.55)));
+    sphere(&b, -1.4, 0, 0, 1, material(&b, diffuse(0.75, 0.3, 0.2)));
+    sphere(&b, 1.4, 0, -0.3, 1, material(&b, metal(0.9, 0.75, 0.5, 0.12, true)));
+    sphere(&b, 0.2, -0.5, 1.6, 0.5, material(&b, diffuse(0.2, 0.5, 0.8)));
+    bg_environment e = bg_environment_init();
+    e.texture = sky(&b);
+    e.lights = true;
+    e.sampling = sampling;
+    if (b.status == BG_OK)
+        b.status = bg_scene_set_environment(scene, &e);
+    ambient(&b, 0.0);
+    camera(&b, camera_at(bg_vec3_make(0, 1.4, 6.2), bg_vec3_make(0, -0.2, 0)));
+    return b.status;
+}
+
+bg_status distribution_environment_importance(bg_scene *scene)
+{
+    return environment_scene(scene, BG_ENVIRONMENT_IMPORTANCE);
+}
+
+bg_status distribution_environment_uniform(bg_scene *scene)
+{
+    return environment_scene(scene, BG_ENVIRONMENT_UNIFORM);
 }

@@ -21,5 +21,10 @@ bg_status distribution_depth_of_field(bg_scene *scene);
 /* Glossy spheres of roughness 0.1 and 0.25 and a glossy coated one, reflecting a checkered floor, a
  * two-colour checkered wall and diffuse spheres; two point lights, a pinhole. */
 bg_status distribution_glossy(bg_scene *scene);
+/* A floor, a diffuse, a glossy and a small sphere lit only by an environment of a blue sky and a
+ * small bright sun (no lights, no ambient), its light drawn by importance or uniformly: the two rows
+ * compare the rules at equal sample counts and, with their times, at equal time. */
+bg_status distribution_environment_importance(bg_scene *scene);
+bg_status distribution_environment_uniform(bg_scene *scene);
 
 #endif
