@@ -410,7 +410,7 @@ BG_API bg_status bg_scene_remove_object(bg_scene *scene, uint32_t object);
  * sample by a stratified, scrambled pattern (docs/shading.md 1.3), so n samples send n distinct
  * shadow rays to each area light and the penumbra converges as samples add up. The shapes light the
  * scene but are not drawn: to see the light, add an emissive object of the same shape that casts no
- * shadow. */
+ * shadow (what the scene files' "visible" key does, docs/scene_format.md). */
 typedef enum bg_light_type {
     BG_LIGHT_POINT = 0,
     BG_LIGHT_DIRECTIONAL,

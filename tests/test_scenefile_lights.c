@@ -3,6 +3,7 @@
  * two scenes' CPU images are compared bit for bit, at several samples so that every sample point of
  * the lights and the lens is used); and the format's zeros are the library's: a sphere of radius 0
  * and an aperture of 0 are the point light and the pinhole. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -154,11 +155,55 @@ static void the_zeros_are_a_point_light_and_a_pinhole(void **state)
     bg_scene_destroy(plain);
 }
 
+/* "visible": the light's shape is drawn glowing in its colour times intensity, and everything else
+ * stays as it was (the shape casts no shadow, and emission lights nothing else); a point light has
+ * no shape to show. */
+static void visible_area_lights_are_drawn(void **state)
+{
+    (void)state;
+    const char *lights[2] = {
+        "\"camera\": {\"position\": [0, 1, 6], \"look_at\": [0, 1, 0]}, \"lights\": ["
+        "{\"sphere\": {\"center\": [-1.5, 1.5, 0], \"radius\": 0.5}, \"color\": [1, 0.5, 0.25]},"
+        "{\"rectangle\": {\"corner\": [1, 2, -0.5], \"edge_u\": [1, 0, 0], \"edge_v\": [0, 0, 1]}}]",
+        "\"camera\": {\"position\": [0, 1, 6], \"look_at\": [0, 1, 0]}, \"lights\": ["
+        "{\"sphere\": {\"center\": [-1.5, 1.5, 0], \"radius\": 0.5}, \"color\": [1, 0.5, 0.25], \"visible\": true},"
+        "{\"rectangle\": {\"corner\": [1, 2, -0.5], \"edge_u\": [1, 0, 0], \"edge_v\": [0, 0, 1]}, \"visible\": true}]"};
+    bg_scenefile_result r;
+    bg_scene *hidden = load(lights[0], &r), *shown = load(lights[1], &r);
+    float *a = render(hidden), *b = render(shown);
+    /* The sphere light's centre is seen at about column 14, row 12 of 48 x 36 (the ball of the
+     * objects above stands at the middle). */
+    const float *c = b + ((size_t)12 * W + 14) * 4, *bg = a + ((size_t)12 * W + 14) * 4;
+    print_message("sphere light's centre: hidden %.3f %.3f %.3f, visible %.3f %.3f %.3f\n", bg[0], bg[1], bg[2], c[0],
+                  c[1], c[2]);
+    assert_true(fabsf(c[0] - 1.0f) < 1e-6f && fabsf(c[1] - 0.5f) < 1e-6f && fabsf(c[2] - 0.25f) < 1e-6f);
+    assert_true(bg[0] == 0.0f);
+    /* Below the horizon of the shapes, nothing changes: the shapes cast no shadow. */
+    size_t changed_below = 0;
+    for (int y = H / 2; y < H; y++)
+        for (int x = 0; x < W; x++)
+            changed_below += memcmp(a + ((size_t)y * W + x) * 4, b + ((size_t)y * W + x) * 4, 4 * sizeof *a) != 0;
+    assert_int_equal(changed_below, 0);
+    free(a);
+    free(b);
+    bg_scene_destroy(hidden);
+    bg_scene_destroy(shown);
+    bg_scene *s = NULL;
+    char message[1024];
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    assert_int_equal(bg_scenefile_load_string("{\"lights\": [{\"position\": [0, 1, 0], \"visible\": true}]}", NULL, s,
+                                              &r, message, sizeof message),
+                     BG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(message, "lights[0].visible"));
+    bg_scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(area_lights_and_a_lens_load_as_built),
         cmocka_unit_test(the_zeros_are_a_point_light_and_a_pinhole),
+        cmocka_unit_test(visible_area_lights_are_drawn),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
