@@ -716,6 +716,38 @@ static void environment_follows_its_texture(void **state)
     bg_scene_destroy(s);
 }
 
+/* A window of the frame (a crop, a tile) takes the frame pixels' own sample points: with every effect
+ * on, the window is the same rectangle of the full frame, byte for byte, on the CPU and every plan. */
+static void windows_are_the_frame_s_pixels(void **state)
+{
+    (void)state;
+    /* The multipass draws no environment: it gets the scene without one. */
+    bg_scene *with_sky = spheres_scene_of(BOTH_AREAS, 0.3, 0.0, GLOSSY), *plain = spheres_scene_of(BOTH_AREAS, 0.3, 0.0, GLOSSY);
+    set_environment(with_sky, sky_texture(with_sky, true), true, BG_ENVIRONMENT_IMPORTANCE);
+    enum { X0 = 16, Y0 = 8, WW = 32, WH = 24 };
+    for (int plan = -1; plan < 3; plan++) {
+        bg_scene *s = plan == 2 ? plain : with_sky;
+        bg_render_settings set = samples_settings(4);
+        unsigned char *full = plan < 0 ? util_cpu_reference(s, &set, W, H)
+                                       : util_gpu_plan_image(s, &set, plans[plan], W, H, plan_names[plan]);
+        set.frame_width = W;
+        set.frame_height = H;
+        set.window_x = X0;
+        set.window_y = Y0;
+        unsigned char *win = plan < 0 ? util_cpu_reference(s, &set, WW, WH)
+                                      : util_gpu_plan_image(s, &set, plans[plan], WW, WH, plan_names[plan]);
+        size_t differ = 0;
+        for (int y = 0; y < WH; y++)
+            differ += memcmp(win + (size_t)y * WW * 4, full + ((size_t)(Y0 + y) * W + X0) * 4, WW * 4) != 0;
+        print_message("window of the frame, %s: %zu rows differ\n", plan < 0 ? "CPU" : plan_names[plan], differ);
+        assert_int_equal(differ, 0);
+        free(full);
+        free(win);
+    }
+    bg_scene_destroy(with_sky);
+    bg_scene_destroy(plain);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -731,6 +763,7 @@ int main(void)
         cmocka_unit_test(white_environment_lights_floor_exactly),
         cmocka_unit_test(bad_values_are_refused),
         cmocka_unit_test(environment_follows_its_texture),
+        cmocka_unit_test(windows_are_the_frame_s_pixels),
     };
     return cmocka_run_group_tests_name("bg_distribution", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }
