@@ -409,8 +409,7 @@ BG_API bg_status bg_scene_remove_object(bg_scene *scene, uint32_t object);
  * each camera sample lights a point with one point of the light's shape, chosen for that pixel and
  * sample by a stratified, scrambled pattern (docs/shading.md 1.3), so n samples send n distinct
  * shadow rays to each area light and the penumbra converges as samples add up. The shapes light the
- * scene but are not drawn: to see the light, add an emissive object of the same shape that casts no
- * shadow (what the scene files' "visible" key does, docs/scene_format.md). */
+ * scene; with bg_light.visible they are drawn too. */
 typedef enum bg_light_type {
     BG_LIGHT_POINT = 0,
     BG_LIGHT_DIRECTIONAL,
@@ -444,6 +443,12 @@ typedef struct bg_light {
     double radius;               /* sphere lights: finite, in [0, 1e100] */
     bg_vec3 edge_u, edge_v;      /* rectangle lights: finite, not parallel (|edge_u x edge_v| at
                                     least 1e-12 |edge_u| |edge_v|) */
+    bool visible;                /* area lights: false (the default) lights the scene unseen; true
+                                    also draws the shape for camera, mirror and refracted rays,
+                                    glowing with color * intensity (black otherwise) and casting no
+                                    shadow, so the light's own shadow rays pass it (an object of the
+                                    committed scene that no handle names; spheres below radius 1e-100
+                                    are not drawn) */
 } bg_light;
 
 /* The default light described above. */

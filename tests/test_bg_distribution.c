@@ -24,7 +24,7 @@ enum { W = 64, H = 48 };
 static const bg_gpu_plan plans[] = {BG_PLAN_FUSED, BG_PLAN_FUSED_TREE, BG_PLAN_MULTIPASS};
 static const char *const plan_names[] = {"fused", "tree", "multipass"};
 
-typedef enum light_kind { POINT_LIGHT, SPHERE_LIGHT, SPHERE_OF_RADIUS_0, RECTANGLE_LIGHT, BOTH_AREAS } light_kind;
+typedef enum light_kind { POINT_LIGHT, SPHERE_LIGHT, SPHERE_OF_RADIUS_0, RECTANGLE_LIGHT, BOTH_AREAS, VISIBLE_AREAS } light_kind;
 
 static uint32_t diffuse(bg_scene *s, double r, double g, double b)
 {
@@ -84,9 +84,11 @@ static bg_scene *spheres_scene_of(light_kind kind, double aperture, double focus
     bg_light l = bg_light_init();
     l.position = bg_vec3_make(0.5, 4, 1);
     l.intensity = 0.9;
-    if (kind == SPHERE_LIGHT || kind == BOTH_AREAS) {
+    bool both = kind == BOTH_AREAS || kind == VISIBLE_AREAS;
+    if (kind == SPHERE_LIGHT || both) {
         l.type = BG_LIGHT_SPHERE;
         l.radius = 0.8;
+        l.visible = kind == VISIBLE_AREAS;
     } else if (kind == SPHERE_OF_RADIUS_0) {
         l.type = BG_LIGHT_SPHERE;
         l.radius = 0.0;
@@ -97,8 +99,9 @@ static bg_scene *spheres_scene_of(light_kind kind, double aperture, double focus
         l.edge_v = bg_vec3_make(0, 0, 2);
     }
     add_light(s, &l);
-    if (kind == BOTH_AREAS) {
+    if (both) {
         bg_light r = bg_light_init();
+        r.visible = kind == VISIBLE_AREAS;
         r.type = BG_LIGHT_RECTANGLE;
         r.position = bg_vec3_make(-4, 3, 1);
         r.edge_u = bg_vec3_make(0, 0, -1.5);
@@ -279,6 +282,25 @@ static void rectangle_lights_gpu_follow_cpu(void **state)
     (void)state;
     bg_scene *s = spheres_scene(BOTH_AREAS, 0.0, 0.0);
     gpu_follows_cpu(s, "sphere and rectangle");
+    bg_scene_destroy(s);
+}
+
+/* Visible area lights are drawn, by every plan alike, and light the rest as the hidden ones do. */
+static void visible_lights_gpu_follow_cpu(void **state)
+{
+    (void)state;
+    bg_scene *s = spheres_scene(VISIBLE_AREAS, 0.0, 0.0), *hidden = spheres_scene(BOTH_AREAS, 0.0, 0.0);
+    gpu_follows_cpu(s, "visible area lights");
+    unsigned char *a = cpu_image(s, 4, W, H), *b = cpu_image(hidden, 4, W, H);
+    size_t differ = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        differ += memcmp(a + 4 * i, b + 4 * i, 4) != 0;
+    /* The sphere light is in view above the scene: its disc and nothing else changes. */
+    print_message("visible against hidden lights: %zu pixels differ\n", differ);
+    assert_true(differ > 10 && differ < (size_t)W * H / 4);
+    free(a);
+    free(b);
+    bg_scene_destroy(hidden);
     bg_scene_destroy(s);
 }
 
@@ -757,6 +779,7 @@ int main(void)
         cmocka_unit_test(rectangle_lights_gpu_follow_cpu),
         cmocka_unit_test(depth_of_field_gpu_follows_cpu),
         cmocka_unit_test(glossy_reflection_gpu_follows_cpu),
+        cmocka_unit_test(visible_lights_gpu_follow_cpu),
         cmocka_unit_test(sphere_penumbra_converges),
         cmocka_unit_test(circle_of_confusion_follows_thin_lens),
         cmocka_unit_test(environment_gpu_follows_cpu),

@@ -3,8 +3,6 @@
  * ({"sphere": {"center", "radius"}}, {"rectangle": {"corner", "edge_u", "edge_v"}}), so that each
  * point of the file says which light's place it is; the key gives the type, and "position", the
  * place of a point light, may not stand beside it. */
-#include <math.h>
-
 #include "scenefile_internal.h"
 
 /* In bg_light_type's order: a name's index is its type. */
@@ -57,50 +55,6 @@ static bg_status read_type(bgi_sf_ctx *ctx, const cJSON *v, bg_light *l, const c
     return BG_OK;
 }
 
-/* "visible": the area light's shape as an object that camera and mirror rays see, glowing with the
- * light's colour times its intensity, black otherwise, and casting no shadow (so the light's own
- * shadow rays pass it): the library's lights are never drawn themselves. */
-static bg_status add_visible_shape(bgi_sf_ctx *ctx, const bg_light *l)
-{
-    bg_material m = bg_material_init();
-    m.base.reflectance = (bg_color_param){0, 0, 0, 0};
-    m.ambient = (bg_color_param){0, 0, 0, 0};
-    m.emission = (bg_color_param){l->color[0] * l->intensity, l->color[1] * l->intensity, l->color[2] * l->intensity, 0};
-    uint32_t material, object;
-    bg_status st = bg_scene_add_material(ctx->scene, &m, &material);
-    if (st != BG_OK)
-        return bgi_sf_scene_fail(ctx, st, "the light's visible shape");
-    bool sphere = l->type == BG_LIGHT_SPHERE;
-    bg_object_desc d = bg_object_desc_init(sphere ? BG_SHAPE_SPHERE : BG_SHAPE_RECTANGLE, material);
-    d.casts_shadows = false;
-    if (sphere) {
-        d.transform = bg_mat4_mul(bg_mat4_translate(l->position.x, l->position.y, l->position.z),
-                                  bg_mat4_scale(l->radius, l->radius, l->radius));
-    } else {
-        /* The prototype square [-1, 1]^2 of y = 0 onto the parallelogram: x along edge_u / 2, z along
-         * edge_v / 2, y along their unit normal times the shorter half edge (any non-zero length). */
-        const bg_vec3 u = l->edge_u, v = l->edge_v;
-        bg_vec3 n = bg_vec3_make(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
-        double ln = sqrt(n.x * n.x + n.y * n.y + n.z * n.z), lu = sqrt(u.x * u.x + u.y * u.y + u.z * u.z),
-               lv = sqrt(v.x * v.x + v.y * v.y + v.z * v.z), k = 0.5 * (lu < lv ? lu : lv) / ln;
-        const double c[3] = {l->position.x + 0.5 * (u.x + v.x), l->position.y + 0.5 * (u.y + v.y),
-                             l->position.z + 0.5 * (u.z + v.z)};
-        const double cols[3][3] = {{0.5 * u.x, 0.5 * u.y, 0.5 * u.z}, {k * n.x, k * n.y, k * n.z}, {0.5 * v.x, 0.5 * v.y, 0.5 * v.z}};
-        d.transform = bg_mat4_identity();
-        for (int i = 0; i < 3; i++) {
-            for (int j = 0; j < 3; j++)
-                d.transform.m[i][j] = cols[j][i];
-            d.transform.m[i][3] = c[i];
-        }
-    }
-    st = bg_scene_add_object(ctx->scene, &d, &object);
-    if (st != BG_OK)
-        return bgi_sf_scene_fail(ctx, st, "the light's visible shape");
-    ctx->out->summary.materials++;
-    ctx->out->summary.objects++;
-    return BG_OK;
-}
-
 static bg_status read_light(bgi_sf_ctx *ctx, const cJSON *v)
 {
     static const char *const keys[] = {"type", "position", "sphere", "rectangle", "direction", "color", "intensity",
@@ -141,9 +95,8 @@ static bg_status read_light(bgi_sf_ctx *ctx, const cJSON *v)
         return st;
     }
     BGI_SF_TRY(bgi_sf_field_number(ctx, v, "spot_exponent", bgi_sf_nonneg, &l.spot_exponent));
-    bool visible = false;
-    BGI_SF_TRY(bgi_sf_field_bool(ctx, v, "visible", &visible));
-    if (visible && !shape) {
+    BGI_SF_TRY(bgi_sf_field_bool(ctx, v, "visible", &l.visible));
+    if (l.visible && !shape) {
         size_t at = bgi_sf_push_key(ctx, "visible");
         bg_status st = bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT, "only an area light (\"sphere\" or \"rectangle\") "
                                    "has a shape to show");
@@ -162,13 +115,6 @@ static bg_status read_light(bgi_sf_ctx *ctx, const cJSON *v)
         return st;
     }
     ctx->out->summary.lights++;
-    /* A sphere of radius 0 is a point light: nothing to show. */
-    if (visible && !(l.type == BG_LIGHT_SPHERE && l.radius == 0.0)) {
-        size_t at = bgi_sf_push_key(ctx, "visible");
-        bg_status vst = add_visible_shape(ctx, &l);
-        bgi_sf_pop(ctx, at);
-        return vst;
-    }
     return BG_OK;
 }
 

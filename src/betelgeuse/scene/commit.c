@@ -71,16 +71,34 @@ bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *i
 /* Grows the committed arrays to the live counts, and the commit's own arrays; after each step the
  * committed pointers follow the (possibly moved) storage, whose contents realloc kept, so the old
  * committed state stays readable on failure. */
+/* Whether a light is drawn: a visible area light with a shape (a sphere of radius 0 is a point). */
+static bool shows_shape(const bg_light *l)
+{
+    return l->visible && ((l->type == BG_LIGHT_SPHERE && l->radius >= 1e-100) || l->type == BG_LIGHT_RECTANGLE);
+}
+
+/* The pending visible area lights: each adds an object and its material at commit. */
+static uint32_t light_shapes(const bg_scene *s)
+{
+    uint32_t n = 0;
+    for (uint32_t slot = 0; slot < bgi_pool_slot_count(&s->lights); slot++)
+        if (bgi_pool_live(&s->lights, slot))
+            n += shows_shape(bgi_pool_item(&s->lights, slot)) ? 1u : 0u;
+    return n;
+}
+
 static bg_status reserve_all(bg_scene *s)
 {
+    uint32_t shapes = light_shapes(s);
     struct {
         bg_array *committed, *derived;
         const void **pointer;
         uint32_t count;
         size_t elem;
     } lists[] = {
-        {&s->c_objects, &s->p_objects, (const void **)&s->state.objects, s->objects.live, sizeof(bg_object_data)},
-        {&s->c_materials, &s->p_materials, (const void **)&s->state.materials, s->materials.live, sizeof(bg_material)},
+        {&s->c_objects, &s->p_objects, (const void **)&s->state.objects, s->objects.live + shapes, sizeof(bg_object_data)},
+        {&s->c_materials, &s->p_materials, (const void **)&s->state.materials, s->materials.live + shapes,
+         sizeof(bg_material)},
         {&s->c_lights, &s->p_lights, (const void **)&s->state.lights, s->lights.live, sizeof(bg_light)},
         {&s->c_textures, &s->p_textures, (const void **)&s->state.textures, s->textures.live, sizeof(bg_texture_data)},
     };
@@ -191,6 +209,62 @@ static bg_status derive_objects(bg_scene *s)
     return BG_OK;
 }
 
+/* Each visible area light's shape (bg_light.visible), after the caller's objects and materials: an
+ * emissive black material and a sphere or rectangle object that casts no shadow. */
+static bg_status derive_light_shapes(bg_scene *s)
+{
+    bg_object_data *objects = s->p_objects.data;
+    bg_material *materials = s->p_materials.data;
+    const bg_light *lights = s->p_lights.data;
+    for (uint32_t i = 0; i < s->p_lights.count; i++) {
+        const bg_light *l = &lights[i];
+        if (!shows_shape(l))
+            continue;
+        bg_material m = bg_material_init();
+        m.base.reflectance = (bg_color_param){0, 0, 0, 0};
+        m.ambient = (bg_color_param){0, 0, 0, 0};
+        m.emission = (bg_color_param){l->color[0] * l->intensity, l->color[1] * l->intensity,
+                                      l->color[2] * l->intensity, 0};
+        uint32_t material = s->p_materials.count++;
+        materials[material] = m;
+        bg_object_item item;
+        memset(&item, 0, sizeof item);
+        bool sphere = l->type == BG_LIGHT_SPHERE;
+        item.desc = bg_object_desc_init(sphere ? BG_SHAPE_SPHERE : BG_SHAPE_RECTANGLE, 0);
+        item.desc.casts_shadows = false;
+        if (sphere) {
+            item.desc.transform = bg_mat4_mul(bg_mat4_translate(l->position.x, l->position.y, l->position.z),
+                                              bg_mat4_scale(l->radius, l->radius, l->radius));
+        } else {
+            /* The prototype square [-1, 1]^2 of y = 0 onto the parallelogram: x along edge_u / 2, z
+             * along edge_v / 2, y along their unit normal times the shorter half edge. */
+            bg_vec3 u = l->edge_u, v = l->edge_v;
+            bg_vec3 n = bgi_vec3_normalize(bg_vec3_make(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z,
+                                                        u.x * v.y - u.y * v.x));
+            double lu = bgi_vec3_length(u), lv = bgi_vec3_length(v), k = 0.5 * (lu < lv ? lu : lv);
+            const double cols[3][3] = {{0.5 * u.x, 0.5 * u.y, 0.5 * u.z}, {k * n.x, k * n.y, k * n.z},
+                                       {0.5 * v.x, 0.5 * v.y, 0.5 * v.z}};
+            const double c[3] = {l->position.x + 0.5 * (u.x + v.x), l->position.y + 0.5 * (u.y + v.y),
+                                 l->position.z + 0.5 * (u.z + v.z)};
+            item.desc.transform = bg_mat4_identity();
+            for (int r = 0; r < 3; r++) {
+                for (int j = 0; j < 3; j++)
+                    item.desc.transform.m[r][j] = cols[j][r];
+                item.desc.transform.m[r][3] = c[r];
+            }
+        }
+        char where[64];
+        snprintf(where, sizeof where, "%s: the shape of visible light %u", where_commit, (unsigned)i);
+        uint32_t k = s->p_objects.count;
+        bg_status st = bgi_object_derive_shape(s, where, "transform", &item, &objects[k]);
+        if (st != BG_OK)
+            return st;
+        objects[k].material = material;
+        s->p_objects.count++;
+    }
+    return BG_OK;
+}
+
 /* Copies one derived array over its committed one. */
 static uint32_t install(bg_array *committed, const bg_array *derived, size_t elem)
 {
@@ -251,6 +325,8 @@ bg_status bg_scene_commit(bg_scene *scene)
         st = derive_lights(scene);
     if (st == BG_OK)
         st = derive_objects(scene);
+    if (st == BG_OK)
+        st = derive_light_shapes(scene);
     if (st == BG_OK)
         st = bgi_scene_tree_prepare(scene);
     if (st != BG_OK)

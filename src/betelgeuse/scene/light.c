@@ -20,6 +20,7 @@ bg_light bg_light_init(void)
     l.radius = 0.0;
     l.edge_u = bg_vec3_make(1, 0, 0);
     l.edge_v = bg_vec3_make(0, 0, 1);
+    l.visible = false;
     return l;
 }
 

@@ -100,11 +100,19 @@ static bool world_box(const bg_object_desc *desc, double lo[3], double hi[3])
 bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *transform_field,
                            const bg_object_item *item, bg_object_data *o)
 {
-    const bg_object_desc *d = &item->desc;
     uint32_t material;
-    bg_status st = bgi_validate_object_fields(scene, where, d, item->mesh != NULL, &material);
-    if (st != BG_OK)
-        return st;
+    bg_status st = bgi_validate_object_fields(scene, where, &item->desc, item->mesh != NULL, &material);
+    if (st == BG_OK)
+        st = bgi_object_derive_shape(scene, where, transform_field, item, o);
+    if (st == BG_OK)
+        o->material = material;
+    return st;
+}
+
+bg_status bgi_object_derive_shape(bg_scene *scene, const char *where, const char *transform_field,
+                                  const bg_object_item *item, bg_object_data *o)
+{
+    const bg_object_desc *d = &item->desc;
     double scale;
     bg_affine_check c = bgi_affine_inverse(&d->transform, o->to_object, &scale);
     if (c == BG_AFFINE_SCALE)
@@ -132,7 +140,6 @@ bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *tran
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
             o->normal_to_world[i][j] = o->to_object[j][i];
-    o->material = material;
     /* A mesh has its own texture coordinates; its mapping is never read. */
     o->uv_mapping = item->mesh ? BG_UV_PLANAR : d->uv_mapping == BG_UV_DEFAULT ? default_uv(d->shape) : d->uv_mapping;
     o->uv_scale[0] = d->uv_scale[0];

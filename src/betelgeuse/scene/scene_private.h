@@ -193,6 +193,10 @@ bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *l
  * ("transform", or what a shorthand built it from). */
 bg_status bgi_object_derive(bg_scene *scene, const char *where, const char *transform_field,
                            const bg_object_item *item, bg_object_data *out);
+/* The same without the fields' checks and the material (left to the caller): for objects the scene
+ * makes itself, such as a visible light's shape. */
+bg_status bgi_object_derive_shape(bg_scene *scene, const char *where, const char *transform_field,
+                                  const bg_object_item *item, bg_object_data *out);
 
 /* ---- mesh.c ---- */
 
