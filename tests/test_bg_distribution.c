@@ -600,14 +600,7 @@ static void environment_gpu_follows_cpu(void **state)
             util_expect_near_row(cpu, &gi, &distribution_row, label);
             free(gpu);
         }
-        /* The multipass refuses it, naming the environment. */
-        unsigned char px[W * H * 4];
-        bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-        bg_renderer *r = util_renderer(util_fx.ctx);
-        set.gpu_plan = BG_PLAN_MULTIPASS;
-        assert_int_equal(bg_render_gpu(r, s, &set, &img), BG_ERR_LIMIT);
-        assert_non_null(strstr(bg_renderer_error_message(r), "environment"));
-        bg_renderer_destroy(r);
+        util_expect_multipass_refuses_environment(s, &set);
         free(cpu);
         bg_scene_destroy(s);
     }

@@ -41,13 +41,7 @@ static void scene_follows_cpu(const char *name)
         char label[64];
         snprintf(label, sizeof label, "%s, %s", name, names[p]);
         if (environment && plans[p] == BG_PLAN_MULTIPASS) {
-            unsigned char px[W * H * 4];
-            bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-            bg_renderer *rr = util_renderer(util_fx.ctx);
-            set.gpu_plan = BG_PLAN_MULTIPASS;
-            assert_int_equal(bg_render_gpu(rr, s, &set, &img), BG_ERR_LIMIT);
-            assert_non_null(strstr(bg_renderer_error_message(rr), "environment"));
-            bg_renderer_destroy(rr);
+            util_expect_multipass_refuses_environment(s, &set);
             continue;
         }
         unsigned char *gpu = util_gpu_plan_image(s, &set, plans[p], W, H, label);

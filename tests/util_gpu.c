@@ -202,3 +202,15 @@ bg_scene *util_tube_scene(void)
     assert_int_equal(bg_scene_commit(s), BG_OK);
     return s;
 }
+
+void util_expect_multipass_refuses_environment(bg_scene *s, const bg_render_settings *set)
+{
+    unsigned char px[16 * 12 * 4];
+    bg_image img = {16, 12, BG_PIXEL_RGBA8, 0, px};
+    bg_render_settings own = *set;
+    own.gpu_plan = BG_PLAN_MULTIPASS;
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    assert_int_equal(bg_render_gpu(r, s, &own, &img), BG_ERR_LIMIT);
+    assert_non_null(strstr(bg_renderer_error_message(r), "environment"));
+    bg_renderer_destroy(r);
+}

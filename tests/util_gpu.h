@@ -48,6 +48,9 @@ unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, in
  * test on an error or when another plan ran. */
 unsigned char *util_gpu_plan_image(bg_scene *s, const bg_render_settings *set, bg_gpu_plan plan, int width,
                                    int height, const char *label);
+/* Fails the test unless the multipass plan refuses s (BG_ERR_LIMIT) with a message naming the
+ * environment, which it does not draw. */
+void util_expect_multipass_refuses_environment(bg_scene *s, const bg_render_settings *set);
 /* Fails the test unless the GPU image is within the threshold row of id against the CPU image
  * (gpu_thresholds.h); prints the comparison under label. */
 void util_expect_near(const unsigned char *cpu, const bg_image *gpu, scene_id id, const char *label);
