@@ -2,46 +2,45 @@
  * exactly, so the GLSL twin (glsl110/bg_scramble.glsl) reaches the same integers computing in float;
  * here they are plain integers (glibc's fmod made the CPU reference three to five times slower). The
  * hash is a small permutation network on 12-bit integers (multiply by an odd constant and add, modulo
- * 4096, rotate the 12 bits by 7, cube modulo 4091), three rounds per value mixed in, since GLSL 1.10
- * has no bitwise operators to build a better-known hash from. A dimension pairs the pixel's samples
- * with its cells by a permutation of the n cells made the same way on the next power of two (cycle
- * walking): a fresh-looking Latin pairing per pixel and dimension. */
+ * 4096, rotate the 12 bits by 7, h + 2 h^2 modulo 4096), three rounds per value mixed into a key,
+ * since GLSL 1.10 has no bitwise operators to build a better-known hash from. Every modulus but the
+ * grid's columns is a power of two, because the GPU computes such a remainder exactly in one step: an
+ * earlier round cubed modulo the prime 4091, which needed two corrected remainders, and the scramble
+ * then took about 40 % of the GPU's time on an area-light frame. A dimension pairs the pixel's
+ * samples with its cells by a permutation of the n cells made the same way on the next power of two
+ * (cycle walking): a fresh-looking Latin pairing per pixel and dimension. */
 #include <math.h>
 
 #include "render_view.h"
 #include "scramble.h"
 
 #define M 4096u
-/* The prime of the cube step: 4091 = 2 mod 3, so cubing permutes [0, 4091); 4090^2 < 2^24. */
-#define P 4091u
 
-/* One round: a permutation of [0, 4096). h * 2653 + 2731 < 2^24. The cube modulo a prime is what
- * makes the round nonlinear (without it the lens and a light fell in one cell at half the rate chance
- * gives). */
 static uint32_t rotate7(uint32_t h);
 
+/* One round: a permutation of [0, 4096). h * 2653 + 2731 < 2^24. The last step, h + 2 h^2 modulo
+ * 4096 (a permutation polynomial modulo a power of two, Rivest 2001), is what makes the round
+ * nonlinear: without a nonlinear step the lens and a light fell in one cell at half the rate chance
+ * gives. h^2 < 2^24, and each modulus is a power of two, which float reaches exactly too. */
 static uint32_t round_(uint32_t h)
 {
     h = rotate7((h * 2653u + 2731u) % M);
-    if (h < P)
-        h = (h * h % P) * h % P;
+    return (h + 2u * (h * h % 2048u)) % M;
+}
+
+/* h and a value v >= 0 mixed into a new hash in [0, 4096) by `rounds` rounds. */
+static uint32_t mix(uint32_t h, uint32_t v, int rounds)
+{
+    h = (h + v % M) % M;
+    for (int i = 0; i < rounds; i++)
+        h = round_(h);
     return h;
 }
 
-/* h and a value v >= 0 mixed into a new hash in [0, 4096). */
-static uint32_t mix(uint32_t h, uint32_t v)
-{
-    h = (h + v % M) % M;
-    return round_(round_(round_(h)));
-}
-
-/* Primes = 2 mod 3 below 2^k (2 for k < 3), for the cube step of the cell permutation. */
-static const uint32_t cube_prime[9] = {1, 2, 2, 5, 11, 29, 59, 113, 251};
-
 void bgi_sample_point_make(int x, int y, int s, int n, bgi_sample_point *out)
 {
-    uint32_t h = mix(mix(0u, (uint32_t)x), (uint32_t)y);
-    out->pixel_hash = mix(h, (uint32_t)(x / 4096) * 4u + (uint32_t)(y / 4096));
+    uint32_t high = (uint32_t)(x / 4096) * 4u + (uint32_t)(y / 4096);
+    out->pixel_hash = mix(mix(high, (uint32_t)x, 3), (uint32_t)y, 3);
     out->sample = s;
     out->samples = n > 1 ? n : 1;
     out->rows = bgi_sample_rows(out->samples);
@@ -50,20 +49,17 @@ void bgi_sample_point_make(int x, int y, int s, int n, bgi_sample_point *out)
     while ((1 << k) < out->samples)
         k++;
     out->perm_bits = k;
-    out->perm_prime = cube_prime[k];
 }
 
 /* One round of the cell permutation on [0, 2^k): add the key, multiply and add, rotate the k bits by
- * floor(k / 2), cube modulo the prime below 2^k. */
+ * floor(k / 2), h + 2 h^2. */
 static uint32_t perm_round(uint32_t h, uint32_t key, const bgi_sample_point *p)
 {
-    uint32_t size = 1u << p->perm_bits, r = (uint32_t)p->perm_bits / 2u;
+    uint32_t size = 1u << p->perm_bits, r = (uint32_t)p->perm_bits / 2u, half = size > 1u ? size / 2u : 1u;
     h = (h + key) % size;
     h = (h * 2653u + 2731u) % size;
     h = (h % (1u << r)) * (size >> r) + (h >> r);
-    if (h < p->perm_prime)
-        h = (h * h % p->perm_prime) * h % p->perm_prime;
-    return h;
+    return (h + 2u * (h * h % half)) % size;
 }
 
 /* The 12 bits of h rotated by 7. */
@@ -72,15 +68,22 @@ static uint32_t rotate7(uint32_t h)
     return (h % 128u) * 32u + h / 128u;
 }
 
+/* The 12 bits of a key rotated by k, so that each round of the permutation adds the next k bits of
+ * the key (with the same low bits in every round, n = 16 had only 16 permutations, and sample 0 fell
+ * in 8 of the 16 cells). */
+static uint32_t perm_key(uint32_t key, const bgi_sample_point *p)
+{
+    uint32_t up = key << p->perm_bits;
+    return up % M + up / M;
+}
+
 /* Sample s's cell: three rounds on [0, 2^k), again while the result is not a cell (cycle walking, a
  * permutation of the n cells; each walk leaves [0, n) with chance below 1/2, so 32 walks settle all
- * but one cell in 2^32, which then keeps its own index on both renderers alike). Each round adds
- * other bits of the key (rotated by 7 from round to round): with the same low bits in every round,
- * n = 16 had only 16 permutations, and sample 0 fell in 8 of the 16 cells. */
+ * but one cell in 2^32, which then keeps its own index on both renderers alike). */
 static uint32_t cell_of(const bgi_sample_point *p, uint32_t key)
 {
     uint32_t n = (uint32_t)p->samples, t = (uint32_t)p->sample;
-    uint32_t key2 = rotate7(key), key3 = rotate7(key2);
+    uint32_t key2 = perm_key(key, p), key3 = perm_key(key2, p);
     for (int walk = 0; walk < 32; walk++) {
         t = perm_round(perm_round(perm_round(t, key, p), key2, p), key3, p);
         if (t < n)
@@ -89,11 +92,13 @@ static uint32_t cell_of(const bgi_sample_point *p, uint32_t key)
     return (uint32_t)p->sample;
 }
 
+/* The jitter in the cell takes fewer rounds than the keys: it only places the point inside its
+ * cell, and g2 is a fixed permutation of g1 however many rounds make it. */
 void bgi_sample_square(const bgi_sample_point *point, int dimension, double uv[2])
 {
-    uint32_t h = mix(point->pixel_hash, (uint32_t)dimension);
+    uint32_t h = mix(point->pixel_hash, (uint32_t)dimension, 3);
     uint32_t cell = cell_of(point, h);
-    uint32_t g1 = mix(h, (uint32_t)point->sample), g2 = mix(g1, 1u);
+    uint32_t g1 = mix(h, (uint32_t)point->sample, 2), g2 = mix(g1, 1u, 1);
     uint32_t column = cell % (uint32_t)point->columns, row = cell / (uint32_t)point->columns;
     uv[0] = ((double)column + (g1 + 0.5) / M) / point->columns;
     uv[1] = ((double)row + (g2 + 0.5) / M) / point->rows;

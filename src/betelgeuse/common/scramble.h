@@ -24,7 +24,6 @@ typedef struct bgi_sample_point {
     int samples;         /* n >= 1 */
     int columns, rows;   /* the pixel pattern's grid of n cells */
     int perm_bits;       /* k: the cells are permuted on [0, 2^k), 2^k the power of two >= n */
-    uint32_t perm_prime; /* the prime = 2 mod 3 below 2^k of the permutation's cube step */
 } bgi_sample_point;
 
 /* Sample s of n of frame pixel (x, y) (x right, y down from the frame's top-left, each < 16384). */

@@ -26,7 +26,7 @@ void bgi_gpu_sample_perm(const gpu_view *view, float out[4])
     bgi_sample_point_make(0, 0, 0, view->pixels.samples, &p);
     int k = p.perm_bits, r = k / 2;
     out[0] = (float)(1 << k);
-    out[1] = (float)p.perm_prime;
+    out[1] = (float)(k > 0 ? 1 << (k - 1) : 1);
     out[2] = (float)(1 << r);
     out[3] = (float)(1 << (k - r));
 }
