@@ -12,8 +12,9 @@
  * through the GPU's accumulation anyway. A frame's fixed costs (the read-back, the CPU's threads) then
  * weigh 1/TIME_SAMPLES as much as in a one-sample frame, as they do in a converging render; they are a
  * few ms against a sample's tens, so QUICK's fewer samples move a sample's time by a few per cent at
- * most. The ratio GPU/CPU is the median of the per-round ratios; the issue's target is at most 0.5 on
- * every scene.
+ * most. The ratio GPU/CPU is the median of the per-round ratios; the target is at most 0.5 on every
+ * scene. Each scene's plain twin (the effect taken out) runs in the same rounds, so that a row also
+ * shows what the scene costs without its effect on each renderer, and what the effect adds.
  * Error against samples, at 128x128 (QUICK: 64x64; the reference's 1024 samples a pixel cost most of
  * the run): a CPU reference of REFERENCE_SAMPLES per pixel, then the GPU and the CPU at 1, 2, 4 ...
  * BG_MAX_SAMPLES samples, each the RMSE of its linear radiance (RGBA32F, RGB) against the reference,
@@ -30,7 +31,7 @@
 /* The scenes, one line each: a scene of another effect (an environment map) is one more line. */
 typedef struct distribution_case {
     const char *name;
-    bg_status (*build)(bg_scene *scene);
+    bg_status (*build)(bg_scene *scene, bool effect);
 } distribution_case;
 
 static const distribution_case cases[] = {
@@ -58,23 +59,28 @@ static const distribution_case cases[] = {
 /* Points of the series: 1, 2, 4 ... BG_MAX_SAMPLES. */
 #define SERIES_POINTS 9
 
-enum { GPU, CPU, CONTESTANTS };
-static const char *const contestant_names[CONTESTANTS] = {"GPU", "CPU reference"};
+/* The contestants of a time run: the scene's GPU and CPU frames, then its plain twin's
+ * (distribution_scenes.h), interleaved, so that the effect's own cost is the difference of two
+ * medians measured side by side. */
+enum { GPU, CPU, PLAIN_GPU, PLAIN_CPU, CONTESTANTS };
+static const char *const contestant_names[CONTESTANTS] = {"GPU", "CPU reference", "GPU, plain twin",
+                                                          "CPU reference, plain twin"};
 
 /* ---- the scenes ---- */
 
-static bg_scene *case_scene(const distribution_case *c)
+static bg_scene *case_scene(const distribution_case *c, bool effect)
 {
     bg_scene *scene = NULL;
     if (bg_scene_create(NULL, &scene) != BG_OK) {
         fprintf(stderr, "cannot create a scene\n");
         return NULL;
     }
-    bg_status st = c->build(scene);
+    bg_status st = c->build(scene, effect);
     if (st == BG_OK)
         st = bg_scene_commit(scene);
     if (st != BG_OK) {
-        fprintf(stderr, "cannot build %s: %s (%s)\n", c->name, bg_status_string(st), bg_scene_error_message(scene));
+        fprintf(stderr, "cannot build %s%s: %s (%s)\n", c->name, effect ? "" : " (plain)", bg_status_string(st),
+                bg_scene_error_message(scene));
         bg_scene_destroy(scene);
         return NULL;
     }
@@ -86,19 +92,19 @@ static bg_scene *case_scene(const distribution_case *c)
 typedef struct time_run {
     bench_contestant c[CONTESTANTS];
     bg_image images[CONTESTANTS];
-    bench_gpu_job gpu;
-    bench_cpu_job cpu;
+    bench_gpu_job gpu[2]; /* the scene's, the plain twin's */
+    bench_cpu_job cpu[2];
     bench_error error; /* the GPU's last frame against the CPU's: the same samples, so float error only */
 } time_run;
 
-/* A frame's time per sample: the frames of a run render run->gpu.settings.samples each. */
+/* A frame's time per sample: the frames of a run render run->gpu[0].settings.samples each. */
 static double per_sample(const time_run *run, double ms)
 {
-    return ms / run->gpu.settings.samples;
+    return ms / run->gpu[0].settings.samples;
 }
 
-static bool time_case(time_run *run, bg_renderer *renderer, bg_scene *scene, const char *label, int samples,
-                      int runs)
+static bool time_case(time_run *run, bg_renderer *renderer, bg_scene *scene, bg_scene *plain, const char *label,
+                      int samples, int runs)
 {
     memset(run, 0, sizeof *run);
     bg_render_settings settings = bg_render_settings_init();
@@ -108,12 +114,15 @@ static bool time_case(time_run *run, bg_renderer *renderer, bg_scene *scene, con
         ok = ok && bench_image_alloc(&run->images[i], TIME_SIZE, TIME_SIZE, BG_PIXEL_RGBA8);
         run->c[i] = (bench_contestant){.name = contestant_names[i], .image = &run->images[i]};
     }
-    run->gpu = (bench_gpu_job){.renderer = renderer, .scene = scene, .settings = settings};
-    run->cpu = (bench_cpu_job){scene, settings};
-    run->c[GPU].frame = bench_gpu_frame;
-    run->c[GPU].user = &run->gpu;
-    run->c[CPU].frame = bench_cpu_frame;
-    run->c[CPU].user = &run->cpu;
+    bg_scene *scenes[2] = {scene, plain};
+    for (int k = 0; k < 2; k++) {
+        run->gpu[k] = (bench_gpu_job){.renderer = renderer, .scene = scenes[k], .settings = settings};
+        run->cpu[k] = (bench_cpu_job){scenes[k], settings};
+        run->c[GPU + 2 * k].frame = bench_gpu_frame;
+        run->c[GPU + 2 * k].user = &run->gpu[k];
+        run->c[CPU + 2 * k].frame = bench_cpu_frame;
+        run->c[CPU + 2 * k].user = &run->cpu[k];
+    }
     for (int i = 0; i < CONTESTANTS && ok; i++) {
         ok = bench_warm_up(&run->c[i]);
         run->c[i].rounds = bench_rounds_after(run->c[i].warm_ms, runs);
@@ -138,43 +147,52 @@ static char *per_sample_text(const time_run *run, const bench_contestant *c, cha
     return buffer;
 }
 
-#define TIME_FORMAT "%-15s %-10s | %-28s | %-28s | %7s | %-6s | %s\n"
+#define TIME_FORMAT "%-22s %-10s | %-28s | %-28s | %7s | %-6s | %7s | %-13s | %s\n"
 #define TIME_CSV_HEADER                                                                                      \
     "scene,size,samples,plan,gpu_median_ms,gpu_min_ms,gpu_max_ms,cpu_median_ms,cpu_min_ms,cpu_max_ms,"      \
-    "gpu_ms_per_sample,cpu_ms_per_sample,gpu_over_cpu,target_met,gpu_runs,cpu_runs,gpu_recompiled_frames," \
-    BENCH_ERROR_CSV_HEADER
+    "gpu_ms_per_sample,cpu_ms_per_sample,gpu_over_cpu,target_met,gpu_runs,cpu_runs,gpu_recompiled_frames,"  \
+    "plain_gpu_ms_per_sample,plain_cpu_ms_per_sample,plain_gpu_over_cpu,effect_gpu_ms_per_sample,"           \
+    "effect_cpu_ms_per_sample," BENCH_ERROR_CSV_HEADER
 
 static void print_time_header(const bench_gpu *gpu, int runs, int samples)
 {
     printf("== Distribution ray tracing: time per sample at %dx%d, %d samples a frame, GPU (BG_PLAN_AUTO) against "
            "the CPU reference\n", TIME_SIZE, TIME_SIZE, samples);
     bench_print_setup(stdout, gpu, runs);
-    printf("Rounds: GPU, CPU; cells: n rounds, ms per sample median [min-max] (a frame's time / %d); GPU/CPU:\n"
-           "median of the per-round ratios; target: GPU/CPU <= %.1f\n", samples, TARGET_RATIO);
-    printf(TIME_FORMAT, "scene", "plan", "GPU: n ms/sample", "CPU: n ms/sample", "GPU/CPU", "target",
-           "GPU error vs CPU (same samples)");
+    printf("Rounds: GPU, CPU, and the same on the scene's plain twin (the effect taken out), interleaved; cells: n\n"
+           "rounds, ms per sample median [min-max] (a frame's time / %d); GPU/CPU: median of the per-round ratios;\n"
+           "target: GPU/CPU <= %.1f; plain: the twin's GPU/CPU; effect ms: the scene's median less the twin's, per\n"
+           "sample, GPU / CPU\n", samples, TARGET_RATIO);
+    printf(TIME_FORMAT, "scene", "plan", "GPU: n ms/sample", "CPU: n ms/sample", "GPU/CPU", "target", "plain",
+           "effect ms", "GPU error vs CPU (same samples)");
 }
 
 /* Prints and writes one scene's row; returns whether the target holds. */
 static bool time_row(FILE *csv, const char *name, const time_run *run)
 {
-    char cell[CONTESTANTS][64], ratio[16], error[128];
-    for (int i = 0; i < CONTESTANTS; i++)
+    char cell[2][64], ratio[16], plain[16], effect[32], error[128];
+    for (int i = 0; i < 2; i++)
         per_sample_text(run, &run->c[i], cell[i], sizeof cell[i]);
-    const double r = bench_ratio(&run->c[GPU], &run->c[CPU]);
+    const double r = bench_ratio(&run->c[GPU], &run->c[CPU]), rp = bench_ratio(&run->c[PLAIN_GPU], &run->c[PLAIN_CPU]);
+    const double effect_gpu = per_sample(run, run->c[GPU].times.median - run->c[PLAIN_GPU].times.median),
+                 effect_cpu = per_sample(run, run->c[CPU].times.median - run->c[PLAIN_CPU].times.median);
     const bool met = r <= TARGET_RATIO;
     snprintf(ratio, sizeof ratio, "%.2f", r);
-    const char *plan = bench_plan_name(run->gpu.stats.plan);
-    printf(TIME_FORMAT, name, plan, cell[GPU], cell[CPU], ratio, met ? "met" : "MISSED",
+    snprintf(plain, sizeof plain, "%.2f", rp);
+    snprintf(effect, sizeof effect, "%.1f / %.1f", effect_gpu, effect_cpu);
+    const char *plan = bench_plan_name(run->gpu[0].stats.plan);
+    printf(TIME_FORMAT, name, plan, cell[GPU], cell[CPU], ratio, met ? "met" : "MISSED", plain, effect,
            bench_error_text(&run->error, error, sizeof error));
-    if (run->gpu.recompiled_frames > 0)
-        printf("  (%s: %d GPU frames after the first compiled a program)\n", name, run->gpu.recompiled_frames);
+    if (run->gpu[0].recompiled_frames > 0 || run->gpu[1].recompiled_frames > 0)
+        printf("  (%s: %d GPU frames after the first compiled a program)\n", name,
+               run->gpu[0].recompiled_frames + run->gpu[1].recompiled_frames);
     fflush(stdout);
     const bench_times *g = &run->c[GPU].times, *c = &run->c[CPU].times;
-    fprintf(csv, "%s,%d,%d,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.4f,%.4f,%d,%d,%d,%d,", name, TIME_SIZE,
-            run->gpu.settings.samples, plan, g->median, g->min, g->max, c->median, c->min, c->max,
+    fprintf(csv, "%s,%d,%d,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,", name,
+            TIME_SIZE, run->gpu[0].settings.samples, plan, g->median, g->min, g->max, c->median, c->min, c->max,
             per_sample(run, g->median), per_sample(run, c->median), r, met, g->runs, c->runs,
-            run->gpu.recompiled_frames);
+            run->gpu[0].recompiled_frames, per_sample(run, run->c[PLAIN_GPU].times.median),
+            per_sample(run, run->c[PLAIN_CPU].times.median), rp, effect_gpu, effect_cpu);
     bench_error_csv(csv, &run->error);
     fputc('\n', csv);
     return met;
@@ -354,9 +372,9 @@ int main(int argc, char **argv)
     FILE *time_csv = bench_csv_open(dir, "distribution_time.csv", TIME_CSV_HEADER);
     FILE *error_csv = time_csv ? bench_csv_open(dir, "distribution_error.csv", ERROR_CSV_HEADER) : NULL;
     int status = !error_csv;
-    bg_scene *scenes[CASE_COUNT] = {NULL};
+    bg_scene *scenes[CASE_COUNT] = {NULL}, *plain[CASE_COUNT] = {NULL};
     for (int s = 0; s < CASE_COUNT && !status; s++)
-        status = !(scenes[s] = case_scene(&cases[s]));
+        status = !(scenes[s] = case_scene(&cases[s], true)) || !(plain[s] = case_scene(&cases[s], false));
     int met = 0;
     if (!status)
         print_time_header(&gpu, runs, time_samples);
@@ -365,7 +383,7 @@ int main(int argc, char **argv)
         snprintf(label, sizeof label, "distribution: %s %dx%d", cases[s].name, TIME_SIZE, TIME_SIZE);
         bench_progress("%s: warm-up", label);
         time_run *run = malloc(sizeof *run);
-        status = !run || !time_case(run, gpu.renderer, scenes[s], label, time_samples, runs);
+        status = !run || !time_case(run, gpu.renderer, scenes[s], plain[s], label, time_samples, runs);
         if (!status) {
             met += time_row(time_csv, cases[s].name, run);
             save_frame(dir, cases[s].name, &run->images[GPU]);
@@ -386,8 +404,10 @@ int main(int argc, char **argv)
         if (!status)
             error_rows(error_csv, cases[s].name, error_size, &series);
     }
-    for (int s = 0; s < CASE_COUNT; s++)
+    for (int s = 0; s < CASE_COUNT; s++) {
         bg_scene_destroy(scenes[s]);
+        bg_scene_destroy(plain[s]);
+    }
     if (time_csv)
         fclose(time_csv);
     if (error_csv)

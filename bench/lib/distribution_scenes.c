@@ -12,6 +12,7 @@
 typedef struct builder {
     bg_scene *scene;
     bg_status status;
+    bool effect; /* false: the scene's plain twin (distribution_scenes.h) */
 } builder;
 
 static bg_material diffuse(double r, double g, double b)
@@ -36,6 +37,7 @@ static bg_material metal(double r, double g, double b, double roughness, bool gl
 static uint32_t material(builder *b, bg_material m)
 {
     uint32_t id = 0;
+    m.glossy = m.glossy && b->effect;
     if (b->status == BG_OK)
         b->status = bg_scene_add_material(b->scene, &m, &id);
     return id;
@@ -75,8 +77,15 @@ static void floor_plane(builder *b, uint32_t material_id)
     object(b, BG_SHAPE_PLANE, bg_mat4_translate(0, -1, 0), material_id, 0.25);
 }
 
+/* The plain twin's lights are point lights: a sphere light at its centre, a rectangle light at its
+ * middle (the rectangle's cosine falloff goes with its shape). */
 static void light(builder *b, bg_light l)
 {
+    if (!b->effect && l.type == BG_LIGHT_RECTANGLE)
+        l.position = bg_vec3_make(l.position.x + 0.5 * (l.edge_u.x + l.edge_v.x), l.position.y + 0.5 * (l.edge_u.y + l.edge_v.y),
+                                  l.position.z + 0.5 * (l.edge_u.z + l.edge_v.z));
+    if (!b->effect && (l.type == BG_LIGHT_SPHERE || l.type == BG_LIGHT_RECTANGLE))
+        l.type = BG_LIGHT_POINT;
     uint32_t id;
     if (b->status == BG_OK)
         b->status = bg_scene_add_light(b->scene, &l, &id);
@@ -99,6 +108,8 @@ static void ambient(builder *b, double v)
 
 static void camera(builder *b, bg_camera c)
 {
+    if (!b->effect)
+        c.aperture_radius = 0.0;
     if (b->status == BG_OK)
         b->status = bg_scene_set_camera(b->scene, &c);
 }
@@ -111,9 +122,9 @@ static bg_camera camera_at(bg_vec3 position, bg_vec3 look_at)
     return c;
 }
 
-bg_status distribution_area_lights(bg_scene *scene)
+bg_status distribution_area_lights(bg_scene *scene, bool effect)
 {
-    builder b = {scene, BG_OK};
+    builder b = {scene, BG_OK, effect};
     floor_plane(&b, material(&b, diffuse(0.75, 0.75, 0.75)));
     sphere(&b, -1.4, 0, -0.6, 1, material(&b, diffuse(0.8, 0.15, 0.1)));
     sphere(&b, 2.2, -0.55, 1.2, 0.45, material(&b, diffuse(0.85, 0.75, 0.1)));
@@ -146,10 +157,10 @@ bg_status distribution_area_lights(bg_scene *scene)
     return b.status;
 }
 
-bg_status distribution_depth_of_field(bg_scene *scene)
+bg_status distribution_depth_of_field(bg_scene *scene, bool effect)
 {
     static const unsigned char light_cell[3] = {230, 230, 230}, dark_cell[3] = {40, 40, 40};
-    builder b = {scene, BG_OK};
+    builder b = {scene, BG_OK, effect};
     floor_plane(&b, checker(&b, light_cell, dark_cell));
     uint32_t earth_texture = 0;
     if (b.status == BG_OK)
@@ -175,11 +186,11 @@ bg_status distribution_depth_of_field(bg_scene *scene)
     return b.status;
 }
 
-bg_status distribution_glossy(bg_scene *scene)
+bg_status distribution_glossy(bg_scene *scene, bool effect)
 {
     static const unsigned char light_cell[3] = {230, 230, 230}, dark_cell[3] = {40, 40, 40};
     static const unsigned char orange[3] = {230, 140, 40}, teal[3] = {30, 110, 130};
-    builder b = {scene, BG_OK};
+    builder b = {scene, BG_OK, effect};
     floor_plane(&b, checker(&b, light_cell, dark_cell));
     /* A wall behind, facing the camera (the plane's prototype turned to face +z), for the spheres to
      * reflect a pattern rather than the black background. */
@@ -204,6 +215,10 @@ bg_status distribution_glossy(bg_scene *scene)
     return b.status;
 }
 
+/* The sun's direction: 55 degrees from the zenith, 40 degrees round from -z. */
+#define SUN_THETA_DEGREES 55.0
+#define SUN_PHI_DEGREES 40.0
+
 /* A 128 x 64 equirectangular sky (linear floats): a blue gradient over a dark ground and a sun of
  * radiance 400 and 3 degrees' radius, 35 degrees up: most of the light in one small spot, the case
  * importance sampling is for. Rows top first, as a caller's image has them. */
@@ -211,7 +226,8 @@ static uint32_t sky(builder *b)
 {
     enum { W = 128, H = 64 };
     static float texels[W * H * 4];
-    const double pi = 3.14159265358979323846, sun_theta = 55.0 * pi / 180.0, sun_phi = 40.0 * pi / 180.0;
+    const double pi = 3.14159265358979323846, sun_theta = SUN_THETA_DEGREES * pi / 180.0,
+                 sun_phi = SUN_PHI_DEGREES * pi / 180.0;
     double s[3] = {sin(sun_theta) * sin(sun_phi), cos(sun_theta), -sin(sun_theta) * cos(sun_phi)};
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
@@ -231,30 +247,42 @@ static uint32_t sky(builder *b)
     return id;
 }
 
-static bg_status environment_scene(bg_scene *scene, bg_environment_sampling sampling)
+static bg_status environment_scene(bg_scene *scene, bg_environment_sampling sampling, bool effect)
 {
-    builder b = {scene, BG_OK};
+    builder b = {scene, BG_OK, effect};
     floor_plane(&b, material(&b, diffuse(0.6, 0.6, 0.55)));
     sphere(&b, -1.4, 0, 0, 1, material(&b, diffuse(0.75, 0.3, 0.2)));
     sphere(&b, 1.4, 0, -0.3, 1, material(&b, metal(0.9, 0.75, 0.5, 0.12, true)));
     sphere(&b, 0.2, -0.5, 1.6, 0.5, material(&b, diffuse(0.2, 0.5, 0.8)));
-    bg_environment e = bg_environment_init();
-    e.texture = sky(&b);
-    e.lights = true;
-    e.sampling = sampling;
-    if (b.status == BG_OK)
-        b.status = bg_scene_set_environment(scene, &e);
-    ambient(&b, 0.0);
+    if (effect) {
+        bg_environment e = bg_environment_init();
+        e.texture = sky(&b);
+        e.lights = true;
+        e.sampling = sampling;
+        if (b.status == BG_OK)
+            b.status = bg_scene_set_environment(scene, &e);
+        ambient(&b, 0.0);
+    } else {
+        /* The sun as a directional light and an ambient term for the sky (misses see the settings'
+         * background, a constant). */
+        const double pi = 3.14159265358979323846, sun_theta = SUN_THETA_DEGREES * pi / 180.0,
+                     sun_phi = SUN_PHI_DEGREES * pi / 180.0;
+        bg_light sun = bg_light_init();
+        sun.type = BG_LIGHT_DIRECTIONAL;
+        sun.direction = bg_vec3_make(-sin(sun_theta) * sin(sun_phi), -cos(sun_theta), sin(sun_theta) * cos(sun_phi));
+        light(&b, sun);
+        ambient(&b, 0.3);
+    }
     camera(&b, camera_at(bg_vec3_make(0, 1.4, 6.2), bg_vec3_make(0, -0.2, 0)));
     return b.status;
 }
 
-bg_status distribution_environment_importance(bg_scene *scene)
+bg_status distribution_environment_importance(bg_scene *scene, bool effect)
 {
-    return environment_scene(scene, BG_ENVIRONMENT_IMPORTANCE);
+    return environment_scene(scene, BG_ENVIRONMENT_IMPORTANCE, effect);
 }
 
-bg_status distribution_environment_uniform(bg_scene *scene)
+bg_status distribution_environment_uniform(bg_scene *scene, bool effect)
 {
-    return environment_scene(scene, BG_ENVIRONMENT_UNIFORM);
+    return environment_scene(scene, BG_ENVIRONMENT_UNIFORM, effect);
 }
