@@ -103,8 +103,9 @@ static double per_sample(const time_run *run, double ms)
     return ms / run->gpu[0].settings.samples;
 }
 
-static bool time_case(time_run *run, bg_renderer *renderer, bg_scene *scene, bg_scene *plain, const char *label,
-                      int samples, int runs)
+/* renderers: the scene's and the twin's, so that each keeps its compiled program between rounds. */
+static bool time_case(time_run *run, bg_renderer *const renderers[2], bg_scene *scene, bg_scene *plain,
+                      const char *label, int samples, int runs)
 {
     memset(run, 0, sizeof *run);
     bg_render_settings settings = bg_render_settings_init();
@@ -116,7 +117,7 @@ static bool time_case(time_run *run, bg_renderer *renderer, bg_scene *scene, bg_
     }
     bg_scene *scenes[2] = {scene, plain};
     for (int k = 0; k < 2; k++) {
-        run->gpu[k] = (bench_gpu_job){.renderer = renderer, .scene = scenes[k], .settings = settings};
+        run->gpu[k] = (bench_gpu_job){.renderer = renderers[k], .scene = scenes[k], .settings = settings};
         run->cpu[k] = (bench_cpu_job){scenes[k], settings};
         run->c[GPU + 2 * k].frame = bench_gpu_frame;
         run->c[GPU + 2 * k].user = &run->gpu[k];
@@ -369,7 +370,10 @@ int main(int argc, char **argv)
     bench_gpu gpu;
     if (!bench_gpu_open(&gpu))
         return 1;
-    FILE *time_csv = bench_csv_open(dir, "distribution_time.csv", TIME_CSV_HEADER);
+    bg_renderer_desc desc;
+    memset(&desc, 0, sizeof desc);
+    bg_renderer *renderers[2] = {gpu.renderer, bench_gpu_renderer(&gpu, desc)};
+    FILE *time_csv = renderers[1] ? bench_csv_open(dir, "distribution_time.csv", TIME_CSV_HEADER) : NULL;
     FILE *error_csv = time_csv ? bench_csv_open(dir, "distribution_error.csv", ERROR_CSV_HEADER) : NULL;
     int status = !error_csv;
     bg_scene *scenes[CASE_COUNT] = {NULL}, *plain[CASE_COUNT] = {NULL};
@@ -383,7 +387,7 @@ int main(int argc, char **argv)
         snprintf(label, sizeof label, "distribution: %s %dx%d", cases[s].name, TIME_SIZE, TIME_SIZE);
         bench_progress("%s: warm-up", label);
         time_run *run = malloc(sizeof *run);
-        status = !run || !time_case(run, gpu.renderer, scenes[s], plain[s], label, time_samples, runs);
+        status = !run || !time_case(run, renderers, scenes[s], plain[s], label, time_samples, runs);
         if (!status) {
             met += time_row(time_csv, cases[s].name, run);
             save_frame(dir, cases[s].name, &run->images[GPU]);
@@ -412,6 +416,7 @@ int main(int argc, char **argv)
         fclose(time_csv);
     if (error_csv)
         fclose(error_csv);
+    bg_renderer_destroy(renderers[1]);
     bench_gpu_close(&gpu);
     return status;
 }
