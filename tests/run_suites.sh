@@ -5,7 +5,8 @@
 # Usage: run_suites.sh "suite binaries" "smoke suite binaries"
 # Environment: TEST_ENV (the Mesa settings of every run), PROBE (the backend probe program),
 # CHECK_JOBS (suites run at once; default: the number of processors), TIMES (a file that keeps each
-# run's duration, so that the next run starts the longest first; default: none), RUN_WITH (a command
+# run's duration, so that the next run starts the longest first; default: none), SUITE_BACKEND
+# (device: every suite on the first EGL device, a GPU, and no smoke reruns), RUN_WITH (a command
 # that runs each suite, such as valgrind with its options; default: none), SHADER_CACHE (no: every
 # run without Mesa's shader cache, as under valgrind, where Mesa's own cache writes raise reports).
 #
@@ -94,7 +95,10 @@ fi
 
 # Where OSMesa can be had, it stays the main backend, as on the machines the tests were measured
 # on; elsewhere EGL surfaceless takes every run.
-if [ -n "$PROBE" ] && osmesa_why=$("$PROBE" osmesa 2>&1); then
+if [ "$SUITE_BACKEND" = device ]; then
+	main="MACS_TEST_BACKEND=device"; main_name="EGL device"; main_driver="the device's driver"
+	other=""; soft=""; osmesa=device
+elif [ -n "$PROBE" ] && osmesa_why=$("$PROBE" osmesa 2>&1); then
 	main="MACS_TEST_BACKEND=osmesa"; main_name="OSMesa"
 	other="MACS_TEST_BACKEND=egl EGL_PLATFORM=surfaceless"; other_name="EGL surfaceless"
 	soft="MACS_TEST_BACKEND=osmesa GALLIUM_DRIVER=softpipe"; soft_name="OSMesa"
@@ -114,11 +118,11 @@ add() { # label, binary, settings
 }
 : >"$work/list"
 for t in $suites; do
-	add "$(basename "$t") ($main_name, llvmpipe)" "$t" "$main"
+	add "$(basename "$t") ($main_name, ${main_driver:-llvmpipe})" "$t" "$main"
 done
 for t in $smoke; do
 	[ -n "$other" ] && add "$(basename "$t") ($other_name, llvmpipe)" "$t" "$other"
-	add "$(basename "$t") ($soft_name, softpipe)" "$t" "$soft"
+	[ -n "$soft" ] && add "$(basename "$t") ($soft_name, softpipe)" "$t" "$soft"
 done
 
 # Longest first, by the last run's times where TIMES keeps them, so that no long suite starts last.

@@ -68,7 +68,12 @@ macs_headless *util_headless(void)
 {
     const char *b = getenv("MACS_TEST_BACKEND");
     macs_headless_desc desc = {0};
-    desc.backend = (b && strcmp(b, "egl") == 0) ? MACS_HEADLESS_EGL : MACS_HEADLESS_OSMESA;
+    /* egl: EGL surfaceless (Mesa); device: the first EGL device, a GPU (NVIDIA's driver has no
+     * surfaceless platform); otherwise OSMesa. */
+    desc.backend = !b                       ? MACS_HEADLESS_OSMESA
+                   : strcmp(b, "egl") == 0    ? MACS_HEADLESS_EGL
+                   : strcmp(b, "device") == 0 ? MACS_HEADLESS_EGL_DEVICE
+                                              : MACS_HEADLESS_OSMESA;
     macs_headless *h = NULL;
     char message[512];
     macs_status st = macs_headless_create(&desc, &h, message, sizeof message);

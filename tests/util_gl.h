@@ -1,4 +1,4 @@
-/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl) and MACS contexts with caps. */
+/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl | device) and MACS contexts with caps. */
 #ifndef UTIL_GL_H
 #define UTIL_GL_H
 

@@ -41,7 +41,10 @@ bool bench_gpu_open(bench_gpu *gpu)
     const char *b = getenv("MACS_TEST_BACKEND");
     macs_headless_desc hd;
     memset(&hd, 0, sizeof hd);
-    hd.backend = (b && strcmp(b, "egl") == 0) ? MACS_HEADLESS_EGL : MACS_HEADLESS_DEFAULT;
+    hd.backend = !b                       ? MACS_HEADLESS_DEFAULT
+                 : strcmp(b, "egl") == 0    ? MACS_HEADLESS_EGL
+                 : strcmp(b, "device") == 0 ? MACS_HEADLESS_EGL_DEVICE
+                                            : MACS_HEADLESS_DEFAULT;
     char message[512];
     if (macs_headless_create(&hd, &gpu->headless, message, sizeof message) != MACS_OK) {
         fprintf(stderr, "headless GL context: %s\n", message);
