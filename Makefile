@@ -54,8 +54,9 @@ BG_OBJ   := $(BG_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/bg_shaders.o
 SF_OBJ   := $(SF_SRC:%.c=$(BUILD)/%.o)
 SF_CFLAGS := $(shell pkg-config --cflags libcjson assimp libpng libturbojpeg stb 2>/dev/null || \
                echo -I/usr/include/cjson -I/usr/include/stb)
-SF_LIBS   := $(shell pkg-config --libs libcjson assimp libpng libturbojpeg stb 2>/dev/null || \
-               echo -lcjson -lassimp -lpng16 -lturbojpeg -lstb)
+# stb_image is compiled in from its header (src/scenefile/hdr_decode.c), never linked as libstb.
+SF_LIBS   := $(shell pkg-config --libs libcjson assimp libpng libturbojpeg 2>/dev/null || \
+               echo -lcjson -lassimp -lpng16 -lturbojpeg)
 # The command (src/cli, docs/command.md) on the three libraries.
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -99,7 +100,16 @@ static void bad_files_are_refused(void **state)
     snprintf(json, sizeof json, "{\"settings\": {\"environment\": {\"file\": \"%s\"}}}", text);
     expect_refused(json, BG_ERR_IO, text, "neither a Radiance HDR");
     snprintf(json, sizeof json, "{\"settings\": {\"environment\": {\"file\": \"%s/missing.hdr\"}}}", dir);
-    expect_refused(json, BG_ERR_IO, "missing.hdr", "cannot open");
+    expect_refused(json, BG_ERR_IO, "missing.hdr", "cannot open: No such file or directory");
+    /* Not regular files: refused by kind, at once (a FIFO without a writer would block a plain open). */
+    snprintf(json, sizeof json, "{\"settings\": {\"environment\": {\"file\": \"%s\"}}}", dir);
+    expect_refused(json, BG_ERR_IO, dir, "is a directory");
+    char fifo[64];
+    snprintf(fifo, sizeof fifo, "%s/sky.hdr", dir);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    snprintf(json, sizeof json, "{\"settings\": {\"environment\": {\"file\": \"%s\"}}}", fifo);
+    expect_refused(json, BG_ERR_IO, fifo, "a FIFO");
+    unlink(fifo);
     unlink(truncated);
     unlink(text);
     rmdir(dir);

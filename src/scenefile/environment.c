@@ -1,26 +1,22 @@
 /* "settings.environment": an equirectangular image around the scene (docs/scene_format.md), a
- * Radiance .hdr or a PNG. HDR goes through stb_image as Debian packages it (libstb-dev, a shared
- * library with security updates from the distribution): a small, widely used decoder of Radiance's
- * RGBE with its run-length coding, from a file in a few calls that return a status and a reason.
- * Only .hdr files take that path, told by their first bytes; PNG keeps libpng. */
+ * Radiance .hdr (hdr_decode.c) or a PNG, told apart by their first bytes. The file is opened with
+ * the checked opener that every input uses, so a FIFO, a directory or a device is refused by name
+ * instead of blocking or being read as an image. */
 #include "scenefile_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <stb_image.h>
+#include "betelgeuse/io/open_input.h"
 
-/* What the file is, from its first bytes: 'h' Radiance HDR, 'p' PNG, 0 neither, -1 unreadable. */
-static int sniff(const char *path)
+/* What the file is, from its first bytes: 'h' Radiance HDR, 'p' PNG, 0 neither. */
+static int sniff(FILE *f)
 {
     static const unsigned char png_sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     unsigned char head[10] = {0};
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return -1;
     size_t n = fread(head, 1, sizeof head, f);
-    fclose(f);
+    rewind(f);
     if (n >= 10 && memcmp(head, "#?RADIANCE", 10) == 0)
         return 'h';
     if (n >= 6 && memcmp(head, "#?RGBE", 6) == 0)
@@ -30,68 +26,35 @@ static int sniff(const char *path)
     return 0;
 }
 
-/* stb_image's input from a file, noting a read past its end: stb fills what the file lacks with
- * zeros and reports success, so a truncated .hdr would load as black rows otherwise. */
-typedef struct hdr_input {
-    FILE *file;
-    bool past_end;
-} hdr_input;
-
-static int hdr_read(void *user, char *data, int size)
-{
-    hdr_input *in = user;
-    size_t n = fread(data, 1, (size_t)size, in->file);
-    if (n == 0)
-        in->past_end = true;
-    return (int)n;
-}
-
-static void hdr_skip(void *user, int n)
-{
-    hdr_input *in = user;
-    if (fseek(in->file, n, SEEK_CUR) != 0)
-        in->past_end = true;
-}
-
-static int hdr_eof(void *user)
-{
-    hdr_input *in = user;
-    return feof(in->file) ? 1 : 0;
-}
-
 bg_status bgi_sf_load_environment_image(bgi_sf_ctx *ctx, const char *path, uint32_t *out_texture)
 {
-    int kind = sniff(path);
-    if (kind < 0)
-        return bgi_sf_fail(ctx, BG_ERR_IO, "cannot open %s", path);
-    if (kind == 0)
-        return bgi_sf_fail(ctx, BG_ERR_IO, "%s is neither a Radiance HDR (.hdr) nor a PNG file", path);
+    char why[256];
+    FILE *f = bgi_open_input(path, why, sizeof why);
+    if (!f)
+        return bgi_sf_fail(ctx, BG_ERR_IO, "%s: %s", path, why);
+    int kind = sniff(f);
+    if (kind != 'h') {
+        fclose(f);
+        if (kind == 0)
+            return bgi_sf_fail(ctx, BG_ERR_IO, "%s is neither a Radiance HDR (.hdr) nor a PNG file", path);
+    }
     bgi_sf_note_input(ctx, path);
     bg_texture_desc desc = {BG_WRAP_REPEAT, BG_TEXTURE_SRGB, BG_FILTER_LINEAR};
     if (kind == 'p') {
         bg_status st = bg_scene_load_texture_png(ctx->scene, path, &desc, out_texture);
         return st == BG_OK ? BG_OK : bgi_sf_fail(ctx, st, "%s", bg_scene_error_message(ctx->scene));
     }
-    int w = 0, h = 0, channels = 0;
-    hdr_input in = {fopen(path, "rb"), false};
-    if (!in.file)
-        return bgi_sf_fail(ctx, BG_ERR_IO, "cannot open %s", path);
-    const stbi_io_callbacks io = {hdr_read, hdr_skip, hdr_eof};
-    float *texels = stbi_loadf_from_callbacks(&io, &in, &w, &h, &channels, 4);
-    fclose(in.file);
+    int w = 0, h = 0;
+    float *texels = bgi_sf_hdr_decode(f, &w, &h, why, sizeof why);
+    fclose(f);
     if (!texels)
-        return bgi_sf_fail(ctx, BG_ERR_IO, "%s: not a readable Radiance HDR image (%s)", path, stbi_failure_reason());
-    if (in.past_end) {
-        stbi_image_free(texels);
-        return bgi_sf_fail(ctx, BG_ERR_IO, "%s: not a readable Radiance HDR image (the file ends before its %d x %d "
-                           "pixels)", path, w, h);
-    }
+        return bgi_sf_fail(ctx, BG_ERR_IO, "%s: not a readable Radiance HDR image (%s)", path, why);
     /* RGBE decodes to finite values >= 0; alpha is opaque. */
     for (size_t k = 0; k < (size_t)w * (size_t)h; k++)
         texels[4 * k + 3] = 1.0f;
     bg_image img = {w, h, BG_PIXEL_RGBA32F, 0, texels};
     bg_status st = bg_scene_add_texture(ctx->scene, &img, &desc, out_texture);
-    stbi_image_free(texels);
+    bgi_sf_hdr_free(texels);
     return st == BG_OK ? BG_OK : bgi_sf_fail(ctx, st, "%s: %s", path, bg_scene_error_message(ctx->scene));
 }
 

@@ -166,6 +166,11 @@ bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v);
 bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v);
 /* "settings.environment": {"file", "intensity", "light", "sampling"} (environment.c). */
 bg_status bgi_sf_read_environment(bgi_sf_ctx *ctx, const cJSON *v);
+/* Decodes a Radiance .hdr file (read from its start) into RGBA32F texels to free with
+ * bgi_sf_hdr_free, or NULL with the reason in why; w and h get its size. */
+float *bgi_sf_hdr_decode(FILE *file, int *w, int *h, char *why, size_t why_size);
+void bgi_sf_hdr_free(float *texels);
+
 /* Loads an environment image file (a Radiance .hdr, or a PNG decoded from sRGB) into a texture of the
  * scene; BG_ERR_IO naming the file and the reason (environment.c). */
 bg_status bgi_sf_load_environment_image(bgi_sf_ctx *ctx, const char *path, uint32_t *out_texture);
