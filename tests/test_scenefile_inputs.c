@@ -18,6 +18,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "util_warnings.h"
 
 /* A FIFO would block the open forever: a hang fails the test by the alarm instead. */
 enum { HANG_SECONDS = 20 };
@@ -66,6 +67,7 @@ typedef struct loaded {
     char message[1024];
     int inputs;
     char input[8][256];
+    util_warnings warnings;
 } loaded;
 
 static void note_input(const char *path, void *user)
@@ -87,6 +89,8 @@ static loaded load(const char *path, const char *text)
     memset(&d, 0, sizeof d);
     d.inputs.func = note_input;
     d.inputs.user = &l;
+    d.logger.func = util_warnings_collect;
+    d.logger.user = &l.warnings;
     d.base_dir = dir;
     bg_scenefile_result r;
     alarm(HANG_SECONDS);
@@ -247,8 +251,11 @@ static void ply_counts_must_fit_the_file(void **state)
                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                            "end_header\n0 0 0\n1 0 0\n0 1 0\n0\n",
          "PLY face element 0: a face of 0 vertices (a face needs at least 3)"},
-        {"keyword.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprz\nend_header\n",
-         "PLY header line 5: \"prz\" is not a PLY header keyword"},
+        {"keyword.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nelements\nend_header\n",
+         "PLY header line 5: \"elements\" is not a PLY header keyword"},
+        /* A line of no keyword is skipped (below), but the counts still hold the file to its header. */
+        {"prz.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprz\nend_header\n",
+         "the PLY header declares 3 vertex"},
         /* Triangle strips loaded as one triangle, silently. */
         {"strips.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
                        "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
@@ -277,6 +284,25 @@ static void ply_counts_must_fit_the_file(void **state)
         fail_msg("%s", l.message);
 }
 
+/* Header lines of no PLY keyword, such as the "Created by ..." of old exporters, are skipped with one
+ * warning naming the first, as assimp skips them; the model loads whole. */
+static void ply_header_lines_of_no_keyword_are_skipped(void **state)
+{
+    (void)state;
+    static const char ply[] = "ply\nformat ascii 1.0\nCreated by an old exporter v1.2\nelement vertex 3\n"
+                              "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                              "property list uchar int vertex_indices\nStamp 2004\nend_header\n"
+                              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    loaded l = load_ply("created.ply", ply, sizeof ply - 1);
+    if (l.status != BG_OK)
+        fail_msg("%s", l.message);
+    print_message("%s", l.warnings.all);
+    assert_int_equal(l.warnings.count, 1);
+    assert_non_null(strstr(l.warnings.all, "created.ply"));
+    assert_non_null(strstr(l.warnings.all, "PLY header line 3 (\"Created\")"));
+    assert_non_null(strstr(l.warnings.all, "with the other lines of no keyword"));
+}
+
 /* A face index beyond the vertices: valgrind saw an invalid read inside assimp's post-processing. */
 static void out_of_range_indices_are_named(void **state)
 {
@@ -297,6 +323,7 @@ int main(void)
         cmocka_unit_test(every_file_read_is_named_to_the_caller),
         cmocka_unit_test(json_nesting_and_escaped_nuls_are_named),
         cmocka_unit_test(ply_counts_must_fit_the_file),
+        cmocka_unit_test(ply_header_lines_of_no_keyword_are_skipped),
         cmocka_unit_test(out_of_range_indices_are_named),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);

@@ -5,7 +5,10 @@
  * reads past its buffer or fails an assertion that aborts the process (all found by fuzzing). So
  * this reader, which allocates nothing that depends on the file, walks the file first:
  *   - the header strictly: the magic line "ply", one format line, then element, property,
- *     comment and obj_info lines only, up to end_header, with known types;
+ *     comment and obj_info lines, up to end_header, with known types; any other line is skipped
+ *     with a warning, as assimp skips it (old exporters wrote lines such as "Created by ..."),
+ *     unless its first word starts like a keyword ("elements", "property2"), which assimp may
+ *     half parse;
  *   - the counts against the file's size (each element takes at least one number per property in
  *     ASCII, its fixed-size properties and list counts in binary), before anything is read;
  *   - the body element by element: every ASCII element one line of numbers (assimp reads them
@@ -63,6 +66,9 @@ typedef struct ply {
     int elements;
     ply_element element[PLY_ELEMENTS_MAX];
     unsigned long long vertices; /* the vertex element's count */
+    int skipped;                 /* header lines of no PLY keyword, skipped */
+    int first_skipped;           /* the number of the first of them */
+    char skipped_word[41];       /* and its first word */
     long header_length;          /* bytes up to and including the end_header line */
 } ply;
 
@@ -180,8 +186,26 @@ static bg_status header_line(ply *p, int number, char *line)
         return header_element(p, number, w, n);
     if (n > 0 && strcmp(w[0], "property") == 0)
         return header_property(p, number, w, n);
-    return fail(p, "PLY header line %d: \"%.40s\" is not a PLY header keyword (format, element, property, "
-                "comment, obj_info, end_header)", number, n > 0 ? w[0] : "");
+    static const char *const keywords[] = {"format", "element", "property", "comment", "obj_info", "end_header"};
+    for (size_t k = 0; n > 0 && k < sizeof keywords / sizeof keywords[0]; k++)
+        if (strncmp(w[0], keywords[k], strlen(keywords[k])) == 0)
+            return fail(p, "PLY header line %d: \"%.40s\" is not a PLY header keyword (format, element, property, "
+                        "comment, obj_info, end_header)", number, w[0]);
+    if (p->skipped++ == 0) {
+        p->first_skipped = number;
+        snprintf(p->skipped_word, sizeof p->skipped_word, "%s", n > 0 ? w[0] : "");
+    }
+    return BG_OK;
+}
+
+/* One warning for every skipped header line, naming the first. */
+static void warn_skipped(ply *p)
+{
+    if (p->skipped == 0)
+        return;
+    bgi_sf_warn(p->ctx, "model file \"%s\": PLY header line %d (\"%s\") is not a PLY header keyword and was "
+                "skipped%s", p->path, p->first_skipped, p->skipped_word,
+                p->skipped > 1 ? ", with the other lines of no keyword" : "");
 }
 
 /* The header up to end_header; f is left at the body's first byte. */
@@ -210,7 +234,10 @@ static bg_status read_header(ply *p)
                 if (p->element[i].count > 0 && p->element[i].properties == 0)
                     return fail(p, "PLY element \"%s\" has %llu instances but no properties", p->element[i].name,
                                 p->element[i].count);
-            return p->format == PLY_NONE ? fail(p, "the PLY header has no format line") : BG_OK;
+            if (p->format == PLY_NONE)
+                return fail(p, "the PLY header has no format line");
+            warn_skipped(p);
+            return BG_OK;
         } else {
             BGI_SF_TRY(header_line(p, number, line));
         }
