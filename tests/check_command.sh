@@ -40,7 +40,7 @@ echo "== check-command: $cli"
 # A scene that reads no other file, for checks that copy it around.
 printf '{"objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}}]}' >"$out/sphere.json"
 expect 0 "--help" "$cli" --help
-for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet assemble info \
+for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet --strict assemble info \
 	--up --smooth --camera --look-from --look-at --fov --aperture --focus-distance; do
 	grep -qF -- "$option" "$out/stdout" || fail "--help does not mention $option"
 done
@@ -74,6 +74,14 @@ said "glow_not_read.webp" "a model warning without a terminal"
 expect 0 "a model warning under --quiet" "$cli" render "$root/tests/data/emissive_webp_texture.gltf" --size 32x24 \
 	--renderer cpu -o "$out/warn.png" --quiet
 grep -q "warning: " "$out/err" && fail "--quiet printed a warning: $(cat "$out/err")"
+# --strict makes any warning fatal (exit 2) in render and info, and writes no image.
+rm -f "$out/strict.png"
+expect 2 "a model warning under --strict" "$cli" render "$root/tests/data/emissive_webp_texture.gltf" --size 32x24 \
+	--renderer cpu -o "$out/strict.png" --strict
+said "2 warnings while loading, fatal under --strict" "a model warning under --strict"
+[ -e "$out/strict.png" ] && fail "render --strict wrote an image after a fatal warning"
+expect 2 "info under --strict" "$cli" info "$root/tests/data/emissive_webp_texture.gltf" --strict
+expect 0 "a clean scene under --strict" "$cli" info "$json/glass.json" --strict
 
 # Tiles and crop windows are the full render's pixels: assembled they are the same file.
 for renderer in cpu gpu; do

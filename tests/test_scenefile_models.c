@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -234,7 +235,8 @@ static void write_file(const char *path, const char *text)
 }
 
 /* What the MTL mapping leaves out it says, to the logger: a colour texture in a format not read (a
- * WebP) and every map other than the colour one. A colour texture that is missing is an error. */
+ * WebP), every map other than the colour one, and a texture file that is missing (the material keeps
+ * its factors, as model viewers render it). */
 static void model_materials_say_what_they_leave_out(void **state)
 {
     (void)state;
@@ -269,13 +271,73 @@ static void model_materials_say_what_they_leave_out(void **state)
 
     write_file(mtl, "newmtl m\nKd 1 1 1\nmap_Kd no_such_texture.png\n");
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    st = bg_scenefile_load_model(obj, NULL, s, &r, message, sizeof message);
+    util_warnings missing = {0, ""};
+    d.logger.user = &missing;
+    st = bg_scenefile_load_model(obj, &d, s, &r, message, sizeof message);
     bg_scene_destroy(s);
     remove(obj);
     remove(mtl);
-    assert_int_equal(st, BG_ERR_IO);
-    assert_non_null(strstr(message, "no_such_texture.png"));
-    assert_non_null(strstr(message, "material \"m\""));
+    if (st != BG_OK)
+        fail_msg("%s", message);
+    print_message("%s", missing.all);
+    assert_int_equal(r.summary.textures, 0);
+    assert_int_equal(missing.count, 1);
+    assert_non_null(strstr(missing.all, "material \"m\": its base colour texture file \"/tmp/no_such_texture.png\" "
+                                        "is missing; the material keeps its factors"));
+}
+
+/* Texture paths as Windows exporters write them: ".\\tex.png" and "maps\\tex.png" resolve beside the
+ * model, and a drive path ("C:\\art\\tex.png") is looked for beside it by its file name, with a
+ * warning. Each loads the texture (the summary counts it). */
+static void windows_texture_paths_resolve_beside_the_model(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/bg_sf_win_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[128], maps[128];
+    snprintf(maps, sizeof maps, "%s/maps", dir);
+    assert_int_equal(mkdir(maps, 0700), 0);
+    unsigned char texel[4 * 4] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+    bg_image image = {2, 2, BG_PIXEL_RGBA8, 0, texel};
+    snprintf(path, sizeof path, "%s/tex.png", dir);
+    assert_int_equal(bg_png_save(path, &image, NULL, 0), BG_OK);
+    snprintf(path, sizeof path, "%s/maps/tex.png", dir);
+    assert_int_equal(bg_png_save(path, &image, NULL, 0), BG_OK);
+    static const struct {
+        const char *map;
+        int warnings;
+    } cases[] = {{".\\tex.png", 0}, {".\\.\\tex.png", 0}, {"maps\\tex.png", 0}, {".\\maps\\tex.png", 0},
+                 {"C:\\art\\tex.png", 1}};
+    char obj[128], mtl[128], text[256];
+    snprintf(obj, sizeof obj, "%s/m.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/m.mtl", dir);
+    write_file(obj, "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n");
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(text, sizeof text, "newmtl m\nKd 1 1 1\nmap_Kd %s\n", cases[i].map);
+        write_file(mtl, text);
+        bg_scene *s = NULL;
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        util_warnings w = {0, ""};
+        bg_scenefile_desc d = {.logger = {util_warnings_collect, &w}};
+        bg_scenefile_result r;
+        char message[1024];
+        bg_status st = bg_scenefile_load_model(obj, &d, s, &r, message, sizeof message);
+        bg_scene_destroy(s);
+        if (st != BG_OK)
+            fail_msg("map_Kd %s: %s", cases[i].map, message);
+        if (r.summary.textures != 1 || w.count != cases[i].warnings)
+            fail_msg("map_Kd %s: %d textures (want 1), %d warnings (want %d):\n%s", cases[i].map,
+                     (int)r.summary.textures, w.count, cases[i].warnings, w.all);
+        if (cases[i].warnings)
+            assert_non_null(strstr(w.all, "is a path on another system's drive; it is looked for beside the model"));
+    }
+    remove(obj);
+    remove(mtl);
+    remove(path);
+    snprintf(path, sizeof path, "%s/tex.png", dir);
+    remove(path);
+    rmdir(maps);
+    rmdir(dir);
 }
 
 int main(void)
@@ -288,6 +350,7 @@ int main(void)
         cmocka_unit_test(a_scene_file_places_a_model),
         cmocka_unit_test(a_broken_model_is_refused),
         cmocka_unit_test(model_materials_say_what_they_leave_out),
+        cmocka_unit_test(windows_texture_paths_resolve_beside_the_model),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

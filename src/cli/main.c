@@ -43,6 +43,8 @@ static const char *const help[] = {
     "  --linear               write linear values instead of sRGB\n"
     "  --float OUT.pfm        also write the linear radiance as a PFM (renders the frame a second time)\n"
     "  -q, --quiet            print nothing but errors (no progress bar, no warnings)\n"
+    "  --strict               any warning while loading the scene (a missing model texture, a\n"
+    "                         skipped PLY header line) is fatal: exit 2 (render, info and view)\n"
     "\n",
     "view options (a window; the GPU renderer on its OpenGL 2.1 context, through GLFW):\n"
     "  --size WxH, --samples N, --max-depth D, -q and the model options as for render; the samples\n"

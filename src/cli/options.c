@@ -103,6 +103,8 @@ bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *
                 o->backend = CLI_BACKEND_OSMESA;
             else
                 return fail(why, size, "%s: '%s' is neither egl nor osmesa", a, value);
+        } else if (strcmp(a, "--strict") == 0) {
+            o->strict = true;
         } else if (command == CLI_COMMAND_INFO && a[0] == '-' && a[1] != '\0') {
             return fail(why, size, "unknown option %s for info%s", a, NULL);
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
@@ -154,7 +156,8 @@ bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *
             o->scene = a;
         }
         if (eq && value == eq + 1 &&
-            (strcmp(a, "--linear") == 0 || strcmp(a, "--quiet") == 0 || strcmp(a, "--benchmark") == 0 ||
+            (strcmp(a, "--linear") == 0 || strcmp(a, "--quiet") == 0 || strcmp(a, "--strict") == 0 ||
+             strcmp(a, "--benchmark") == 0 ||
              strcmp(a, "--verbose") == 0))
             return fail(why, size, "%s takes no value%s", a, NULL);
 #undef VALUE

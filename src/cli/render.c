@@ -245,12 +245,12 @@ int cli_render(int argc, char **argv)
     }
     /* Warnings (what a model's materials lose) go to stderr terminal or not, so that a script's log
      * says what was dropped; --quiet silences them. */
-    bool quiet_logs = o.quiet;
+    cli_load_logs logs = {o.quiet, o.strict, 0};
     bg_scene *scene = NULL;
     bg_scenefile_result file;
     cli_inputs inputs;
     memset(&inputs, 0, sizeof inputs);
-    int status = cli_scene_load(o.scene, &o.model, &quiet_logs, &inputs, &scene, &file, NULL, 0);
+    int status = cli_scene_load(o.scene, &o.model, &logs, &inputs, &scene, &file, NULL, 0);
     if (status == CLI_EXIT_OK)
         status = check_outputs(&o, &inputs);
     cli_inputs_free(&inputs);
@@ -311,10 +311,10 @@ int cli_info(int argc, char **argv)
         fprintf(stderr, "betelgeuse info: %s\n(see betelgeuse --help)\n", why);
         return CLI_EXIT_USAGE;
     }
-    bool quiet_logs = false;
+    cli_load_logs logs = {false, o.strict, 0};
     bg_scene *scene = NULL;
     bg_scenefile_result file;
-    int loaded = cli_scene_load(o.scene, &o.model, &quiet_logs, NULL, &scene, &file, NULL, 0);
+    int loaded = cli_scene_load(o.scene, &o.model, &logs, NULL, &scene, &file, NULL, 0);
     if (loaded != CLI_EXIT_OK)
         return loaded;
     const bg_scenefile_summary *s = &file.summary;

@@ -6,15 +6,18 @@
 
 #include "cli.h"
 
-/* Warnings (what a model's materials lose) unless --quiet; errors come back as messages. */
+/* Warnings (what a model's materials lose) unless --quiet, each counted; errors come back as messages. */
 static void on_log(bg_log_level level, const char *message, void *user)
 {
-    const bool *quiet = user;
-    if (level == BG_LOG_WARNING && !*quiet)
+    cli_load_logs *logs = user;
+    if (level != BG_LOG_WARNING)
+        return;
+    logs->warnings++;
+    if (!logs->quiet)
         fprintf(stderr, "betelgeuse: warning: %s\n", message);
 }
 
-int cli_scene_load(const char *path, const cli_model_options *model, bool *quiet_logs, cli_inputs *inputs,
+int cli_scene_load(const char *path, const cli_model_options *model, cli_load_logs *logs, cli_inputs *inputs,
                    bg_scene **out, bg_scenefile_result *file, char *why_out, size_t why_size)
 {
     *out = NULL;
@@ -28,7 +31,7 @@ int cli_scene_load(const char *path, const cli_model_options *model, bool *quiet
     bg_scenefile_desc fd;
     memset(&fd, 0, sizeof fd);
     fd.logger.func = on_log;
-    fd.logger.user = quiet_logs;
+    fd.logger.user = logs;
     cli_model_options_desc(model, &fd);
     if (inputs) {
         /* The scene file is added here too, so that it is protected whatever the library reports. */
@@ -45,6 +48,16 @@ int cli_scene_load(const char *path, const cli_model_options *model, bool *quiet
             snprintf(why_out, why_size, "%s", why[0] ? why : bg_status_string(st));
         bg_scene_destroy(scene);
         return st == BG_ERR_OUT_OF_MEMORY ? CLI_EXIT_FAILED : CLI_EXIT_USAGE;
+    }
+    if (logs->strict && logs->warnings > 0) {
+        char message[256];
+        snprintf(message, sizeof message, "%s: %d warning%s while loading, fatal under --strict", path,
+                 logs->warnings, logs->warnings == 1 ? "" : "s");
+        fprintf(stderr, "betelgeuse: %s\n", message);
+        if (why_out)
+            snprintf(why_out, why_size, "%s", message);
+        bg_scene_destroy(scene);
+        return CLI_EXIT_USAGE;
     }
     *out = scene;
     return CLI_EXIT_OK;

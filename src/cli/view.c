@@ -251,8 +251,8 @@ int cli_view(int argc, char **argv)
         fprintf(stderr, "betelgeuse view: %s\n", why);
         return CLI_EXIT_USAGE;
     }
-    bool quiet_logs = o.quiet;
-    int status = cli_scene_load(o.scene, &o.model, &quiet_logs, &v.inputs, &v.scene, &v.file, NULL, 0);
+    cli_load_logs logs = {o.quiet, o.strict, 0};
+    int status = cli_scene_load(o.scene, &o.model, &logs, &v.inputs, &v.scene, &v.file, NULL, 0);
     if (status == CLI_EXIT_OK && !view_watch_set(&v.watch, &v.inputs)) {
         fprintf(stderr, "betelgeuse view: out of memory listing the scene's files\n");
         status = CLI_EXIT_FAILED;

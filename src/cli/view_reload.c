@@ -21,11 +21,11 @@ void view_reload(viewer *v)
 {
     cli_inputs inputs;
     memset(&inputs, 0, sizeof inputs);
-    bool quiet = v->options->quiet;
+    cli_load_logs logs = {v->options->quiet, v->options->strict, 0};
     bg_scene *scene = NULL;
     bg_scenefile_result file;
     char why[1024] = "";
-    int status = cli_scene_load(v->options->scene, &v->options->model, &quiet, &inputs, &scene, &file, why, sizeof why);
+    int status = cli_scene_load(v->options->scene, &v->options->model, &logs, &inputs, &scene, &file, why, sizeof why);
     /* Watched from now on: what this load read, so that fixing the file (or the model it names) is seen. */
     if (inputs.count > 0)
         view_watch_set(&v->watch, &inputs);

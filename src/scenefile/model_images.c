@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* Larger image files are refused before they are read whole (a 16384^2 RGBA PNG fits well within). */
 #define IMAGE_FILE_MAX ((long)512 << 20)
@@ -163,6 +164,42 @@ static int embedded_index(const bgi_sf_model *md, const char *file)
     return *end || errno || n >= md->sc->mNumTextures ? -1 : (int)n;
 }
 
+/* "C:\..." or "C:/...": an absolute path on a Windows drive. */
+static bool is_drive_path(const char *file)
+{
+    return ((file[0] >= 'A' && file[0] <= 'Z') || (file[0] >= 'a' && file[0] <= 'z')) && file[1] == ':' &&
+           (file[2] == '\\' || file[2] == '/');
+}
+
+/* A texture path as the system that wrote it meant it, for this one: backslashes are separators
+ * (exporters on Windows write ".\\tex.jpg" and "maps\\wood.png"), leading "./" parts go, and a path
+ * on a drive ("C:\\art\\tex.jpg") keeps only its file name, to be looked for beside the model.
+ * False when it does not fit out. */
+static bool local_path(const char *file, char *out, size_t size)
+{
+    if (is_drive_path(file)) {
+        const char *base = file;
+        for (const char *c = file; *c; c++)
+            if (*c == '\\' || *c == '/')
+                base = c + 1;
+        file = base;
+    }
+    size_t n = 0;
+    for (const char *c = file; *c; c++) {
+        if (n + 1 >= size)
+            return false;
+        out[n++] = *c == '\\' ? '/' : *c;
+    }
+    out[n] = '\0';
+    while (out[0] == '.' && out[1] == '/') {
+        size_t skip = 2;
+        while (out[skip] == '/')
+            skip++;
+        memmove(out, out + skip, strlen(out + skip) + 1);
+    }
+    return true;
+}
+
 bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, const enum aiTextureType *types,
                                 int ntypes, const char *mname, const char *slot, bgi_sf_model_image **out,
                                 bool *dropped)
@@ -184,16 +221,34 @@ bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, c
         return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": material \"%s\": the %s texture "
                            "\"%s\" names no embedded image (the file has %u)", md->desc->path, mname, slot, file,
                            md->sc->mNumTextures);
-    char path[BGI_SF_PATH_MAX], name[64];
+    char path[BGI_SF_PATH_MAX], name[64], local[BGI_SF_PATH_MAX];
     if (index >= 0) {
         snprintf(name, sizeof name, "\"*%d\" (embedded image %d)", index, index);
     } else {
+        if (!local_path(file, local, sizeof local))
+            return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": material \"%s\": the %s "
+                               "texture path is too long", md->desc->path, mname, slot);
+        if (strcmp(local, file) != 0 && is_drive_path(file))
+            bgi_sf_warn(md->ctx, "model file \"%s\": material \"%s\": the %s texture \"%.200s\" is a path on "
+                        "another system's drive; it is looked for beside the model", md->desc->path, mname, slot,
+                        file);
+        file = local;
         int n = snprintf(path, sizeof path, "%s%s", file[0] == '/' ? "" : md->dir, file);
         if (n < 0 || n >= (int)sizeof path)
             return bgi_sf_fail(md->ctx, BG_ERR_INVALID_ARGUMENT, "model file \"%s\": material \"%s\": the %s "
                                "texture path is too long", md->desc->path, mname, slot);
         const char *base = strrchr(file, '/');
         snprintf(name, sizeof name, "\"%.60s\"", base ? base + 1 : file);
+    }
+    /* Model viewers render a material whose texture file is missing with its factors, and say which
+     * file: a model is often passed around without every texture. Any other failure to read one
+     * stays an error. */
+    struct stat st;
+    if (index < 0 && stat(path, &st) != 0 && errno == ENOENT) {
+        bgi_sf_warn(md->ctx, "model file \"%s\": material \"%s\": its %s texture file \"%s\" is missing; the "
+                    "material keeps its factors", md->desc->path, mname, slot, path);
+        *dropped = true;
+        return BG_OK;
     }
     bgi_sf_model_image *im = NULL;
     bool fresh = false;
