@@ -97,7 +97,7 @@ typedef struct bg_scenefile_summary {
     size_t objects;      /* analytic objects and mesh objects, instances included */
     size_t meshes;       /* mesh objects (instances included) */
     uint64_t triangles;  /* summed over the mesh objects (an instance counts its triangles again) */
-    uint64_t vertices;   /* summed the same way */
+    uint64_t vertices;   /* summed the same way, as the mesh objects hold them (after welding and creases) */
     size_t lights;
     size_t materials;
     size_t textures;

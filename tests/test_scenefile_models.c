@@ -17,6 +17,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "util_gpu.h"
 #include "util_warnings.h"
 #include "scenefile/scenefile_internal.h"
 
@@ -340,6 +341,79 @@ static void windows_texture_paths_resolve_beside_the_model(void **state)
     rmdir(dir);
 }
 
+/* An STL repeats every corner for each face (24 vertices for an octahedron's 8 faces, each with its
+ * facet normal): smoothing welds them first, so the command's smooth angle (--smooth) and a JSON
+ * mesh's "normals": "smooth" both give the 6 shared vertices and the same image, which differs from
+ * the faceted one. Before the weld, --smooth left an STL byte-identical. */
+static void stl_smoothing_welds_its_vertices(void **state)
+{
+    (void)state;
+    static const double v[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    char dir[] = "/tmp/bg_sf_stl_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char stl[128], text[4096];
+    snprintf(stl, sizeof stl, "%s/octa.stl", dir);
+    size_t n = (size_t)snprintf(text, sizeof text, "solid octa\n");
+    for (int t = 0; t < 8; t++) {
+        const double *a = v[f[t][0]], *b = v[f[t][1]], *c = v[f[t][2]];
+        double nx = a[0] + b[0] + c[0], ny = a[1] + b[1] + c[1], nz = a[2] + b[2] + c[2];
+        double len = sqrt(nx * nx + ny * ny + nz * nz);
+        n += (size_t)snprintf(text + n, sizeof text - n, "facet normal %g %g %g\nouter loop\n", nx / len, ny / len,
+                              nz / len);
+        for (int k = 0; k < 3; k++)
+            n += (size_t)snprintf(text + n, sizeof text - n, "vertex %g %g %g\n", v[f[t][k]][0], v[f[t][k]][1],
+                                  v[f[t][k]][2]);
+        n += (size_t)snprintf(text + n, sizeof text - n, "endloop\nendfacet\n");
+    }
+    snprintf(text + n, sizeof text - n, "endsolid octa\n");
+    write_file(stl, text);
+    enum { W = 48, H = 36 };
+    unsigned char *image[3];
+    size_t vertices[3];
+    for (int way = 0; way < 3; way++) {
+        bg_scene *s = NULL;
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        bg_scenefile_result r;
+        char message[1024];
+        bg_status st;
+        if (way < 2) { /* the file as it is, then with the command's smooth angle */
+            bg_scenefile_desc d = {.smooth_angle_degrees = way == 1 ? 180.0 : 0.0};
+            st = bg_scenefile_load_model(stl, &d, s, &r, message, sizeof message);
+        } else { /* a JSON scene's key, with the camera the model load framed */
+            char json[512];
+            snprintf(json, sizeof json, "{\"camera\": {\"position\": [2.2, 1.6, 3.0], \"look_at\": [0, 0, 0]},"
+                     "\"lights\": [{\"position\": [3, 4, 5]}],"
+                     "\"objects\": [{\"mesh\": {\"file\": \"%s\", \"normals\": \"smooth\"}}]}", stl);
+            st = bg_scenefile_load_string(json, NULL, s, &r, message, sizeof message);
+        }
+        if (st != BG_OK)
+            fail_msg("way %d: %s", way, message);
+        vertices[way] = (size_t)r.summary.vertices;
+        bg_render_settings set = r.settings;
+        if (way < 2) {
+            /* The same view as the JSON scene's, so that images compare. */
+            bg_camera cam = bg_camera_init();
+            cam.position = bg_vec3_make(2.2, 1.6, 3.0);
+            cam.look_at = bg_vec3_make(0, 0, 0);
+            assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
+            assert_int_equal(bg_scene_commit(s), BG_OK);
+        }
+        set.samples = 1;
+        image[way] = util_cpu_reference(s, &set, W, H);
+        bg_scene_destroy(s);
+    }
+    print_message("vertices: file %zu, --smooth %zu, \"smooth\" %zu\n", vertices[0], vertices[1], vertices[2]);
+    assert_int_equal(vertices[0], 24);
+    assert_int_equal(vertices[1], 6);
+    assert_int_equal(vertices[2], 6);
+    assert_true(memcmp(image[0], image[1], (size_t)W * H * 4) != 0);
+    remove(stl);
+    rmdir(dir);
+    for (int way = 0; way < 3; way++)
+        free(image[way]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -351,6 +425,7 @@ int main(void)
         cmocka_unit_test(a_broken_model_is_refused),
         cmocka_unit_test(model_materials_say_what_they_leave_out),
         cmocka_unit_test(windows_texture_paths_resolve_beside_the_model),
+        cmocka_unit_test(stl_smoothing_welds_its_vertices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -57,13 +57,31 @@ static bg_mat4 compose(bg_mat4 outer, bg_mat4 inner)
     return bg_mat4_mul(outer, inner);
 }
 
-static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t material, bg_mat4 m, uint32_t *out)
+/* True when the mesh's normals are its faces' own (every triangle's three corners alike), as an STL
+ * file's facet normals are: they say nothing a renderer's geometric normal does not, so the mesh is
+ * taken as one without normals, which smoothing may fill in. */
+static bool normals_are_facets(const struct aiMesh *am)
+{
+    for (unsigned f = 0; f < am->mNumFaces; f++) {
+        const struct aiFace *face = &am->mFaces[f];
+        if (face->mNumIndices != 3)
+            continue;
+        const struct aiVector3D *a = &am->mNormals[face->mIndices[0]], *b = &am->mNormals[face->mIndices[1]],
+                                *c = &am->mNormals[face->mIndices[2]];
+        if (a->x != b->x || a->y != b->y || a->z != b->z || a->x != c->x || a->y != c->y || a->z != c->z)
+            return false;
+    }
+    return true;
+}
+
+static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t material, bg_mat4 m, uint32_t *out,
+                              size_t *out_vertices)
 {
     bgi_sf_ctx *ctx = md->ctx;
     size_t nv = am->mNumVertices, nt = 0;
     for (unsigned f = 0; f < am->mNumFaces; f++)
         nt += am->mFaces[f].mNumIndices == 3;
-    bool file_normals = md->desc->normals == BGI_SF_NORMALS_FILE && am->mNormals;
+    bool file_normals = md->desc->normals == BGI_SF_NORMALS_FILE && am->mNormals && !normals_are_facets(am);
     /* "smooth" in a scene file smooths whatever the file has; desc->smooth_angle_degrees only fills
      * in the normals a file lacks. */
     double smooth = md->desc->normals == BGI_SF_NORMALS_SMOOTH ? 180.0
@@ -99,6 +117,12 @@ static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t mater
             memcpy(&idx[3 * t], am->mFaces[f].mIndices, 3 * sizeof *idx);
             t++;
         }
+    /* Averaging needs shared vertices: files that repeat every corner per face (STL) get them here. */
+    if (smooth > 0 && (st = bgi_sf_weld_vertices(p, uv, &nv, idx, nt)) != BG_OK) {
+        st = bgi_sf_fail(ctx, st, "out of memory welding the vertices of mesh \"%s\" of %s (%zu vertices)",
+                         am->mName.data, md->desc->path, nv);
+        goto done;
+    }
     if (smooth > 0 && (st = bgi_sf_crease_normals(&p, &uv, &nv, idx, nt, smooth, &n)) != BG_OK) {
         st = bgi_sf_fail(ctx, st, "%s computing the normals of mesh \"%s\" of %s (%zu vertices)",
                          st == BG_ERR_LIMIT ? "more vertices than 32-bit indices reach" : "out of memory",
@@ -115,6 +139,7 @@ static bg_status add_new_mesh(model *md, const struct aiMesh *am, uint32_t mater
     d.transform = m;
     d.casts_shadows = md->desc->casts_shadows;
     st = bg_scene_add_mesh(ctx->scene, &d, out);
+    *out_vertices = nv;
     if (st != BG_OK) {
         char what[512];
         snprintf(what, sizeof what, "mesh \"%.200s\" of %.255s", am->mName.data, md->desc->path);
@@ -143,7 +168,7 @@ static bg_status add_mesh(model *md, unsigned index, bg_mat4 m)
         if (st != BG_OK)
             return bgi_sf_scene_fail(md->ctx, st, "a mesh instance");
     } else {
-        BGI_SF_TRY(add_new_mesh(md, am, material, m, &id));
+        BGI_SF_TRY(add_new_mesh(md, am, material, m, &id, &md->first_vertices[index]));
         md->first[index] = id;
     }
     bg_scenefile_summary *s = &md->ctx->out->summary;
@@ -151,7 +176,7 @@ static bg_status add_mesh(model *md, unsigned index, bg_mat4 m)
     s->meshes++;
     for (unsigned f = 0; f < am->mNumFaces; f++)
         s->triangles += am->mFaces[f].mNumIndices == 3;
-    s->vertices += am->mNumVertices;
+    s->vertices += md->first_vertices[index];
     for (unsigned v = 0; v < am->mNumVertices; v++)
         bgi_sf_summary_point(s, m, am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
     md->added++;
@@ -348,7 +373,8 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
     md.dir[dl] = '\0';
     md.materials = calloc(sc->mNumMaterials + 1, sizeof *md.materials);
     md.first = calloc(sc->mNumMeshes + 1, sizeof *md.first);
-    if (!md.materials || !md.first)
+    md.first_vertices = calloc(sc->mNumMeshes + 1, sizeof *md.first_vertices);
+    if (!md.materials || !md.first || !md.first_vertices)
         st = bgi_sf_fail(ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", desc->path);
     if (st == BG_OK)
         st = walk(&md, sc->mRootNode, desc->transform, 0);
@@ -360,6 +386,7 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc)
         st = read_lights(&md);
     free(md.materials);
     free(md.first);
+    free(md.first_vertices);
     bgi_sf_model_images_free(&md);
     aiReleaseImport(sc);
     return st;

@@ -32,6 +32,7 @@ typedef struct bgi_sf_model {
     char dir[BGI_SF_PATH_MAX];  /* the model's folder: its texture paths are relative to it */
     uint32_t *materials;        /* per file material, 0 until mapped */
     uint32_t *first;            /* per file mesh, its first object (later nodes instance it) */
+    size_t *first_vertices;     /* per file mesh, the vertices its object holds (after welds and creases) */
     size_t added;               /* mesh objects added */
     bgi_sf_model_image **images; /* every image read so far, each allocated alone so that pointers stay */
     size_t image_count, image_capacity;

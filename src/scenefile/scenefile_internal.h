@@ -209,6 +209,13 @@ bg_status bgi_sf_load_model(bgi_sf_ctx *ctx, const bgi_sf_model_desc *desc);
 bg_status bgi_sf_crease_normals(float **p, float **uv, size_t *nv, uint32_t *idx, size_t nt, double angle_degrees,
                                 float **n);
 
+/* ---- weld.c ---- */
+
+/* Joins the vertices of equal position (and uv, where uv is not NULL), bit for bit, before normals are
+ * averaged over shared vertices: p and uv are compacted in place (*nv shrinks), idx (3 nt) rewritten.
+ * BG_ERR_OUT_OF_MEMORY leaves everything as it was. */
+bg_status bgi_sf_weld_vertices(float *p, float *uv, size_t *nv, uint32_t *idx, size_t nt);
+
 /* ---- desc_options.c: what the caller's desc asks beyond the file ---- */
 
 /* desc's values in range, and none that a JSON scene (model false) cannot take; the failure names
