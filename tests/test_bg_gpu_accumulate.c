@@ -3,6 +3,7 @@
  * on every plan, in RGBA8 and RGBA32F, and with pixels the CPU reference renders (walks that run
  * out); the resolve into a texture gives the same bytes; a cancelled call and every refused argument
  * leave the sum as it was; a camera move compiles no program. */
+#include <limits.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -184,7 +185,7 @@ static void refusals_and_cancels_change_nothing(void **state)
     struct {
         bg_status st;
         const char *words;
-    } refused[8];
+    } refused[10];
     int n = 0;
 #define REFUSE(call, words_)                                                                                          \
     do {                                                                                                           \
@@ -201,6 +202,9 @@ static void refusals_and_cancels_change_nothing(void **state)
     REFUSE(bg_render_gpu_accumulate(r, s, &set, a, 1, 1), "first = 1, but the accumulation holds 2 samples");
     REFUSE(bg_render_gpu_accumulate(r, s, &set, a, 2, 0), "are not within the 4 of settings.samples");
     REFUSE(bg_render_gpu_accumulate(r, s, &set, a, 2, 3), "are not within the 4 of settings.samples");
+    /* Ends past INT_MAX are written as they are, not wrapped to a negative number. */
+    REFUSE(bg_render_gpu_accumulate(r, s, &set, a, 1, INT_MAX), "[1, 2147483648) are not within");
+    REFUSE(bg_render_gpu_accumulate(r, s, &set, a, INT_MAX, 1), "[2147483647, 2147483648) are not within");
     REFUSE(bg_render_gpu_accumulate(r, s, &eight, a, 2, 1), "of the pattern of 4");
     expect_ok(other, bg_accumulation_create(other, W, H, &b), "another renderer's");
     REFUSE(bg_render_gpu_accumulate(r, s, &set, b, 0, 1), "made by another renderer");

@@ -196,8 +196,9 @@ bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const
         return bgi_gpu_fail_checked(r, st, message);
     int n = view.samples;
     if (count < 1 || first < 0 || first > n - count)
-        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "samples [first, first + count) = [%d, %d) are not within "
-                            "the %d of settings.samples", first, first + count, n);
+        /* The end in 64 bits: first + count of two large ints would overflow in the message. */
+        return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "samples [first, first + count) = [%d, %lld) are not within "
+                            "the %d of settings.samples", first, (long long)first + count, n);
     if (first > 0 && first != a->samples)
         return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "first = %d, but the accumulation holds %d samples (0 starts "
                             "over)", first, a->samples);
