@@ -198,12 +198,55 @@ static void visible_area_lights_are_drawn(void **state)
     bg_scene_destroy(s);
 }
 
+/* A visible rectangle whose shape no renderer can draw (edges of 1e-120 or 1e200, a 1000 x 1e-4
+ * strip) is refused by the call that adds it, naming the shape, and in a scene file naming lights[i]:
+ * before, the add took it and every later commit failed on "the shape of visible light 0". The
+ * same rectangles are accepted when they only light the scene, and an ordinary visible one commits. */
+static void undrawable_visible_shapes_are_refused_when_added(void **state)
+{
+    (void)state;
+    static const struct {
+        double u, v;
+        const char *why;
+    } cases[] = {{1e-120, 1e-120, "outside [1e-100, 1e100]"}, {1e200, 1e200, "is not finite"},
+                 {1000, 1e-4, "is singular"}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        bg_scene *s = NULL;
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        bg_light l = bg_light_init();
+        l.type = BG_LIGHT_RECTANGLE;
+        l.edge_u = bg_vec3_make(cases[i].u, 0, 0);
+        l.edge_v = bg_vec3_make(0, 0, cases[i].v);
+        uint32_t h;
+        assert_int_equal(bg_scene_add_light(s, &l, &h), BG_OK); /* not drawn: it only lights */
+        l.visible = true;
+        assert_int_equal(bg_scene_add_light(s, &l, &h), BG_ERR_INVALID_ARGUMENT);
+        print_message("%s\n", bg_scene_error_message(s));
+        assert_non_null(strstr(bg_scene_error_message(s), "bg_scene_add_light: visible shape (edge_u, edge_v)"));
+        assert_non_null(strstr(bg_scene_error_message(s), cases[i].why));
+        assert_int_equal(bg_scene_commit(s), BG_OK); /* the refused light left nothing behind */
+        bg_scene_destroy(s);
+
+        char json[256], message[1024];
+        snprintf(json, sizeof json, "{\"lights\": [{\"rectangle\": {\"corner\": [0, 3, 0], \"edge_u\": [%g, 0, 0], "
+                 "\"edge_v\": [0, 0, %g]}, \"visible\": true}]}", cases[i].u, cases[i].v);
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        bg_scenefile_result r;
+        assert_int_equal(bg_scenefile_load_string(json, NULL, s, &r, message, sizeof message), BG_ERR_INVALID_ARGUMENT);
+        print_message("%s\n", message);
+        assert_non_null(strstr(message, "lights[0]"));
+        assert_non_null(strstr(message, cases[i].why));
+        bg_scene_destroy(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(area_lights_and_a_lens_load_as_built),
         cmocka_unit_test(the_zeros_are_a_point_light_and_a_pinhole),
         cmocka_unit_test(visible_area_lights_are_drawn),
+        cmocka_unit_test(undrawable_visible_shapes_are_refused_when_added),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -52,6 +52,9 @@ bg_status bgi_camera_derive(bg_scene *scene, const char *where, const bg_camera 
     return BG_OK;
 }
 
+static bool shows_shape(const bg_light *l);
+static void light_shape_item(const bg_light *l, bg_object_item *out);
+
 bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *in, bg_light *out)
 {
     bg_status st = bgi_validate_light(scene, where, in);
@@ -65,7 +68,18 @@ bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *i
      * normalised anyway. bgi_vec3_normalize also takes directions whose length overflows. */
     bg_vec3 d = bgi_vec3_length(in->direction) == 0.0 ? bg_vec3_make(0, -1, 0) : in->direction;
     out->direction = bgi_vec3_normalize(d);
-    return BG_OK;
+    /* A visible light's shape is checked here, as an object would be when added, so that a shape
+     * no renderer can draw (edges of 1e-120 or 1e200, a 1000 x 1e-4 strip) is refused by the call
+     * that set it, rather than failing every later commit. */
+    if (shows_shape(out)) {
+        bg_object_item item;
+        bg_object_data shape;
+        light_shape_item(out, &item);
+        st = bgi_object_derive_shape(scene, where, in->type == BG_LIGHT_SPHERE ? "visible shape (radius)"
+                                                                                : "visible shape (edge_u, edge_v)",
+                                     &item, &shape);
+    }
+    return st;
 }
 
 /* Grows the committed arrays to the live counts, and the commit's own arrays; after each step the
@@ -75,6 +89,37 @@ bg_status bgi_light_derive(bg_scene *scene, const char *where, const bg_light *i
 static bool shows_shape(const bg_light *l)
 {
     return l->visible && ((l->type == BG_LIGHT_SPHERE && l->radius >= 1e-100) || l->type == BG_LIGHT_RECTANGLE);
+}
+
+/* The object a visible area light shows (bg_light.visible): a sphere of its radius, or the
+ * rectangle of its edges, casting no shadow. */
+static void light_shape_item(const bg_light *l, bg_object_item *out)
+{
+    memset(out, 0, sizeof *out);
+    bool sphere = l->type == BG_LIGHT_SPHERE;
+    out->desc = bg_object_desc_init(sphere ? BG_SHAPE_SPHERE : BG_SHAPE_RECTANGLE, 0);
+    out->desc.casts_shadows = false;
+    if (sphere) {
+        out->desc.transform = bg_mat4_mul(bg_mat4_translate(l->position.x, l->position.y, l->position.z),
+                                          bg_mat4_scale(l->radius, l->radius, l->radius));
+    } else {
+        /* The prototype square [-1, 1]^2 of y = 0 onto the parallelogram: x along edge_u / 2, z
+         * along edge_v / 2, y along their unit normal times the shorter half edge. */
+        bg_vec3 u = l->edge_u, v = l->edge_v;
+        bg_vec3 n = bgi_vec3_normalize(bg_vec3_make(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z,
+                                                    u.x * v.y - u.y * v.x));
+        double lu = bgi_vec3_length(u), lv = bgi_vec3_length(v), k = 0.5 * (lu < lv ? lu : lv);
+        const double cols[3][3] = {{0.5 * u.x, 0.5 * u.y, 0.5 * u.z}, {k * n.x, k * n.y, k * n.z},
+                                   {0.5 * v.x, 0.5 * v.y, 0.5 * v.z}};
+        const double c[3] = {l->position.x + 0.5 * (u.x + v.x), l->position.y + 0.5 * (u.y + v.y),
+                             l->position.z + 0.5 * (u.z + v.z)};
+        out->desc.transform = bg_mat4_identity();
+        for (int r = 0; r < 3; r++) {
+            for (int j = 0; j < 3; j++)
+                out->desc.transform.m[r][j] = cols[j][r];
+            out->desc.transform.m[r][3] = c[r];
+        }
+    }
 }
 
 /* The pending visible area lights: each adds an object and its material at commit. */
@@ -228,31 +273,7 @@ static bg_status derive_light_shapes(bg_scene *s)
         uint32_t material = s->p_materials.count++;
         materials[material] = m;
         bg_object_item item;
-        memset(&item, 0, sizeof item);
-        bool sphere = l->type == BG_LIGHT_SPHERE;
-        item.desc = bg_object_desc_init(sphere ? BG_SHAPE_SPHERE : BG_SHAPE_RECTANGLE, 0);
-        item.desc.casts_shadows = false;
-        if (sphere) {
-            item.desc.transform = bg_mat4_mul(bg_mat4_translate(l->position.x, l->position.y, l->position.z),
-                                              bg_mat4_scale(l->radius, l->radius, l->radius));
-        } else {
-            /* The prototype square [-1, 1]^2 of y = 0 onto the parallelogram: x along edge_u / 2, z
-             * along edge_v / 2, y along their unit normal times the shorter half edge. */
-            bg_vec3 u = l->edge_u, v = l->edge_v;
-            bg_vec3 n = bgi_vec3_normalize(bg_vec3_make(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z,
-                                                        u.x * v.y - u.y * v.x));
-            double lu = bgi_vec3_length(u), lv = bgi_vec3_length(v), k = 0.5 * (lu < lv ? lu : lv);
-            const double cols[3][3] = {{0.5 * u.x, 0.5 * u.y, 0.5 * u.z}, {k * n.x, k * n.y, k * n.z},
-                                       {0.5 * v.x, 0.5 * v.y, 0.5 * v.z}};
-            const double c[3] = {l->position.x + 0.5 * (u.x + v.x), l->position.y + 0.5 * (u.y + v.y),
-                                 l->position.z + 0.5 * (u.z + v.z)};
-            item.desc.transform = bg_mat4_identity();
-            for (int r = 0; r < 3; r++) {
-                for (int j = 0; j < 3; j++)
-                    item.desc.transform.m[r][j] = cols[j][r];
-                item.desc.transform.m[r][3] = c[r];
-            }
-        }
+        light_shape_item(l, &item);
         char where[64];
         snprintf(where, sizeof where, "%s: the shape of visible light %u", where_commit, (unsigned)i);
         uint32_t k = s->p_objects.count;
