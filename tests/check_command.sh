@@ -244,6 +244,13 @@ for mask in 022 027; do
 	done
 	rm "$w/o.png" "$w/o.pfm"
 done
+# A replaced output keeps its own mode: a private render stays private.
+printf 'private\n' >"$w/o.png"
+chmod 600 "$w/o.png"
+expect 0 "render over a 0600 PNG" "$cli" render "$out/sphere.json" --size 8x8 --renderer cpu -o "$w/o.png"
+mode=$(ls -l "$w/o.png" | cut -c1-10)
+[ "$mode" = -rw------- ] || fail "render over a 0600 PNG left mode $mode, want -rw-------"
+rm "$w/o.png"
 # An output that is a symbolic link stays one: the file it points to is replaced (or made).
 ln -s real.png "$w/link.png"
 expect 0 "render through a link" "$cli" render "$out/sphere.json" --size 8x8 --renderer cpu -o "$w/link.png"

@@ -107,7 +107,9 @@ static bool open_directly(cli_output *out, char *why, size_t size)
     return true;
 }
 
-static bool open_temporary(cli_output *out, char *why, size_t size)
+/* The new file gets mode: a replaced file's own (a render folder's 0600 outputs stay private),
+ * else what a plain create would give. */
+static bool open_temporary(cli_output *out, mode_t mode, char *why, size_t size)
 {
     out->temp = temp_template(out->target);
     if (!out->temp)
@@ -119,7 +121,7 @@ static bool open_temporary(cli_output *out, char *why, size_t size)
         out->temp = NULL;
         return fail(why, size, "%s: cannot create: %s", out->name, strerror(err));
     }
-    if (fchmod(fd, create_mode) != 0 || !(out->file = fdopen(fd, "wb"))) {
+    if (fchmod(fd, mode) != 0 || !(out->file = fdopen(fd, "wb"))) {
         int err = errno;
         close(fd);
         return fail(why, size, "%s: cannot create: %s", out->name, strerror(err));
@@ -144,7 +146,7 @@ bool cli_output_open(cli_output *out, const char *path, char *why, size_t size)
     else if (exists && !S_ISREG(st.st_mode))
         ok = open_directly(out, why, size);
     else
-        ok = open_temporary(out, why, size);
+        ok = open_temporary(out, exists ? st.st_mode & 07777 : create_mode, why, size);
     if (!ok)
         cli_output_discard(out);
     return ok;
