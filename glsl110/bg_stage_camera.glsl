@@ -14,3 +14,15 @@ void bg_camera_ray(vec2 frag, vec2 size, vec3 eye, vec3 forward, vec3 right, vec
     dir = vec4(normalize(forward + sx * right + sy * up), -1.0);
     weight = vec4(1.0);
 }
+
+// The orthographic camera (docs/shading.md 1.5): the same window point, with half the view's world
+// extent in extent; rays leave that point of the plane through eye across the view, all along forward.
+void bg_camera_ray_parallel(vec2 frag, vec2 size, vec3 eye, vec3 forward, vec3 right, vec3 up, vec2 extent,
+                            out vec4 origin, out vec4 dir, out vec4 weight)
+{
+    float sx = (2.0 * frag.x / size.x - 1.0) * extent.x;
+    float sy = (2.0 * frag.y / size.y - 1.0) * extent.y;
+    origin = vec4(eye + sx * right + sy * up, -1.0);
+    dir = vec4(forward, -1.0);
+    weight = vec4(1.0);
+}

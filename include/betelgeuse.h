@@ -153,9 +153,15 @@ BG_API const char *bg_scene_error_message(const bg_scene *scene);
 /* Forgets the stored error. */
 BG_API void bg_scene_clear_error(bg_scene *scene);
 
-/* The camera: a pinhole, or a thin lens for depth of field (docs/shading.md 1.4). Defaults
- * (bg_camera_init): at (0, 0, 5) looking at the origin, up (0, 1, 0), vertical field of view 45
- * degrees, a pinhole. The aspect ratio comes from the image size. A lens of aperture_radius > 0 sits
+/* How camera rays leave the camera: from one point (a perspective view, fov_y_degrees), or parallel
+ * along the view direction from a rectangle across it (an orthographic view, half_height), as CAD
+ * and technical drawings show a model. */
+typedef enum bg_projection { BG_PROJECTION_PERSPECTIVE = 0, BG_PROJECTION_ORTHOGRAPHIC } bg_projection;
+
+/* The camera: a pinhole, or a thin lens for depth of field (docs/shading.md 1.4), or an orthographic
+ * view (docs/shading.md 1.5). Defaults (bg_camera_init): at (0, 0, 5) looking at the origin, up
+ * (0, 1, 0), perspective with a vertical field of view of 45 degrees, a pinhole; half_height 1 for
+ * an orthographic view. The aspect ratio comes from the image size. A lens of aperture_radius > 0 sits
  * at position, across the view; each camera sample passes through its own point of the lens
  * (stratified and scrambled, docs/shading.md 1.3) towards where the pinhole ray meets the plane in
  * focus, focus_distance ahead along the view direction, so points on that plane stay sharp and the
@@ -169,6 +175,10 @@ typedef struct bg_camera {
     double aperture_radius; /* the lens radius in world units, finite and >= 0; 0 = the pinhole, the
                                image of a camera without a lens bit for bit */
     double focus_distance;  /* finite and >= 0; 0 = |look_at - position| (the plane through look_at) */
+    bg_projection projection; /* ORTHOGRAPHIC: rays parallel to look_at - position, leaving the plane
+                                 through position across the view; no lens (aperture_radius 0) */
+    double half_height;     /* ORTHOGRAPHIC: half the view's height in world units, in [1e-100, 1e100];
+                               its half-width is half_height times the image's aspect ratio */
 } bg_camera;
 
 /* The default camera described above. */

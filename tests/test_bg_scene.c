@@ -765,7 +765,7 @@ static void test_commit_camera_and_lights(void **state)
     bg_scene *s = small_scene();
     const bg_camera_data *c = &bgi_scene_committed(s)->camera;
     assert_true(fabs(c->forward[2] + 1) < 1e-15 && fabs(c->right[0] - 1) < 1e-15 && fabs(c->up[1] - 1) < 1e-15);
-    assert_true(fabs(c->tan_half_fov_y - tan(22.5 * 3.14159265358979323846 / 180)) < 1e-15);
+    assert_true(fabs(c->half_y - tan(22.5 * 3.14159265358979323846 / 180)) < 1e-15);
     bg_camera cam = bg_camera_init();
     cam.position = bg_vec3_make(10, 0, 0);
     cam.up = bg_vec3_make(0, 3, 0.5); /* not perpendicular: the basis makes it so */
@@ -792,7 +792,7 @@ static void test_commit_camera_and_lights(void **state)
     double fx = c->right[1] * c->up[2] - c->right[2] * c->up[1];
     assert_true(fabs(fx + c->forward[0]) < 1e-15);
     assert_true(c->up[1] > 0.9);
-    assert_true(fabs(c->tan_half_fov_y - 1.0) < 1e-15);
+    assert_true(fabs(c->half_y - 1.0) < 1e-15);
     assert_true(st->lights[1].direction.x == 0 && st->lights[1].direction.y == -1 && st->lights[1].direction.z == 0);
     /* A direction whose length overflows a double still normalises (not to zero). */
     sun.direction = bg_vec3_make(DBL_MAX, -DBL_MAX, DBL_MAX);

@@ -50,7 +50,7 @@ static void assert_framed(const bg_scene_state *st, const char *name)
         double z = d[0] * c->forward[0] + d[1] * c->forward[1] + d[2] * c->forward[2];
         double x = d[0] * c->right[0] + d[1] * c->right[1] + d[2] * c->right[2];
         double y = d[0] * c->up[0] + d[1] * c->up[1] + d[2] * c->up[2];
-        if (!(z > 0 && fabs(x) < z * c->tan_half_fov_y && fabs(y) < z * c->tan_half_fov_y))
+        if (!(z > 0 && fabs(x) < z * c->half_y && fabs(y) < z * c->half_y))
             fail_msg("%s: object %u is out of view (x %g, y %g, z %g)", name, i + 1, x, y, z);
     }
 }

@@ -414,6 +414,50 @@ static void stl_smoothing_welds_its_vertices(void **state)
         free(image[way]);
 }
 
+/* An orthographic glTF camera (xmag 2.4, ymag 1.6) stays orthographic: its half-height is ymag and
+ * the image takes its aspect xmag / ymag. Before, it became a 45-degree perspective camera without a
+ * word. A JSON camera says the same with "projection" and "half_height"; a lens on it, a bad name or
+ * a half-height of 0 is refused by its path. */
+static void orthographic_cameras_load(void **state)
+{
+    (void)state;
+    bg_scenefile_result r;
+    bg_scene *s = load("tests/data/tetra_ortho.gltf", &r);
+    assert_true(r.camera_from_file);
+    assert_int_equal(r.camera.projection, BG_PROJECTION_ORTHOGRAPHIC);
+    assert_true(fabs(r.camera.half_height - 1.6) < 1e-6);
+    assert_int_equal(r.image.width, 640);
+    assert_int_equal(r.image.height, 427);
+    bg_scene_destroy(s);
+
+    static const char ok[] = "{\"camera\": {\"position\": [0, 0, 5], \"projection\": \"orthographic\", "
+                             "\"half_height\": 2.5}, \"objects\": [{\"sphere\": {}}]}";
+    char message[1024];
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    if (bg_scenefile_load_string(ok, NULL, s, &r, message, sizeof message) != BG_OK)
+        fail_msg("%s", message);
+    assert_int_equal(r.camera.projection, BG_PROJECTION_ORTHOGRAPHIC);
+    assert_true(r.camera.half_height == 2.5);
+    bg_scene_destroy(s);
+    static const struct {
+        const char *camera, *words;
+    } bad[] = {
+        {"\"projection\": \"fisheye\"", "camera.projection: \"fisheye\" is not one of \"perspective\", \"orthographic\""},
+        {"\"projection\": \"orthographic\", \"half_height\": 0", "camera.half_height"},
+        {"\"projection\": \"orthographic\", \"aperture_radius\": 0.2", "depth of field needs a perspective camera"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char json[256];
+        snprintf(json, sizeof json, "{\"camera\": {%s}, \"objects\": [{\"sphere\": {}}]}", bad[i].camera);
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        bg_status st = bg_scenefile_load_string(json, NULL, s, &r, message, sizeof message);
+        bg_scene_destroy(s);
+        print_message("%s\n", message);
+        if (st == BG_OK || !strstr(message, bad[i].words))
+            fail_msg("%s: status %d, message \"%s\" lacks \"%s\"", bad[i].camera, st, message, bad[i].words);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -421,6 +465,7 @@ int main(void)
         cmocka_unit_test(a_model_without_camera_or_light_gets_defaults),
         cmocka_unit_test(a_gltf_brings_its_camera_and_light),
         cmocka_unit_test(gltf_field_of_view_on_every_assimp),
+        cmocka_unit_test(orthographic_cameras_load),
         cmocka_unit_test(a_scene_file_places_a_model),
         cmocka_unit_test(a_broken_model_is_refused),
         cmocka_unit_test(model_materials_say_what_they_leave_out),

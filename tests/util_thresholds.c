@@ -29,7 +29,7 @@ void util_thresholds_catch_half_pixel_offset(const gpu_threshold table[SCENE_COU
         bg_camera cam = cd->camera;
         double dx = cam.look_at.x - cam.position.x, dy = cam.look_at.y - cam.position.y,
                dz = cam.look_at.z - cam.position.z;
-        double shift = sqrt(dx * dx + dy * dy + dz * dz) * cd->tan_half_fov_y * 2.0 / height * 0.5;
+        double shift = sqrt(dx * dx + dy * dy + dz * dz) * cd->half_y * 2.0 / height * 0.5;
         cam.look_at.x += cd->right[0] * shift;
         cam.look_at.y += cd->right[1] * shift;
         cam.look_at.z += cd->right[2] * shift;

@@ -332,9 +332,14 @@ int cli_info(int argc, char **argv)
         printf("bounds     %s\n", s->unbounded ? "unbounded (planes only)" : "none (empty)");
     char which[192];
     camera_choice(&o, &file, which, sizeof which);
-    printf("camera     (%g, %g, %g) looking at (%g, %g, %g), fov_y %g degrees%s\n", file.camera.position.x,
-           file.camera.position.y, file.camera.position.z, file.camera.look_at.x, file.camera.look_at.y,
-           file.camera.look_at.z, file.camera.fov_y_degrees, which);
+    char projection[96];
+    if (file.camera.projection == BG_PROJECTION_ORTHOGRAPHIC)
+        snprintf(projection, sizeof projection, "orthographic, half_height %g", file.camera.half_height);
+    else
+        snprintf(projection, sizeof projection, "fov_y %g degrees", file.camera.fov_y_degrees);
+    printf("camera     (%g, %g, %g) looking at (%g, %g, %g), %s%s\n", file.camera.position.x, file.camera.position.y,
+           file.camera.position.z, file.camera.look_at.x, file.camera.look_at.y, file.camera.look_at.z, projection,
+           which);
     /* Only a lens is worth a line: a pinhole's focus distance changes nothing. */
     if (file.camera.aperture_radius > 0) {
         if (file.camera.focus_distance > 0)

@@ -257,6 +257,15 @@ static void read_camera(model *md, int number)
         double h = floor(out->image.width / aspect + 0.5);
         out->image.height = h < 1 ? 1 : h > BG_MAX_IMAGE_SIDE ? BG_MAX_IMAGE_SIDE : (int)h;
     }
+    /* An orthographic camera (glTF's "orthographic": assimp hands xmag over as the half-width and
+     * xmag / ymag as the aspect): its half-height follows, and the image takes its aspect above. */
+    if (c->mOrthographicWidth > 0 && isfinite(c->mOrthographicWidth)) {
+        out->camera.projection = BG_PROJECTION_ORTHOGRAPHIC;
+        out->camera.half_height = c->mOrthographicWidth / aspect;
+        out->camera_from_file = true;
+        out->camera_number = number;
+        return;
+    }
     double fov = 0.0;
     if (c->mHorizontalFOV > 0 && isfinite(c->mHorizontalFOV))
         fov = gltf ? bgi_sf_gltf_fov_y(c->mHorizontalFOV, has_aspect ? aspect : 0.0, aiGetVersionMajor(),

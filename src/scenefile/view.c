@@ -7,8 +7,10 @@
 bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v)
 {
     static const char *const keys[] = {"position", "look_at", "up", "fov_y", "aperture_radius", "focus_distance",
-                                       NULL};
+                                       "projection", "half_height", NULL};
+    static const char *const projections[] = {"perspective", "orthographic", NULL};
     static const bgi_sf_range fov = {0.0, 180.0, true, true};
+    static const bgi_sf_range half_height = {1e-100, 1e100, false, false};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_camera *c = &ctx->out->camera;
     BGI_SF_TRY(bgi_sf_field_vec3(ctx, v, "position", &c->position));
@@ -18,6 +20,10 @@ bg_status bgi_sf_read_camera(bgi_sf_ctx *ctx, const cJSON *v)
     /* The thin lens: 0 is the pinhole and "in focus at look_at", the library's own zeros. */
     BGI_SF_TRY(bgi_sf_field_number(ctx, v, "aperture_radius", bgi_sf_nonneg, &c->aperture_radius));
     BGI_SF_TRY(bgi_sf_field_number(ctx, v, "focus_distance", bgi_sf_nonneg, &c->focus_distance));
+    int projection = (int)c->projection;
+    BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "projection", projections, &projection));
+    c->projection = (bg_projection)projection;
+    BGI_SF_TRY(bgi_sf_field_number(ctx, v, "half_height", half_height, &c->half_height));
     ctx->out->camera_from_file = true;
     return BG_OK;
 }

@@ -304,9 +304,17 @@ void bgi_cpu_frame_ray(const bg_camera_data *camera, int width, int height, doub
                       double d[3])
 {
     double aspect = (double)width / (double)height;
-    double sx = (2.0 * fx / width - 1.0) * aspect * camera->tan_half_fov_y;
-    double sy = (1.0 - 2.0 * fy / height) * camera->tan_half_fov_y;
+    double sx = (2.0 * fx / width - 1.0) * aspect * camera->half_y;
+    double sy = (1.0 - 2.0 * fy / height) * camera->half_y;
     bg_v3_set(o, camera->camera.position.x, camera->camera.position.y, camera->camera.position.z);
+    if (camera->orthographic) {
+        /* docs/shading.md 1.5: parallel rays from the view's rectangle through position. */
+        for (int i = 0; i < 3; i++) {
+            o[i] += sx * camera->right[i] + sy * camera->up[i];
+            d[i] = camera->forward[i];
+        }
+        return;
+    }
     for (int i = 0; i < 3; i++)
         d[i] = camera->forward[i] + sx * camera->right[i] + sy * camera->up[i];
     bg_v3_normalize(d);

@@ -45,7 +45,8 @@ bg_status bgi_camera_derive(bg_scene *scene, const char *where, const bg_camera 
     memcpy(out->forward, f, sizeof f);
     memcpy(out->right, r, sizeof r);
     memcpy(out->up, u, sizeof u);
-    out->tan_half_fov_y = tan(c->fov_y_degrees * (3.14159265358979323846 / 360.0));
+    out->orthographic = c->projection == BG_PROJECTION_ORTHOGRAPHIC;
+    out->half_y = out->orthographic ? c->half_height : tan(c->fov_y_degrees * (3.14159265358979323846 / 360.0));
     double to_look = bgi_vec3_length(bg_vec3_make(c->look_at.x - c->position.x, c->look_at.y - c->position.y,
                                                   c->look_at.z - c->position.z));
     out->focus = c->focus_distance > 0.0 ? c->focus_distance : to_look;

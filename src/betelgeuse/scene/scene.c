@@ -137,6 +137,8 @@ bg_camera bg_camera_init(void)
     c.fov_y_degrees = 45.0;
     c.aperture_radius = 0.0;
     c.focus_distance = 0.0;
+    c.projection = BG_PROJECTION_PERSPECTIVE;
+    c.half_height = 1.0;
     return c;
 }
 

@@ -57,7 +57,9 @@ typedef struct bg_object_data {
 typedef struct bg_camera_data {
     bg_camera camera;
     double forward[3], right[3], up[3];
-    double tan_half_fov_y;
+    bool orthographic; /* camera.projection is BG_PROJECTION_ORTHOGRAPHIC */
+    double half_y;     /* the view's half-height: at unit distance ahead (tan(fov_y / 2), perspective),
+                          or in world units (half_height, orthographic) */
     double focus; /* the distance to the plane in focus, along forward (camera.focus_distance, or
                      |look_at - position| for 0); used with camera.aperture_radius > 0 only */
 } bg_camera_data;

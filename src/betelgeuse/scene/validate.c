@@ -53,6 +53,18 @@ bg_status bgi_validate_camera(bg_scene *scene, const char *where, const bg_camer
     if (!isfinite(c->focus_distance) || c->focus_distance < 0.0)
         return FAIL("%s: focus_distance = %g must be finite and >= 0 (0: the distance to look_at)", where,
                     c->focus_distance);
+    if (c->projection != BG_PROJECTION_PERSPECTIVE && c->projection != BG_PROJECTION_ORTHOGRAPHIC)
+        return FAIL("%s: projection = %d is neither BG_PROJECTION_PERSPECTIVE nor BG_PROJECTION_ORTHOGRAPHIC", where,
+                    (int)c->projection);
+    if (c->projection == BG_PROJECTION_ORTHOGRAPHIC) {
+        if (!(c->half_height >= 1e-100 && c->half_height <= 1e100))
+            return FAIL("%s: half_height = %g of an orthographic camera is outside [1e-100, 1e100]", where,
+                        c->half_height);
+        /* A thin lens focuses rays that leave one point; parallel rays have no such point. */
+        if (c->aperture_radius > 0.0)
+            return FAIL("%s: aperture_radius = %g: depth of field needs a perspective camera, and this one is "
+                        "orthographic", where, c->aperture_radius);
+    }
     return BG_OK;
 }
 

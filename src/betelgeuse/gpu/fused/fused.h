@@ -162,6 +162,7 @@ typedef struct gpu_fused_layout {
     int mesh_filters;    /* bgi_gpu_meshes_filters: what the mesh walks and hits test */
     int walk_budget;     /* tree steps one pixel may take in all its walks: what the loop limit leaves */
     bool lens;           /* the camera has an aperture (docs/shading.md 1.4) */
+    bool orthographic;   /* the camera's rays are parallel (docs/shading.md 1.5) */
     bool area;           /* some light is an area light (docs/shading.md 7) */
     bool glossy;         /* some used material is glossy (docs/shading.md 9.1) */
     bool env;            /* misses see the environment (docs/shading.md 7.1) */

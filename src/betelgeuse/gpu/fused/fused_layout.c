@@ -153,6 +153,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
     l.material_count = state->material_count;
     l.light_count = state->light_count;
     l.lens = state->camera.camera.aperture_radius > 0.0;
+    l.orthographic = state->camera.orthographic;
     l.area = bgi_gpu_scene_has_area_lights(state);
     l.objects = bgi_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.objects);
     l.materials = bgi_alloc(a, (l.material_count ? l.material_count : 1) * sizeof *l.materials);

@@ -677,9 +677,10 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
 {
     /* The eye is the origin of the camera-relative frame (origin.c). bg_cw is the path weight and,
      * in a, the ray's level. */
-    bgi_gpu_text_append(t, "vec4 bg_ro, bg_rd, bg_w0;\n"
-                       "bg_camera_ray(gl_FragCoord.xy + bg_shift, bg_size, vec3(0.0), bg_forward, bg_right, bg_up, "
-                       "bg_tan_half, bg_ro, bg_rd, bg_w0);\n"
+    bgi_gpu_text_printf(t, "vec4 bg_ro, bg_rd, bg_w0;\n"
+                       "%s(gl_FragCoord.xy + bg_shift, bg_size, vec3(0.0), bg_forward, bg_right, bg_up, "
+                       "bg_tan_half, bg_ro, bg_rd, bg_w0);\n", bgi_gpu_camera_function(l->orthographic));
+    bgi_gpu_text_append(t, ""
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
     if (l->lens || l->area || l->glossy || l->env_light)

@@ -96,13 +96,10 @@ static void camera_up(const gpu_fused_values *v, uint32_t i, float *out)
     copy3(v->state->camera.up, out);
 }
 
-/* docs/shading.md 1: the horizontal half extent carries the aspect ratio. */
 static void camera_tan_half(const gpu_fused_values *v, uint32_t i, float *out)
 {
     (void)i;
-    double aspect = (double)v->view->pixels.frame_width / (double)v->view->pixels.frame_height;
-    out[0] = (float)(aspect * v->state->camera.tan_half_fov_y);
-    out[1] = (float)v->state->camera.tan_half_fov_y;
+    bgi_gpu_camera_half(v->state, v->view, out);
 }
 
 static void background(const gpu_fused_values *v, uint32_t i, float *out)

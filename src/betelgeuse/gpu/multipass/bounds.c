@@ -5,8 +5,9 @@
  * one monotonic scale, linear and finest where the scene's bounded objects are, compressed beyond,
  * so planes reach the horizon instead of being cut. dmax is therefore the farthest distance from
  * where a level's rays start to the box B holding every bounded object and every plane's anchor
- * point: from the camera for camera rays, and across B for secondary rays (which start on objects;
- * those starting far out on a plane are still right, only with coarser depth steps). */
+ * point: from the camera for camera rays (from anywhere on its lens, or on an orthographic camera's
+ * view rectangle), and across B for secondary rays (which start on objects; those starting far out
+ * on a plane are still right, only with coarser depth steps). */
 #include <math.h>
 #include <string.h>
 
@@ -36,7 +37,8 @@ static void box_add(box3 *b, bool *empty, const double p[3])
     *empty = false;
 }
 
-void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax)
+void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, const gpu_view *view,
+                         double *dmax)
 {
     int levels = settings->max_depth + 1;
     if (settings->dmax > 0.0) {
@@ -45,8 +47,13 @@ void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *
         return;
     }
     const double *e = &state->camera.camera.position.x;
-    /* Camera rays start anywhere on the lens. */
+    /* Camera rays start anywhere on the lens, or on an orthographic view's rectangle (its half
+     * diagonal bounds every start; the aspect is the settings' frame's). */
     double a = state->camera.camera.aperture_radius;
+    if (state->camera.orthographic) {
+        double hy = state->camera.half_y, hx = hy * view->pixels.frame_width / view->pixels.frame_height;
+        a = sqrt(hx * hx + hy * hy);
+    }
     box3 camera = {{e[0] - a, e[1] - a, e[2] - a}, {e[0] + a, e[1] + a, e[2] + a}};
     box3 scene = camera;
     bool empty = true;
@@ -79,18 +86,25 @@ bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, const 
         return false;
     const double *e = &cam->camera.position.x;
     double aspect = (double)frame_width / (double)frame_height;
-    double tx = aspect * cam->tan_half_fov_y, ty = cam->tan_half_fov_y;
+    double tx = aspect * cam->half_y, ty = cam->half_y;
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
     for (int c = 0; c < 8; c++) {
         double p[3] = {(c & 1) ? o->bounds_max[0] : o->bounds_min[0], (c & 2) ? o->bounds_max[1] : o->bounds_min[1],
                        (c & 4) ? o->bounds_max[2] : o->bounds_min[2]};
         double v[3] = {p[0] - e[0], p[1] - e[1], p[2] - e[2]};
         double z = v[0] * cam->forward[0] + v[1] * cam->forward[1] + v[2] * cam->forward[2];
-        /* A corner at or behind the camera plane projects without bound: no rectangle. */
-        if (!(z > 1e-9 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]))))
+        /* A corner at or behind the camera plane projects without bound: no rectangle (parallel
+         * rays project it like any other). */
+        if (!cam->orthographic && !(z > 1e-9 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]))))
             return false;
-        double sx = (v[0] * cam->right[0] + v[1] * cam->right[1] + v[2] * cam->right[2]) / z;
-        double sy = (v[0] * cam->up[0] + v[1] * cam->up[1] + v[2] * cam->up[2]) / z;
+        double sx = v[0] * cam->right[0] + v[1] * cam->right[1] + v[2] * cam->right[2];
+        double sy = v[0] * cam->up[0] + v[1] * cam->up[1] + v[2] * cam->up[2];
+        /* Parallel rays project without the division: a point's place on the view is its offset
+         * across it. */
+        if (!cam->orthographic) {
+            sx /= z;
+            sy /= z;
+        }
         /* The frame's point (sx / tx + 1) W / 2 is the camera stage's gl_FragCoord + shift; GL rows count
          * from the bottom the same way. */
         double px = (sx / tx + 1.0) * 0.5 * frame_width - view->shift[0];

@@ -20,6 +20,7 @@ void bgi_gpu_features_detect(const bg_scene_state *state, bool generic, gpu_feat
     }
     f->mesh = state->mesh_object_count > 0;
     f->lens = state->camera.camera.aperture_radius > 0.0;
+    f->orthographic = state->camera.orthographic;
     f->area = bgi_gpu_scene_has_area_lights(state);
     if (generic) {
         f->transparent = f->aniso = f->coat = f->bounce = true;

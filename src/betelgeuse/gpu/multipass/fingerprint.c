@@ -61,7 +61,8 @@ uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t texture
     mix_doubles(&s, c->forward, 3);
     mix_doubles(&s, c->right, 3);
     mix_doubles(&s, c->up, 3);
-    mix_double(&s, c->tan_half_fov_y);
+    mix_double(&s, c->half_y);
+    mix_double(&s, c->orthographic ? 1.0 : 0.0);
     mix_double(&s, c->camera.aperture_radius);
     mix_double(&s, c->focus);
     mix_doubles(&s, state->ambient, 3);

@@ -33,6 +33,7 @@ typedef struct gpu_features {
     bool generic;     /* specialisation off: every slot, every texture lane */
     bool mesh;        /* some object is a mesh: MESH slot, the mesh textures, the marks of short walks */
     bool lens;        /* the camera has an aperture: the camera pass samples the lens */
+    bool orthographic; /* the camera's rays are parallel (docs/shading.md 1.5) */
     bool area;        /* some light is an area light: shadow and light passes sample its point */
     bool glossy;      /* some material is glossy: ONCE's ior lane marks it (negative), and the
                          reflection pass draws its rays from the lobe */
@@ -141,7 +142,8 @@ uint64_t bgi_gpu_scene_fingerprint(const bg_scene_state *state, uint64_t texture
 
 /* ---- bounds.c ---- */
 /* The dmax of every level 0..max_depth (docs/gpu_pipeline.md); fixed when settings->dmax > 0. */
-void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, double *dmax);
+void bgi_gpu_dmax_levels(const bg_scene_state *state, const bg_render_settings *settings, const gpu_view *view,
+                         double *dmax);
 /* The pixel rectangle (GL window coordinates, bottom-up) that holds every camera ray able to hit a
  * bounded object; false when the object may cover the whole image (or is behind the camera). */
 bool bgi_gpu_object_scissor(const bg_scene_state *state, uint32_t object, const gpu_view *view, int rect[4]);

@@ -495,7 +495,7 @@ static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, siz
     double start = f.timing ? bgi_gpu_now_ms() : 0.0;
     if (f.timing)
         macs_context_finish(r->ctx);
-    bgi_gpu_dmax_levels(state, settings, f.dmax);
+    bgi_gpu_dmax_levels(state, settings, &r->view, f.dmax);
 
     phase_start(&f);
     st = prepare(&f, pf->scene, out->width, out->height);

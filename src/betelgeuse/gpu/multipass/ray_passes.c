@@ -69,8 +69,8 @@ bg_status bgi_gpu_camera_uniforms_set(bg_renderer *r, const bg_scene_state *stat
         rt[i] = (float)c->right[i];
         up[i] = (float)c->up[i];
     }
-    double aspect = (double)fw_px / (double)fh_px;
-    float th[2] = {(float)(aspect * c->tan_half_fov_y), (float)c->tan_half_fov_y};
+    float th[2];
+    bgi_gpu_camera_half(state, &r->view, th);
     macs_status ms = macs_pass_set_uniform(pass, "bg_size", size);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_eye", eye);
     if (!ms) ms = macs_pass_set_uniform(pass, "bg_forward", fw);
@@ -104,8 +104,9 @@ static bg_status build_camera_pass(bg_renderer *r, const bg_scene_state *state, 
     char main[512];
     int n = snprintf(main, sizeof main,
                      "vec4 bg_o0, bg_o1, bg_o2;\n"
-                     "bg_camera_ray(gl_FragCoord.xy + bg_shift, bg_size, bg_eye, bg_forward, bg_right, "
-                     "bg_up, bg_tan_half, bg_o0, bg_o1, bg_o2);\n");
+                     "%s(gl_FragCoord.xy + bg_shift, bg_size, bg_eye, bg_forward, bg_right, "
+                     "bg_up, bg_tan_half, bg_o0, bg_o1, bg_o2);\n",
+                     bgi_gpu_camera_function(r->multipass->features.orthographic));
     if (lens)
         snprintf(main + n, sizeof main - (size_t)n,
                  "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at), %d.0, "

@@ -238,6 +238,11 @@ typedef struct gpu_packed_light {
     float pos[4], rad[3], att[3], spot[4], exponent;
     float edge_u[4], edge_v[4];
 } gpu_packed_light;
+/* The camera stage's function for the projection (camera.c): bg_camera_ray or bg_camera_ray_parallel. */
+const char *bgi_gpu_camera_function(bool orthographic);
+/* bg_tan_half, the view's half extents that the camera stage scales the window point by: at unit
+ * distance (perspective) or in world units (orthographic), the horizontal one times the aspect. */
+void bgi_gpu_camera_half(const bg_scene_state *state, const gpu_view *view, float out[2]);
 /* Whether the committed scene has an area light (a sphere of radius > 0 or a rectangle). */
 bool bgi_gpu_scene_has_area_lights(const bg_scene_state *state);
 /* The distribution uniforms of a pass (docs/shading.md 1.3 and 1.4): bg_pixel_at, the frame column
