@@ -6,8 +6,8 @@
 void bg_lens_ray(vec2 disc, float aperture, float focus, vec3 forward, vec3 right, vec3 up, inout vec4 origin,
                  inout vec4 dir)
 {
-    vec3 target = dir.xyz * (focus / dot(dir.xyz, forward));
+    // target - offset divided by focus: the same direction, and no overflow for a far focus (1e20).
     vec3 offset = aperture * (disc.x * right + disc.y * up);
     origin.xyz += offset;
-    dir.xyz = normalize(target - offset);
+    dir.xyz = normalize(dir.xyz / dot(dir.xyz, forward) - offset / focus);
 }

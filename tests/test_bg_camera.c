@@ -1,5 +1,6 @@
-/* The orthographic camera (bg_camera.projection, docs/shading.md 1.5): parallel rays from the view's
- * rectangle. On the CPU reference two equal spheres at different depths are drawn the same size
+/* Cameras at the edges of their ranges. A thin lens focused 1e20 ahead renders on the GPU as on the
+ * CPU (the direction through the lens overflowed in float: a black frame). The orthographic camera
+ * (bg_camera.projection, docs/shading.md 1.5): parallel rays from the view's rectangle. On the CPU reference two equal spheres at different depths are drawn the same size
  * (they are not under the perspective camera); every GPU plan draws the shared scenes through it as
  * the CPU does, within the scenes' usual bounds, and a window of the frame is the frame's pixels;
  * a lens, a zero or huge half_height and an unknown projection are refused by name. */
@@ -166,9 +167,42 @@ static void bad_orthographic_cameras_are_refused(void **state)
     bg_scene_destroy(s);
 }
 
+/* Aperture 0.2 focused 1e20 ahead (effectively at infinity): every plan as the CPU, 4 samples. */
+static void a_lens_focused_far_away_renders(void **state)
+{
+    (void)state;
+    bg_scene *s = util_scene(SCENE_PAPER_EARTH_SHADOW);
+    bg_camera c = bg_camera_init();
+    c.position = bg_vec3_make(0.0, 1.0, 6.0);
+    c.look_at = bg_vec3_make(0.0, 0.5, 0.0);
+    c.aperture_radius = 0.2;
+    c.focus_distance = 1e20;
+    assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    bg_render_settings set = bg_render_settings_init();
+    set.samples = 4;
+    unsigned char *cpu = util_cpu_reference(s, &set, W, H);
+    long sum = 0;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++)
+        sum += cpu[i];
+    assert_true(sum > (long)W * H * 4 * 10); /* the scene is there, not black */
+    static const bg_gpu_plan plans[] = {BG_PLAN_FUSED, BG_PLAN_MULTIPASS};
+    for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
+        char label[64];
+        snprintf(label, sizeof label, "focus 1e20, plan %d", (int)plans[p]);
+        unsigned char *gpu = util_gpu_plan_image(s, &set, plans[p], W, H, label);
+        bg_image gi = {W, H, BG_PIXEL_RGBA8, 0, gpu};
+        util_expect_near(cpu, &gi, SCENE_PAPER_EARTH_SHADOW, label);
+        free(gpu);
+    }
+    free(cpu);
+    bg_scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a_lens_focused_far_away_renders),
         cmocka_unit_test(parallel_rays_keep_sizes_at_every_depth),
         cmocka_unit_test(every_plan_follows_the_cpu),
         cmocka_unit_test(a_window_is_the_frames_pixels),
