@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "util_files.h"
+
 #include "scenes/meshes.h"
 #include "scenes/ply_mesh.h"
 
@@ -439,23 +441,6 @@ static void bunny_reads_as_packaged(void **state)
     mesh_free(&m);
 }
 
-/* The bytes of a file, whole. */
-static unsigned char *slurp(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    assert_int_equal(fseek(f, 0, SEEK_END), 0);
-    long n = ftell(f);
-    assert_true(n > 0);
-    rewind(f);
-    unsigned char *b = malloc((size_t)n);
-    assert_non_null(b);
-    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
-    fclose(f);
-    *size = (size_t)n;
-    return b;
-}
-
 typedef struct corrupt_case {
     const char *name;
     bg_status status;
@@ -511,7 +496,7 @@ static void corrupt_ply_files_are_refused_with_the_reason(void **state)
 {
     (void)state;
     size_t size;
-    unsigned char *bunny = slurp(BUNNY, &size);
+    unsigned char *bunny = util_read_file(BUNNY, &size);
     const char *end = "end_header\n";
     unsigned char *at = NULL;
     for (size_t i = 0; i + strlen(end) <= size && !at; i++)

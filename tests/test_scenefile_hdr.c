@@ -15,6 +15,8 @@
 
 #include <cmocka.h>
 
+#include "util_files.h"
+
 #include "scenefile/scenefile_internal.h"
 
 #define SKY "examples/scenes/json/sky.hdr"
@@ -68,22 +70,6 @@ static bool reference_decode(const unsigned char *data, size_t size, int w, int 
     return true;
 }
 
-static unsigned char *read_all(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    assert_int_equal(fseek(f, 0, SEEK_END), 0);
-    long n = ftell(f);
-    assert_true(n > 0);
-    rewind(f);
-    unsigned char *data = malloc((size_t)n);
-    assert_non_null(data);
-    assert_int_equal(fread(data, 1, (size_t)n, f), (size_t)n);
-    fclose(f);
-    *size = (size_t)n;
-    return data;
-}
-
 /* Where the pixels start: after the blank line that ends the header and the resolution line. */
 static size_t pixel_offset(const unsigned char *data, size_t size)
 {
@@ -102,7 +88,7 @@ static size_t pixel_offset(const unsigned char *data, size_t size)
 static void expect_rows_match(const char *path, int w, int h)
 {
     size_t size = 0;
-    unsigned char *data = read_all(path, &size);
+    unsigned char *data = util_read_file(path, &size);
     size_t at = pixel_offset(data, size);
     unsigned char *rgbe = calloc((size_t)w * (size_t)h, 4);
     assert_non_null(rgbe);

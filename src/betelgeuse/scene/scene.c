@@ -131,6 +131,8 @@ void bgi_array_release(bg_scene *scene, bg_array *array)
 bg_camera bg_camera_init(void)
 {
     bg_camera c;
+    /* Padding too (after projection): a caller may compare cameras with memcmp. */
+    memset(&c, 0, sizeof c);
     c.position = bg_vec3_make(0, 0, 5);
     c.look_at = bg_vec3_make(0, 0, 0);
     c.up = bg_vec3_make(0, 1, 0);
