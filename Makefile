@@ -29,6 +29,11 @@ endif
 
 ALL_CFLAGS := $(WARN) $(DEFS) $(OPT) $(SANFLAGS) -fPIC -Iinclude -Isrc -Iexamples -I$(BUILD)/gen $(CFLAGS)
 ALL_LDFLAGS := $(SANFLAGS) $(LDFLAGS)
+# Every compile also writes the headers it read to $@.d (-MMD; -MP adds an empty rule per header, so
+# that a header removed later does not stop the build), and the .d files of earlier builds are read
+# below: an edit to any header an object or program includes rebuilds it, and only it. A build made
+# before this had no .d files: `make clean` once.
+DEPFLAGS = -MMD -MP -MT $@ -MF $@.d
 
 MACS_LIBS := -ldl -lm
 BG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng16) -lpthread -lm
@@ -130,9 +135,9 @@ FORCE:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
   $(BUILD)/betelgeuse_scenefile.pc $(CLI_BIN)
 
-$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/betelgeuse/*/*/*.h src/scenefile/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
+$(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
 # Each shader becomes a C string in a table {name, source}; the library looks shaders up by file name.
 $(BUILD)/gen/%_shaders.c: Makefile $(wildcard glsl110/*)
@@ -148,7 +153,7 @@ $(BUILD)/gen/%_shaders.c: Makefile $(wildcard glsl110/*)
 	   echo '  {NULL, NULL}'; echo '};'; } > $@
 
 $(BUILD)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
-	$(CC) $(ALL_CFLAGS) -Wno-overlength-strings -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Wno-overlength-strings -c $< -o $@
 
 $(MACS_A): $(MACS_OBJ)
 	@rm -f $@
@@ -195,14 +200,14 @@ $(BUILD)/%.pc: FORCE
 # The scene-file suites also link the scene-file library and its dependencies.
 $(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(SF_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) \
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(SF_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) \
 	  $(TEST_LIBS)
 
 # The viewer's pure rules are tested from their objects (no window needed).
 $(BUILD)/tests/test_view_rules: tests/test_view_rules.c $(BUILD)/src/cli/view_resolution.o \
   $(BUILD)/src/cli/view_camera.o $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(filter %.o,$(wordlist 2,3,$^)) $(TEST_UTIL_OBJ) $(SCENES_OBJ) \
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(ALL_LDFLAGS) -o $@ $< $(filter %.o,$(wordlist 2,3,$^)) $(TEST_UTIL_OBJ) $(SCENES_OBJ) \
 	  $(STATIC_LINK) $(TEST_LIBS)
 
 $(CLI_OBJ): ALL_CFLAGS += -DBG_CLI_VERSION='"$(VERSION)"'
@@ -213,25 +218,25 @@ $(CLI_BIN): $(CLI_OBJ) $(SF_A) $(BG_A) $(MACS_A)
 
 $(BUILD)/tests/%: tests/%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(TEST_LIBS)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(TEST_LIBS)
 
 $(BUILD)/examples/%: examples/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
 
 # The window example links GLFW and the system's GL (for its quad); the libraries link neither.
 $(BUILD)/examples/bg_window: examples/bg_window.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(GLFW_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK) $(GLFW_LIBS) -lGL
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(GLFW_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK) $(GLFW_LIBS) -lGL
 
 $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
 $(EMBREE_PEER_OBJ): ALL_CFLAGS += $(EMBREE_CFLAGS)
 $(EMBREE_BENCH_BIN): $(BUILD)/bench/%: bench/%.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(EMBREE_CFLAGS) -DBENCH_EMBREE -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) \
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(EMBREE_CFLAGS) -DBENCH_EMBREE -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) \
 	  $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(EMBREE_LIBS)
 
 examples: all $(EXAMPLE_BIN)
@@ -340,11 +345,11 @@ FUZZ_REPLAY_BIN := $(FUZZ_TARGETS:%=$(FUZZ_REPLAY_DIR)/replay_%)
 $(FUZZ_REPLAY_DIR)/replay_main.o $(FUZZ_REPLAY_DIR)/fuzz_common.o: $(FUZZ_HDR)
 $(FUZZ_REPLAY_DIR)/target_json.o: tests/fuzz/fuzz_scene_json.c $(FUZZ_HDR) $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
 $(FUZZ_MODELS:%=$(FUZZ_REPLAY_DIR)/target_%.o): $(FUZZ_REPLAY_DIR)/target_%.o: tests/fuzz/fuzz_model.c $(FUZZ_HDR) \
   $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
 # Under SANITIZE the LSan hook of examples/scenes comes along, as in every other sanitized program.
 $(FUZZ_REPLAY_DIR)/replay_%: $(FUZZ_REPLAY_DIR)/target_%.o $(FUZZ_REPLAY_DIR)/replay_main.o \
   $(FUZZ_REPLAY_DIR)/fuzz_common.o $(if $(SANFLAGS),$(BUILD)/examples/scenes/lsan_suppressions.o) $(SF_A) $(BG_A) \
@@ -379,12 +384,12 @@ FUZZ_SF_OBJ  := $(SF_SRC:%.c=$(FUZZ_OBJ_DIR)/%.o)
 FUZZ_A       := $(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a $(FUZZ_OBJ_DIR)/libbetelgeuse.a $(FUZZ_OBJ_DIR)/libmacs.a
 FUZZ_BIN     := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 
-$(FUZZ_OBJ_DIR)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/betelgeuse/*/*/*.h src/scenefile/*.h) $(FUZZ_HDR)
+$(FUZZ_OBJ_DIR)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_WARN) $(FUZZ_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(FUZZ_WARN) $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_OBJ_DIR)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_WARN) -Wno-overlength-strings $(FUZZ_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(FUZZ_WARN) -Wno-overlength-strings $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_OBJ_DIR)/libmacs.a: $(filter $(FUZZ_OBJ_DIR)/src/macs/%,$(FUZZ_LIB_OBJ)) $(FUZZ_OBJ_DIR)/gen/macs_shaders.o
 	@rm -f $@
 	ar rcs $@ $^
@@ -396,14 +401,14 @@ $(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a: $(FUZZ_SF_OBJ)
 	ar rcs $@ $^
 $(FUZZ_OBJ_DIR)/target_json.o: tests/fuzz/fuzz_scene_json.c $(FUZZ_HDR) $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(WARN) $(FUZZ_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
 $(FUZZ_MODELS:%=$(FUZZ_OBJ_DIR)/target_%.o): $(FUZZ_OBJ_DIR)/target_%.o: tests/fuzz/fuzz_model.c $(FUZZ_HDR) \
   $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(WARN) $(FUZZ_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
 $(FUZZ_OBJ_DIR)/fuzz_common.o: tests/fuzz/fuzz_common.c $(FUZZ_HDR)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(WARN) $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_DIR)/fuzz_%: $(FUZZ_OBJ_DIR)/target_%.o $(FUZZ_OBJ_DIR)/fuzz_common.o $(FUZZ_A)
 	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer $(LDFLAGS) -o $@ $(filter %.o,$^) $(FUZZ_A) $(SF_LIBS) $(BG_LIBS) \
 	  $(MACS_LIBS)
@@ -485,3 +490,6 @@ uninstall:
 
 clean:
 	rm -rf build
+
+# The headers each object and program was built from (DEPFLAGS above).
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
