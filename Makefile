@@ -1,5 +1,5 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command, check-view,
+# Targets: all (libraries and the betelgeuse command), check, check-runner, check-symbols, check-examples, check-command, check-view,
 # check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
 # (libFuzzer with clang: docs/fuzzing.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
@@ -37,7 +37,9 @@ DEPFLAGS = -MMD -MP -MT $@ -MF $@.d
 
 MACS_LIBS := -ldl -lm
 BG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng16) -lpthread -lm
-TEST_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null || echo -lcmocka)
+# Every test program's cmocka_run_group_tests() goes through tests/util_suite.c first (--wrap): the
+# runner's hooks (line-buffered output, BG_TEST_LIST, CMOCKA_TEST_FILTER on cmocka 1.1) in one place.
+TEST_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null || echo -lcmocka) -Wl,--wrap=_cmocka_run_group_tests
 
 # Shaders: glsl110/macs_* belong to MACS, every other file to Betelgeuse.
 MACS_SHADERS := $(sort $(wildcard glsl110/macs_*))
@@ -129,7 +131,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
+.PHONY: FORCE all check check-runner check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -305,11 +307,17 @@ check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" sh tests/check_no_osmesa.sh $(BUILD) "$(NO_OSMESA_TESTS)" "$(SMOKE_TESTS)"
 
 # The test programs built but not run, so that a parallel make can build them before make check.
-test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless
+test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless $(BUILD)/tests/device/crash_suite
+
+# The runner's own handling of crashes and timeouts (tests/device/check_runner.sh): a suite that
+# crashes on purpose (tests/device/crash_suite.c, not one of the suites) and one that hangs.
+check-runner: $(BUILD)/tests/device/crash_suite
+	@sh tests/device/check_runner.sh $(BUILD)/tests/device/crash_suite
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.
-check: all glsl-check check-symbols check-examples check-command check-view check-fuzz-corpus $(TEST_BIN) $(BUILD)/tests/probe_headless
+check: all glsl-check check-symbols check-examples check-command check-view check-fuzz-corpus check-runner $(TEST_BIN) \
+  $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless TIMES=build/suite-times \
 	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
