@@ -1,6 +1,7 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
 # Targets: all (libraries and the betelgeuse command), check, check-runner, check-symbols, check-examples, check-command, check-view,
-# check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
+# check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz;
+# device-pack (the device check for a GPU machine: docs/device_check.md)
 # (libFuzzer with clang: docs/fuzzing.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
@@ -131,7 +132,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-runner check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
+.PHONY: FORCE all check check-runner device-pack check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -307,12 +308,22 @@ check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" sh tests/check_no_osmesa.sh $(BUILD) "$(NO_OSMESA_TESTS)" "$(SMOKE_TESTS)"
 
 # The test programs built but not run, so that a parallel make can build them before make check.
-test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless $(BUILD)/tests/device/crash_suite
+test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless $(BUILD)/tests/device/crash_suite $(BUILD)/tests/device/device_info
 
 # The runner's own handling of crashes and timeouts (tests/device/check_runner.sh): a suite that
 # crashes on purpose (tests/device/crash_suite.c, not one of the suites) and one that hangs.
 check-runner: $(BUILD)/tests/device/crash_suite
 	@sh tests/device/check_runner.sh $(BUILD)/tests/device/crash_suite
+
+# The device check (docs/device_check.md): a release build of every suite, the benchmarks the check
+# runs and the command, packed with their libraries, data and glvnd's EGL packages into
+# build/device/ (tests/device/pack.sh), to be sent to a GPU machine and run there with one command,
+# `sh build/device/run.sh` (tests/device/run.sh).
+DEVICE_PACK_BUILD := build/release
+device-pack:
+	@$(MAKE) --no-print-directory SANITIZE= BUILD=$(DEVICE_PACK_BUILD) all test-programs \
+	  $(DEVICE_PACK_BUILD)/bench/bench_paper $(DEVICE_PACK_BUILD)/bench/bench_distribution
+	@sh tests/device/pack.sh $(DEVICE_PACK_BUILD) build/device
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.

@@ -30,7 +30,8 @@
 # the run started (cmocka's "[ RUN      ]" and "[       OK ]" lines thus time each test), and the
 # log is printed as soon as that run ends. A run stopped by SUITE_TIMEOUT or killed keeps what it
 # wrote (tests/util_suite.c makes each suite's output line-buffered). SUITE_LOGS also gets
-# summary.txt: one row per run (suite, passed, failed, skipped, seconds, what went wrong).
+# summary.txt: one row per run (suite, passed, failed, skipped, seconds, what went wrong), and
+# runs.txt the same rows as "|"-separated fields, each written as its run ends.
 #
 # Crashes: a test that dies of a signal takes its process with it, or (SIGSEGV, SIGFPE, SIGILL,
 # SIGBUS) cmocka catches the signal and goes on in a process whose GL context may be broken. Either
@@ -314,6 +315,7 @@ EOF
 	echo "$id|$label|$p|$f|$s|$secs|$k|$what|$failing|$log" >"$work_dir/$id.result"
 	# One run's report at a time, whole, however many runs end together.
 	until mkdir "$work_dir/print.lock" 2>/dev/null; do sleep 0.1; done
+	printf '%s|%s|%s|%s|%s|%s\n' "$label" "$p" "$f" "$s" "$secs" "$what" >>"$log_dir/runs.txt"
 	echo "== $label ($secs s): $p passed, $f failed, $s skipped${what:+ ($what)}; log: $log"
 	if [ "$SUITE_PRINT" != failures ] || [ "$f" != 0 ]; then
 		drop_glsl_notice <"$log"
