@@ -142,13 +142,20 @@ main() {
 	echo "== suites on the EGL device: $(echo "$suites" | wc -w), ${CHECK_JOBS:-4} at a time," \
 		"each within ${SUITE_TIMEOUT:-150} s, all within $suite_secs s"
 	if [ "$suite_secs" -gt 10 ]; then
-		TEST_ENV="$test_env" SUITE_BACKEND=device CHECK_JOBS=${CHECK_JOBS:-4} SUITE_TIMEOUT=${SUITE_TIMEOUT:-150} \
-			SUITE_PRINT=failures SUITE_LOGS="$res/suites" BACKTRACE="$bt" TIMES="$work/times" \
-			timeout -k 10 "$suite_secs" sh tests/run_suites.sh "$suites" "" >"$res/suites.txt" 2>&1
-		suites_status=$?
-		grep '^== .* passed, .* failed, .* skipped\|^-- failing in ' "$res/suites.txt"
+		# Each run's line as it ends; its log (and a failing run's whole output) in the archive.
+		{
+			TEST_ENV="$test_env" SUITE_BACKEND=device CHECK_JOBS=${CHECK_JOBS:-4} SUITE_TIMEOUT=${SUITE_TIMEOUT:-150} \
+				SUITE_PRINT=failures SUITE_LOGS="$res/suites" BACKTRACE="$bt" TIMES="$work/times" \
+				timeout -k 10 "$suite_secs" sh tests/run_suites.sh "$suites" "" 2>&1
+			echo $? >"$work/suites.status"
+		} | tee "$res/suites.txt" | grep --line-buffered '^== .* passed, .* failed, .* skipped\|^-- failing in ' |
+			sed -u "s/ (EGL device, the device's driver)//; s/; log: [^ ]*\$//"
+		suites_status=$(cat "$work/suites.status")
 		[ "$suites_status" = 124 ] || [ "$suites_status" = 137 ] &&
-			echo "(the suites ran past $suite_secs s and were stopped: the runs that ended are counted)"
+			echo "(the suites ran past $suite_secs s and were stopped: the runs that ended are counted)" |
+			tee "$res/suites-stopped.txt"
+	else
+		echo "no time left for the suites (DEVICE_CHECK_SECONDS=$budget)" | tee "$res/suites-stopped.txt"
 	fi
 
 	if [ "${BENCH:-yes}" != no ]; then
@@ -168,7 +175,8 @@ main() {
 				>"$res/bench/$b.txt" 2>"$res/bench/$b.err"
 			st=$?
 			grep -v '^Mesa .*shading_language_version()$\|^Please report at ' "$res/bench/$b.txt" | tail -n 12
-			echo "($b: $([ $st = 0 ] && echo done || echo "exit status $st$([ $st = 124 ] && echo ", stopped after $secs s")"))"
+			echo "$b: $([ $st = 0 ] && echo done || echo "exit status $st$([ $st = 124 ] && echo ", stopped after $secs s")")," \
+				"table in bench/$b.txt" | tee "$res/bench/$b.status"
 		done
 	fi
 }
@@ -188,9 +196,8 @@ main 2>&1 | tee "$res/device-check.log"
 			END { printf "%d suites: %d passed, %d failed, %d skipped\n", n, p, f, s }'
 	fi
 	tail -n1 "$res/suites.txt" 2>/dev/null | grep 'passed, .* failed' | sed 's/^/run_suites.sh: /'
-	for b in bench_paper bench_distribution; do
-		[ -f "$res/bench/$b.txt" ] && echo "$b: $res/bench/$b.txt"
-	done
+	cat "$res/suites-stopped.txt" 2>/dev/null
+	cat "$res/bench/bench_paper.status" "$res/bench/bench_distribution.status" 2>/dev/null
 } >"$res/summary.txt"
 echo
 echo "== summary"
