@@ -11,9 +11,10 @@
 # run without Mesa's shader cache, as under valgrind, where Mesa's own cache writes raise reports),
 # SUITE_TIMEOUT (seconds a suite run may take before it is stopped and counted failed, "timed out
 # after N s"; default: none), SUITE_LOGS (the folder that keeps the logs; default
-# build/suite-logs/<date>-<time>-<pid>), SUITE_PRINT (failures: print the logs of failing runs only;
-# default: every log), BACKTRACE (a debugger command line that runs a program and prints its stack,
-# such as "gdb -batch -ex run -ex bt --args": each test that crashed runs once more under it).
+# build/suite-logs/<date>-<time>-<pid>, the last 10 of them kept), SUITE_PRINT (failures: print the
+# logs of failing runs only; default: every log), BACKTRACE (a debugger command line that runs a
+# program and prints its stack, such as "gdb -batch -ex run -ex bt --args": each test that crashed
+# runs once more under it).
 #
 # Where OSMesa is installed (Mesa 25.0 and older) every suite runs on it and the smoke suites also
 # on EGL surfaceless; where it is not (Mesa 25.1 and later) every suite runs on EGL surfaceless, and
@@ -68,10 +69,18 @@ drop_glsl_notice() {
 		{ print }'
 }
 
-# Prefixes each line of stdin with the seconds since $1 (date +%s.%N), as the line arrives.
+# Prefixes each line of stdin with the seconds since $1 (date +%s.%N), as the line arrives: with
+# perl's Time::HiRes, else python3, else a shell loop (a date process a line).
 stamp_lines() {
-	if command -v perl >/dev/null 2>&1; then
-		perl -MTime::HiRes=time -e '$| = 1; my $s = shift; while (my $l = <STDIN>) { chomp $l; printf "%8.2f %s\n", time - $s, $l }' "$1"
+	if perl -MTime::HiRes=time -e 1 2>/dev/null; then
+		perl -MTime::HiRes=time -e '$| = 1; my $s = shift;
+			while (my $l = <STDIN>) { chomp $l; printf "%8.2f %s\n", time - $s, $l }' "$1"
+	elif command -v python3 >/dev/null 2>&1; then
+		python3 -c 'import sys, time
+s, i, o = float(sys.argv[1]), sys.stdin.buffer, sys.stdout.buffer
+for l in iter(i.readline, b""):
+    o.write(b"%8.2f " % (time.time() - s) + l.rstrip(b"\n") + b"\n")
+    o.flush()' "$1"
 	else
 		start_cs=$(echo "$1" | tr -d . | cut -c1-12)
 		while IFS= read -r line || [ -n "$line" ]; do
@@ -256,7 +265,6 @@ EOF
 			crashed=$unfinished
 		fi
 	fi
-	extra_logs=""
 	if [ -n "$crashed" ]; then
 		counts=$(count_log "$crashed" <"$log")
 		names=$(env $TEST_ENV $settings BG_TEST_LIST=1 "$binary" 2>/dev/null </dev/null | sed -n 's/^bg-test: //p')
@@ -286,7 +294,6 @@ EOF
 				{ split($1, c, " "); for (i = 1; i <= 4; i++) s[i] += c[i]; names = names $2 }
 				END { printf "%d %d %d %d |%s\n", s[1], s[2], s[3], s[4], names }')
 			cat "$rlog" >>"$log"
-			extra_logs="$extra_logs $rlog"
 		done
 		# A backtrace of each test that crashed (at most 3 a suite), from a run of that test alone.
 		if [ -n "$BACKTRACE" ]; then
@@ -299,6 +306,11 @@ EOF
 				run_program "$log" "$work_dir/$id.cachebt$b" "CMOCKA_TEST_FILTER=$t" $BACKTRACE
 			done
 		fi
+	elif [ -n "$unfinished" ]; then
+		# Stopped (SUITE_TIMEOUT) in a test: say how many tests never ran.
+		left=$(env $TEST_ENV $settings BG_TEST_LIST=1 "$binary" 2>/dev/null </dev/null | sed -n 's/^bg-test: //p' |
+			awk -v c="$unfinished" 'seen { n++ } $0 == c { seen = 1 } END { print n + 0 }')
+		[ "$left" != 0 ] && what="$what; $left tests after it did not run"
 	fi
 	p=$(echo "$counts" | cut -d' ' -f1)
 	f=$(echo "$counts" | cut -d' ' -f2)
@@ -332,6 +344,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 logs=${SUITE_LOGS:-build/suite-logs/$(date +%Y%m%d-%H%M%S)-$$}
 mkdir -p "$logs" || exit 1
+# In the default place, the last 10 runs' logs are kept.
+[ -z "$SUITE_LOGS" ] && ls -1dt build/suite-logs/*/ 2>/dev/null | tail -n +11 |
+	while read -r old; do rm -rf "$old"; done
 
 passed=0
 failed=0
