@@ -216,6 +216,15 @@ run_program() {
 	return "$(cat "$work_dir/last.status.$$")"
 }
 
+# The suite's test names, in order (tests/util_suite.c); nothing from a program without that hook,
+# which would run its tests instead: hence the time limit.
+list_tests() {
+	limit=""
+	command -v timeout >/dev/null 2>&1 && limit="timeout -k 2 10"
+	# shellcheck disable=SC2086 # limit, TEST_ENV and settings are lists of words
+	$limit env $TEST_ENV $settings BG_TEST_LIST=1 "$binary" 2>/dev/null </dev/null | sed -n 's/^bg-test: //p'
+}
+
 # Whether a run with exit status $1 and log $2 crashed: cmocka caught a signal in a test, or the
 # process died of one (SIGKILL is a crash only where no SUITE_TIMEOUT sends it).
 is_crash() {
@@ -267,7 +276,7 @@ EOF
 	fi
 	if [ -n "$crashed" ]; then
 		counts=$(count_log "$crashed" <"$log")
-		names=$(env $TEST_ENV $settings BG_TEST_LIST=1 "$binary" 2>/dev/null </dev/null | sed -n 's/^bg-test: //p')
+		names=$(list_tests)
 		after=$(printf '%s\n' "$names" | awk -v c="$crashed" 'seen { print } $0 == c { seen = 1 }')
 		if [ -z "$names" ]; then
 			what="$what; the tests after it cannot be named (BG_TEST_LIST: tests/util_suite.c) and did not run again"
@@ -308,8 +317,7 @@ EOF
 		fi
 	elif [ -n "$unfinished" ]; then
 		# Stopped (SUITE_TIMEOUT) in a test: say how many tests never ran.
-		left=$(env $TEST_ENV $settings BG_TEST_LIST=1 "$binary" 2>/dev/null </dev/null | sed -n 's/^bg-test: //p' |
-			awk -v c="$unfinished" 'seen { n++ } $0 == c { seen = 1 } END { print n + 0 }')
+		left=$(list_tests | awk -v c="$unfinished" 'seen { n++ } $0 == c { seen = 1 } END { print n + 0 }')
 		[ "$left" != 0 ] && what="$what; $left tests after it did not run"
 	fi
 	p=$(echo "$counts" | cut -d' ' -f1)

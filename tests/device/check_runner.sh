@@ -5,8 +5,8 @@
 #   one of SIGABRT (the process ends); the tests after the first crash run again, each alone, so the
 #   counts are 2 passed, 3 failed, 1 skipped, the failures named; where a debugger is given
 #   (BACKTRACE, else gdb or cuda-gdb where installed), each crashed test's backtrace names its function;
-# - a stand-in suite that hangs in its second test under SUITE_TIMEOUT=2: 1 passed, 1 failed, and
-#   the kept log holds the lines written before the stop.
+# - a stand-in suite that hangs in its second test of three under SUITE_TIMEOUT=2: 1 passed,
+#   1 failed, the third named as not run, and the kept log holds the lines written before the stop.
 # Usage: check_runner.sh CRASH_SUITE [LOG_FOLDER]
 here=$(dirname "$0")
 crash_suite=$1
@@ -42,16 +42,20 @@ else
 	echo "check-runner: no gdb or cuda-gdb here: the backtraces are not checked"
 fi
 
-# The stand-in: cmocka's lines for one test that passes and one that never ends.
+# The stand-in: cmocka's lines for one test that passes and one that never ends, and the list of
+# its three tests that tests/util_suite.c would give.
 mkdir -p "$out/stand-in"
 hang="$out/stand-in/hang_suite"
-printf '%s\n' '#!/bin/sh' 'echo "[==========] Running 2 test(s)."' 'echo "[ RUN      ] quick"' \
+printf '%s\n' '#!/bin/sh' \
+	'[ "$BG_TEST_LIST" = 1 ] && { printf "bg-test: %s\n" quick hangs never_reached; exit 0; }' \
+	'echo "[==========] Running 3 test(s)."' 'echo "[ RUN      ] quick"' \
 	'echo "[       OK ] quick"' 'echo "[ RUN      ] hangs"' 'exec sleep 60' >"$hang"
 chmod +x "$hang"
 SUITE_BACKEND=device SUITE_TIMEOUT=2 SUITE_LOGS="$out/hang" sh "$here/../run_suites.sh" "$hang" "" >"$out/hang.out" 2>&1
 [ "$(tail -n1 "$out/hang.out")" = "1 passed, 1 failed, 0 skipped" ] ||
 	fail "hang_suite: expected \"1 passed, 1 failed, 0 skipped\", got \"$(tail -n1 "$out/hang.out")\""
-grep -q "timed out after 2 s in hangs" "$out/hang.out" || fail "hang_suite: the timeout is not reported"
+grep -q "timed out after 2 s in hangs; 1 tests after it did not run" "$out/hang.out" ||
+	fail "hang_suite: the timeout is not reported with the test it stopped and the one it kept from running"
 grep -q "^ *[0-9.]* \[ RUN      \] hangs$" "$out"/hang/*.log 2>/dev/null || fail "hang_suite: the kept log lost its lines"
 
 [ $status = 0 ] && echo "check-runner: crashes and timeouts handled (logs in $out)"
