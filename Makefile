@@ -1,8 +1,7 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries and the betelgeuse command), check, check-runner, check-symbols, check-examples, check-command, check-view,
-# check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz;
-# device-pack (the device check for a GPU machine: docs/device_check.md)
-# (libFuzzer with clang: docs/fuzzing.md).
+# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command, check-view,
+# check-fuzz-corpus, check-runner, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and
+# fuzz (libFuzzer with clang: docs/fuzzing.md); device-pack (the device check for a GPU machine: docs/device_check.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
 VERSION   := 0.1.0
