@@ -1,7 +1,7 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
 # Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command, check-view,
-# check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
-# (libFuzzer with clang: docs/fuzzing.md).
+# check-fuzz-corpus, check-runner, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and
+# fuzz (libFuzzer with clang: docs/fuzzing.md); device-pack (the device check for a GPU machine: docs/device_check.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
 VERSION   := 0.1.0
@@ -29,10 +29,17 @@ endif
 
 ALL_CFLAGS := $(WARN) $(DEFS) $(OPT) $(SANFLAGS) -fPIC -Iinclude -Isrc -Iexamples -I$(BUILD)/gen $(CFLAGS)
 ALL_LDFLAGS := $(SANFLAGS) $(LDFLAGS)
+# Every compile also writes the headers it read to $@.d (-MMD; -MP adds an empty rule per header, so
+# that a header removed later does not stop the build), and the .d files of earlier builds are read
+# below: an edit to any header an object or program includes rebuilds it, and only it. A build made
+# before this had no .d files: `make clean` once.
+DEPFLAGS = -MMD -MP -MT $@ -MF $@.d
 
 MACS_LIBS := -ldl -lm
 BG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng16) -lpthread -lm
-TEST_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null || echo -lcmocka)
+# Every test program's cmocka_run_group_tests() goes through tests/util_suite.c first (--wrap): the
+# runner's hooks (line-buffered output, BG_TEST_LIST, CMOCKA_TEST_FILTER on cmocka 1.1) in one place.
+TEST_LIBS := $(shell pkg-config --libs cmocka 2>/dev/null || echo -lcmocka) -Wl,--wrap=_cmocka_run_group_tests
 
 # Shaders: glsl110/macs_* belong to MACS, every other file to Betelgeuse.
 MACS_SHADERS := $(sort $(wildcard glsl110/macs_*))
@@ -125,15 +132,15 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
+.PHONY: FORCE all check check-runner device-pack check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
   $(BUILD)/betelgeuse_scenefile.pc $(CLI_BIN)
 
-$(BUILD)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/betelgeuse/*/*/*.h src/scenefile/*.h tests/*.h examples/scenes/*.h bench/lib/*.h)
+$(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
 # Each shader becomes a C string in a table {name, source}; the library looks shaders up by file name.
 $(BUILD)/gen/%_shaders.c: Makefile $(wildcard glsl110/*)
@@ -149,7 +156,7 @@ $(BUILD)/gen/%_shaders.c: Makefile $(wildcard glsl110/*)
 	   echo '  {NULL, NULL}'; echo '};'; } > $@
 
 $(BUILD)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
-	$(CC) $(ALL_CFLAGS) -Wno-overlength-strings -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Wno-overlength-strings -c $< -o $@
 
 $(MACS_A): $(MACS_OBJ)
 	@rm -f $@
@@ -196,14 +203,14 @@ $(BUILD)/%.pc: FORCE
 # The scene-file suites also link the scene-file library and its dependencies.
 $(BUILD)/tests/test_scenefile%: tests/test_scenefile%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(SF_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) \
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(SF_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(SF_A) $(STATIC_LINK) $(SF_LIBS) \
 	  $(TEST_LIBS)
 
 # The viewer's pure rules are tested from their objects (no window needed).
 $(BUILD)/tests/test_view_rules: tests/test_view_rules.c $(BUILD)/src/cli/view_resolution.o \
   $(BUILD)/src/cli/view_camera.o $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(filter %.o,$(wordlist 2,3,$^)) $(TEST_UTIL_OBJ) $(SCENES_OBJ) \
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(ALL_LDFLAGS) -o $@ $< $(filter %.o,$(wordlist 2,3,$^)) $(TEST_UTIL_OBJ) $(SCENES_OBJ) \
 	  $(STATIC_LINK) $(TEST_LIBS)
 
 $(CLI_OBJ): ALL_CFLAGS += -DBG_CLI_VERSION='"$(VERSION)"'
@@ -214,25 +221,25 @@ $(CLI_BIN): $(CLI_OBJ) $(SF_A) $(BG_A) $(MACS_A)
 
 $(BUILD)/tests/%: tests/%.c $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(TEST_LIBS)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_UTIL_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(TEST_LIBS)
 
 $(BUILD)/examples/%: examples/%.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK)
 
 # The window example links GLFW and the system's GL (for its quad); the libraries link neither.
 $(BUILD)/examples/bg_window: examples/bg_window.c $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(GLFW_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK) $(GLFW_LIBS) -lGL
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(GLFW_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(SCENES_OBJ) $(STATIC_LINK) $(GLFW_LIBS) -lGL
 
 $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
 $(EMBREE_PEER_OBJ): ALL_CFLAGS += $(EMBREE_CFLAGS)
 $(EMBREE_BENCH_BIN): $(BUILD)/bench/%: bench/%.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(EMBREE_CFLAGS) -DBENCH_EMBREE -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) \
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(EMBREE_CFLAGS) -DBENCH_EMBREE -Ibench $(ALL_LDFLAGS) -o $@ $< $(EMBREE_PEER_OBJ) \
 	  $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK) $(EMBREE_LIBS)
 
 examples: all $(EXAMPLE_BIN)
@@ -301,11 +308,27 @@ check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" sh tests/check_no_osmesa.sh $(BUILD) "$(NO_OSMESA_TESTS)" "$(SMOKE_TESTS)"
 
 # The test programs built but not run, so that a parallel make can build them before make check.
-test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless
+test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless $(BUILD)/tests/device/crash_suite $(BUILD)/tests/device/device_info
+
+# The runner's own handling of crashes and timeouts (tests/device/check_runner.sh): a suite that
+# crashes on purpose (tests/device/crash_suite.c, not one of the suites) and one that hangs.
+check-runner: $(BUILD)/tests/device/crash_suite
+	@sh tests/device/check_runner.sh $(BUILD)/tests/device/crash_suite
+
+# The device check (docs/device_check.md): a release build of every suite, the benchmarks the check
+# runs and the command, packed with their libraries, data and glvnd's EGL packages into
+# build/device/ (tests/device/pack.sh), to be sent to a GPU machine and run there with one command,
+# `sh build/device/run.sh` (tests/device/run.sh).
+DEVICE_PACK_BUILD := build/release
+device-pack:
+	@$(MAKE) --no-print-directory SANITIZE= BUILD=$(DEVICE_PACK_BUILD) all test-programs \
+	  $(DEVICE_PACK_BUILD)/bench/bench_paper $(DEVICE_PACK_BUILD)/bench/bench_distribution
+	@sh tests/device/pack.sh $(DEVICE_PACK_BUILD) build/device
 
 # The suites run CHECK_JOBS at a time (default: one per processor); build/suite-times keeps each
 # run's duration so that the next check, of any build, starts the longest first.
-check: all glsl-check check-symbols check-examples check-command check-view check-fuzz-corpus $(TEST_BIN) $(BUILD)/tests/probe_headless
+check: all glsl-check check-symbols check-examples check-command check-view check-fuzz-corpus check-runner $(TEST_BIN) \
+  $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless TIMES=build/suite-times \
 	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
@@ -341,11 +364,11 @@ FUZZ_REPLAY_BIN := $(FUZZ_TARGETS:%=$(FUZZ_REPLAY_DIR)/replay_%)
 $(FUZZ_REPLAY_DIR)/replay_main.o $(FUZZ_REPLAY_DIR)/fuzz_common.o: $(FUZZ_HDR)
 $(FUZZ_REPLAY_DIR)/target_json.o: tests/fuzz/fuzz_scene_json.c $(FUZZ_HDR) $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
 $(FUZZ_MODELS:%=$(FUZZ_REPLAY_DIR)/target_%.o): $(FUZZ_REPLAY_DIR)/target_%.o: tests/fuzz/fuzz_model.c $(FUZZ_HDR) \
   $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
 # Under SANITIZE the LSan hook of examples/scenes comes along, as in every other sanitized program.
 $(FUZZ_REPLAY_DIR)/replay_%: $(FUZZ_REPLAY_DIR)/target_%.o $(FUZZ_REPLAY_DIR)/replay_main.o \
   $(FUZZ_REPLAY_DIR)/fuzz_common.o $(if $(SANFLAGS),$(BUILD)/examples/scenes/lsan_suppressions.o) $(SF_A) $(BG_A) \
@@ -380,12 +403,12 @@ FUZZ_SF_OBJ  := $(SF_SRC:%.c=$(FUZZ_OBJ_DIR)/%.o)
 FUZZ_A       := $(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a $(FUZZ_OBJ_DIR)/libbetelgeuse.a $(FUZZ_OBJ_DIR)/libmacs.a
 FUZZ_BIN     := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 
-$(FUZZ_OBJ_DIR)/%.o: %.c $(wildcard include/*.h src/macs/*.h src/betelgeuse/*/*.h src/betelgeuse/*/*/*.h src/scenefile/*.h) $(FUZZ_HDR)
+$(FUZZ_OBJ_DIR)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_WARN) $(FUZZ_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(FUZZ_WARN) $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_OBJ_DIR)/gen/%_shaders.o: $(BUILD)/gen/%_shaders.c
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_WARN) -Wno-overlength-strings $(FUZZ_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(FUZZ_WARN) -Wno-overlength-strings $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_OBJ_DIR)/libmacs.a: $(filter $(FUZZ_OBJ_DIR)/src/macs/%,$(FUZZ_LIB_OBJ)) $(FUZZ_OBJ_DIR)/gen/macs_shaders.o
 	@rm -f $@
 	ar rcs $@ $^
@@ -397,14 +420,14 @@ $(FUZZ_OBJ_DIR)/libbetelgeuse_scenefile.a: $(FUZZ_SF_OBJ)
 	ar rcs $@ $^
 $(FUZZ_OBJ_DIR)/target_json.o: tests/fuzz/fuzz_scene_json.c $(FUZZ_HDR) $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(WARN) $(FUZZ_CFLAGS) $(FUZZ_SCENE_DIR) -c $< -o $@
 $(FUZZ_MODELS:%=$(FUZZ_OBJ_DIR)/target_%.o): $(FUZZ_OBJ_DIR)/target_%.o: tests/fuzz/fuzz_model.c $(FUZZ_HDR) \
   $(wildcard include/*.h)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(WARN) $(FUZZ_CFLAGS) -DFUZZ_EXTENSION='".$*"' -c $< -o $@
 $(FUZZ_OBJ_DIR)/fuzz_common.o: tests/fuzz/fuzz_common.c $(FUZZ_HDR)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(WARN) $(FUZZ_CFLAGS) -c $< -o $@
+	$(FUZZ_CC) $(DEPFLAGS) $(WARN) $(FUZZ_CFLAGS) -c $< -o $@
 $(FUZZ_DIR)/fuzz_%: $(FUZZ_OBJ_DIR)/target_%.o $(FUZZ_OBJ_DIR)/fuzz_common.o $(FUZZ_A)
 	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer $(LDFLAGS) -o $@ $(filter %.o,$^) $(FUZZ_A) $(SF_LIBS) $(BG_LIBS) \
 	  $(MACS_LIBS)
@@ -486,3 +509,6 @@ uninstall:
 
 clean:
 	rm -rf build
+
+# The headers each object and program was built from (DEPFLAGS above).
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
