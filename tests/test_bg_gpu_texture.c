@@ -374,7 +374,8 @@ static void bad_targets_are_refused(void **state)
     expect_wrap_refused(macs_texture_wrap(util_fx.ctx, &d, &wrapped), MACS_ERR_INVALID_ARGUMENT, "desc.gl_name",
                         "glIsTexture");
     assert_null(wrapped);
-    macs_limits caps = {0, 0, 0, 64, 0};
+    macs_limits caps = {0};
+    caps.max_texture_size = 64;
     macs_context *small = util_context(util_fx.headless, &caps);
     GLuint big = util_raw_texture(&raw, 128, 16, GL_RGBA8, GL_UNSIGNED_BYTE, NULL);
     macs_texture_wrap_desc bd = {big, 0, 0, MACS_FORMAT_DEFAULT, MACS_FILTER_DEFAULT, MACS_WRAP_DEFAULT};

@@ -87,6 +87,12 @@ macs_headless *util_headless(void)
     return h;
 }
 
+const char *util_profile(void)
+{
+    const char *p = getenv("MACS_TEST_PROFILE");
+    return p && *p ? p : NULL;
+}
+
 macs_context *util_context(macs_headless *headless, const macs_limits *caps)
 {
     macs_context_desc desc = {0};
@@ -94,11 +100,14 @@ macs_context *util_context(macs_headless *headless, const macs_limits *caps)
     desc.get_proc_address_user = macs_headless_proc_user(headless);
     if (caps)
         desc.caps = *caps;
+    /* MACS combines the profile with the test's caps, the smaller limit winning. */
+    desc.profile = util_profile();
     macs_context *ctx = NULL;
     char message[1024];
     macs_status st = macs_context_create(&desc, &ctx, message, sizeof message);
     if (st != MACS_OK)
-        fail_msg("macs_context_create: %s", message);
+        fail_msg("macs_context_create%s%s: %s", desc.profile ? " under MACS_TEST_PROFILE=" : "",
+                 desc.profile ? desc.profile : "", message);
     return ctx;
 }
 

@@ -1,4 +1,5 @@
-/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl | device) and MACS contexts with caps. */
+/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl | device) and MACS contexts with caps
+ * and the limit profile MACS_TEST_PROFILE names. */
 #ifndef UTIL_GL_H
 #define UTIL_GL_H
 
@@ -21,7 +22,12 @@ bool util_osmesa_present(void);
  * asked for and not installed; fails the test if it cannot otherwise. */
 macs_headless *util_headless(void);
 
-/* Creates a MACS context on the current headless context with optional caps; fails the test on error. */
+/* The limit profile the environment asks for (MACS_TEST_PROFILE, a name of MACS_PROFILE_NAMES), or
+ * NULL: the library reads no environment, so the tests pass it on through macs_context_desc.profile. */
+const char *util_profile(void);
+
+/* Creates a MACS context on the current headless context with optional caps, under util_profile()
+ * (its limits and the caps combine, the smaller winning); fails the test on error. */
 macs_context *util_context(macs_headless *headless, const macs_limits *caps);
 
 /* Leaves the calling thread with no current GL context (EGL or OSMesa, whichever is current), as a
