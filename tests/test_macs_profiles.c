@@ -173,6 +173,13 @@ static void claimed_limits_fail_clearly_in_gl(void **state)
     snprintf(driver, sizeof driver, "max_texture_size %d", real.max_texture_size);
     assert_non_null(strstr(msg, driver));
     macs_context_clear_error(ctx);
+    /* A depth/stencil buffer of that size the same way. */
+    macs_depth_stencil_desc dd = {real.max_texture_size + 1, 1, MACS_DEPTH24_STENCIL8};
+    macs_depth_stencil *ds = (macs_depth_stencil *)&dd;
+    assert_int_not_equal(macs_depth_stencil_create(ctx, &dd, &ds), MACS_OK);
+    assert_null(ds);
+    assert_non_null(strstr(macs_context_error_message(ctx), "desc.claims"));
+    macs_context_clear_error(ctx);
     /* The context goes on working. */
     t = util_texture(ctx, 4, 4, MACS_FORMAT_RGBA32F);
     assert_int_equal(macs_texture_clear(t, (const float[4]){1.0f, 2.0f, 3.0f, 4.0f}), MACS_OK);
