@@ -38,8 +38,13 @@ void util_release_current(void);
 int util_group_setup(void **state);
 int util_group_teardown(void **state);
 
-/* Creates a texture of the given size and format with no contents, failing the test on error. */
+/* Creates a texture of the given size and format with no contents, failing the test on error; under
+ * a limit profile a size beyond the profile's texture size skips the test, saying so. */
 macs_texture *util_texture(macs_context *ctx, int width, int height, macs_format format);
+
+/* Under a limit profile, skips the calling test, saying so, when ctx cannot hold a width x height
+ * texture (the test's own GL textures of that size would be refused); does nothing otherwise. */
+void util_require_texture_size(macs_context *ctx, int width, int height);
 
 /* Fills n floats with a deterministic pattern of signs and magnitudes. */
 void util_fill_pattern(float *data, size_t n, unsigned seed);

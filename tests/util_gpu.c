@@ -15,6 +15,8 @@
 #include "util_gl.h"
 #include "util_gpu.h"
 
+static void skip_refused(bg_renderer *r, bg_status st, const char *label);
+
 unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height)
 {
     unsigned char *cpu = malloc((size_t)width * height * 4);
@@ -112,7 +114,7 @@ void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_re
                      const char *label)
 {
     bg_status st = bg_render_gpu(r, s, set, img);
-    util_skip_if_profile_refuses(st, bg_renderer_error_message(r), label);
+    skip_refused(r, st, label);
     if (st != BG_OK)
         fail_msg("%s: bg_render_gpu: %s: %s (MACS: %s)", label, bg_status_string(st), bg_renderer_error_message(r),
                  macs_context_error_message(ctx));
