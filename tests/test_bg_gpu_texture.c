@@ -355,7 +355,7 @@ static void bad_targets_are_refused(void **state)
     set.max_depth = 20; /* 2^21 - 1 rays a pixel without min_weight's pruning */
     set.min_weight = 0.0;
     bg_scene *glass = util_scene(SCENE_GLASS);
-    expect_refused(r, bg_render_gpu_to_texture(r, glass, &set, t), BG_ERR_LIMIT,
+    expect_refused(r, (bg_render_gpu_to_texture)(r, glass, &set, t), BG_ERR_LIMIT,
                    "bg_render_gpu_to_texture: BG_PLAN_FUSED cannot render this frame", NULL);
     bg_scene_destroy(glass);
     set = bg_render_settings_init();

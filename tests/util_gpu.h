@@ -46,7 +46,8 @@ void util_skip_if_profile_refuses(bg_status st, const char *message, const char 
  * profile a BG_ERR_LIMIT refusal skips the calling test by name (util_skip_if_profile_refuses)
  * instead of returning, so that a test the profile's hardware could not run is counted as skipped,
  * never as passed or failed. Without MACS_TEST_PROFILE they return exactly what the library does.
- * The suites get them through the macros below; util_gpu.c calls the library's own. */
+ * The suites get them through the macros below; util_gpu.c calls the library's own, and so does a
+ * test whose point is the refusal, by putting the name in parentheses: (bg_render_gpu)(r, s, set, img). */
 bg_status util_profiled_render_gpu(bg_renderer *r, bg_scene *s, const bg_render_settings *set, bg_image *img);
 bg_status util_profiled_render_gpu_to_texture(bg_renderer *r, bg_scene *s, const bg_render_settings *set,
                                               macs_texture *target);
