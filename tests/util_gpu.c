@@ -125,7 +125,9 @@ void util_skip_if_profile_refuses(bg_status st, const char *message, const char 
     /* Only a limit refusal, and only under a profile: anywhere else BG_ERR_LIMIT stays a failure. */
     if (st != BG_ERR_LIMIT || !util_profile())
         return;
-    print_message("skipped: %s: the renderer cannot work within profile %s: %s\n", label, util_profile(), message);
+    /* The renderer keeps its first error, which may be older than this refusal: said as such. */
+    print_message("skipped: %s: the renderer refuses profile %s's limits (BG_ERR_LIMIT); its first recorded "
+                  "error: %s\n", label, util_profile(), message);
     skip();
 }
 
