@@ -1,5 +1,5 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command, check-view,
+# Targets: all (libraries and the betelgeuse command), check, check-profile, check-symbols, check-examples, check-command, check-view,
 # check-fuzz-corpus, check-runner, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and
 # fuzz (libFuzzer with clang: docs/fuzzing.md); device-pack (the device check for a GPU machine: docs/device_check.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
@@ -132,7 +132,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-runner device-pack check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
+.PHONY: FORCE all check check-profile check-runner device-pack check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -306,6 +306,15 @@ check-cluster: all
 NO_OSMESA_TESTS := $(SMOKE_TESTS) $(BUILD)/tests/test_bg_gpu_scenes
 check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" sh tests/check_no_osmesa.sh $(BUILD) "$(NO_OSMESA_TESTS)" "$(SMOKE_TESTS)"
+
+# make check-profile PROFILE=name: the GPU suites under one MACS limit profile (docs/profiles.md:
+# geforce7, radeon_x1600, gma_x3100, gl21), MACS_TEST_PROFILE added to TEST_ENV. A test the renderer
+# cannot run within the profile is skipped by name, with the limit it names.
+PROFILE_TESTS ?= $(filter $(BUILD)/tests/test_bg_gpu% $(BUILD)/tests/test_smoke_bg_gpu,$(TEST_BIN))
+check-profile: all $(PROFILE_TESTS) $(BUILD)/tests/probe_headless
+	@test -n "$(PROFILE)" || { echo "make check-profile: PROFILE=name is required: geforce7, radeon_x1600, gma_x3100 or gl21"; exit 2; }
+	@TEST_ENV="$(TEST_ENV) MACS_TEST_PROFILE=$(PROFILE)" PROBE=$(BUILD)/tests/probe_headless \
+	  sh tests/run_suites.sh "$(PROFILE_TESTS)" ""
 
 # The test programs built but not run, so that a parallel make can build them before make check.
 test-programs: $(TEST_BIN) $(BUILD)/tests/probe_headless $(BUILD)/tests/device/crash_suite $(BUILD)/tests/device/device_info

@@ -176,10 +176,51 @@ typedef struct macs_limits {
                                   the largest texture a pass can draw whole */
     int max_uniform_components; /* GL_MAX_FRAGMENT_UNIFORM_COMPONENTS: floats of uniforms one fragment
                                    shader may declare (at least 64, as GL 2.0 promises) */
+    int max_varying_components; /* GL_MAX_VARYING_FLOATS: MACS's own vertex shader passes one vec2
+                                   (macs_uv, one 4-float slot); pass code cannot add varyings, so
+                                   nothing else spends them. A context allowing fewer than 4 is refused. */
 } macs_limits;
 
+/* Every field of macs_limits, in order: the one list that caps, claims, profiles and their checks
+ * walk, so that a new limit is added here and in the struct above and nowhere else. */
+#define MACS_LIMIT_FIELDS(X) \
+    X(max_draw_buffers) X(max_color_attachments) X(max_texture_units) X(max_texture_size) \
+    X(max_uniform_components) X(max_varying_components)
+
+/* Float capabilities GL 2.1 cannot be asked about: whether RGBA32F / RGBA16F textures filter linearly,
+ * and whether float render targets blend. Drivers without them fall back silently (nearest sampling,
+ * or software), so MACS refuses a pass that would need one the context lacks (MACS_ERR_LIMIT, naming
+ * the input or output and the feature) rather than give wrong output. GeForce 6/7 filter and blend
+ * only 16-bit floats; Radeon X1000 filters no float texture and blends only 16-bit floats. */
+typedef enum macs_float_feature {
+    MACS_FLOAT32_FILTER = 1, /* MACS_FILTER_LINEAR on an RGBA32F input */
+    MACS_FLOAT16_FILTER = 2, /* MACS_FILTER_LINEAR on an RGBA16F input */
+    MACS_FLOAT32_BLEND = 4,  /* a blend other than NONE into an RGBA32F output */
+    MACS_FLOAT16_BLEND = 8   /* a blend other than NONE into an RGBA16F output */
+} macs_float_feature;
+
+/* The named limit profiles (desc.profile), each making any driver behave as a smaller one: caps,
+ * extensions treated as absent, float features lacking, and a GL version. Values and their sources
+ * are in docs/profiles.md.
+ *   "geforce7"     NVIDIA GeForce 7 (G7x; GeForce 6 alike): 4 draw buffers, 16 units, 4096 texels,
+ *                  896 uniform floats, 32 varying floats; no float32 filter or blend; GL 2.1
+ *   "radeon_x1600" ATI Radeon X1600 (RV530, R5xx): 4 draw buffers, 16 units, 4096 texels, 1024
+ *                  uniform floats, 40 varying floats; no float filter at all, no float32 blend;
+ *                  EXT_framebuffer_object only; GL 2.1
+ *   "gma_x3100"    Intel GMA X3100 (GM965, Gen4): 8 draw buffers, 16 units, 8192 texels, 1024
+ *                  uniform floats, 64 varying floats; no float32 filter; GL 2.1
+ *   "gl21"         the least GL 2.1 + ARB_framebuffer_object promises: 1 draw buffer, 2 units, 64
+ *                  texels, 64 uniform floats, 32 varying floats; no optional extension, no float
+ *                  filter or blend */
+#define MACS_PROFILE_NAMES "geforce7, radeon_x1600, gma_x3100, gl21"
+
 /* Defaults: get_proc_address is required; no logger; libc allocator; caps all 0 (no override; a cap
- * can only lower a limit, never raise it); allow_float_depth false (24-bit fixed depth). */
+ * can only lower a limit, never raise it); allow_float_depth false (24-bit fixed depth); profile NULL
+ * (none); claims all 0 (none); hidden_extensions NULL (none); max_gl_version 0 (the context's);
+ * lacking_float_features 0 (every float feature the driver has, which MACS assumes is all).
+ * A profile combines with the rest: the smaller of a profile's limit and a cap wins, the extensions
+ * and float features a profile takes away join those the desc names, and the lower GL version wins.
+ * An unknown profile is refused (MACS_ERR_INVALID_ARGUMENT, naming desc.profile and the valid names). */
 typedef struct macs_context_desc {
     macs_get_proc_address_fn get_proc_address;
     void *get_proc_address_user;
@@ -187,14 +228,37 @@ typedef struct macs_context_desc {
     macs_allocator allocator;
     macs_limits caps;
     bool allow_float_depth; /* use DEPTH32F_STENCIL8 when ARB_depth_buffer_float is present */
+    const char *profile;    /* a name of MACS_PROFILE_NAMES, or NULL */
+    /* Limits reported and obeyed although the driver has less (0: none), to test the paths a big GPU
+     * takes on a small one, e.g. max_texture_size 32768 where the driver has 16384. An allocation GL
+     * then refuses comes back as MACS_ERR_LIMIT or MACS_ERR_GPU_OUT_OF_MEMORY naming what was asked,
+     * never as a crash; a claimed draw buffer, unit or uniform beyond the driver's fails in GL the same
+     * way. For tests only: a renderer sized by claims can fail where a real one would not. */
+    macs_limits claims;
+    /* Extension names, separated by spaces, that MACS treats as absent whatever the driver says:
+     * optional ones (GL_ARB_depth_buffer_float, GL_ARB_color_buffer_float, GL_ARB_half_float_pixel,
+     * GL_ARB_framebuffer_object for the EXT path) and required ones (GL_ARB_texture_float, which makes
+     * macs_context_create refuse just as a driver without it would). Each name must start "GL_". */
+    const char *hidden_extensions;
+    /* 0: the context's version. 21 (major * 10 + minor, at least 21): MACS ignores what a later core
+     * version adds (framebuffer objects are core from 3.0), so hidden extensions count on a context
+     * that a driver made 4.6 by default. */
+    int max_gl_version;
+    unsigned lacking_float_features; /* macs_float_feature bits the hardware lacks */
 } macs_context_desc;
 
-/* Optional OpenGL features found in the extension string. */
+/* Optional OpenGL features found in the extension string (less those desc.hidden_extensions or the
+ * profile hide), and the float features GL 2.1 cannot report (true unless the desc or the profile
+ * says the hardware lacks them). */
 typedef struct macs_features {
     bool arb_framebuffer_object; /* false: the EXT_framebuffer_object + EXT_packed_depth_stencil path */
     bool depth_buffer_float;     /* ARB_depth_buffer_float */
     bool color_buffer_float;     /* ARB_color_buffer_float */
     bool half_float_pixel;       /* ARB_half_float_pixel */
+    bool float32_filter;         /* RGBA32F inputs filter linearly (macs_float_feature) */
+    bool float16_filter;         /* RGBA16F inputs filter linearly */
+    bool float32_blend;          /* RGBA32F outputs blend */
+    bool float16_blend;          /* RGBA16F outputs blend */
 } macs_features;
 
 /* The GL strings of the current context; any of them may be NULL (Mesa returns NULL for the shading
@@ -228,7 +292,8 @@ MACS_API const char *macs_context_error_message(const macs_context *ctx);
 /* Forgets the recorded error so that the next one is kept. */
 MACS_API void macs_context_clear_error(macs_context *ctx);
 
-/* Copies the limits GL reports (real) and the ones passes obey after caps (effective); either may be NULL. */
+/* Copies the limits GL reports (real) and the ones passes obey (effective: the claims, then the
+ * profile's caps and desc.caps); either may be NULL. */
 MACS_API void macs_context_get_limits(const macs_context *ctx, macs_limits *real, macs_limits *effective);
 
 /* The effective max_uniform_components (after caps), for callers that size generated shaders by it
@@ -243,7 +308,7 @@ MACS_API uint64_t macs_context_programs_compiled(const macs_context *ctx);
 /* Copies the GL strings read at creation. */
 MACS_API void macs_context_get_gl_info(const macs_context *ctx, macs_gl_info *info);
 
-/* Copies which optional extensions were found. */
+/* Copies which optional extensions were found and which float features the context has. */
 MACS_API void macs_context_get_features(const macs_context *ctx, macs_features *features);
 
 /* Waits until GL has finished every command issued so far (glFinish): for timing, not correctness. */

@@ -348,7 +348,9 @@ static void auto_falls_back_and_says_why(void **state)
     assert_int_equal(bg_scene_commit(s), BG_OK);
     set = plan_settings(BG_PLAN_AUTO);
     assert_int_equal(render(r, s, &set, &small, "40 planes").plan, BG_PLAN_MULTIPASS);
-    if (log.count != 4 || !strstr(log.last, "objects outside the object tree"))
+    /* Under a limit profile the smaller uniform budget may decline the frame first: a reason too. */
+    bool uniforms = util_profile() && strstr(log.last, "uniform components");
+    if (log.count != 4 || (!strstr(log.last, "objects outside the object tree") && !uniforms))
         fail_msg("no reason logged for 40 planes (%d messages, last \"%s\")", log.count, log.last);
     bg_scene_destroy(s);
     assert_int_equal(bg_renderer_error(r), BG_OK);
@@ -380,7 +382,8 @@ static void forced_fused_beyond_limits_fails(void **state)
     bg_render_settings set = plan_settings(BG_PLAN_FUSED);
     set.max_depth = 20;
     set.min_weight = 0.0;
-    assert_int_equal(bg_render_gpu(r, s, &set, &img), BG_ERR_LIMIT);
+    /* The refusal is the test: the library's own call, which no limit profile turns into a skip. */
+    assert_int_equal((bg_render_gpu)(r, s, &set, &img), BG_ERR_LIMIT);
     assert_int_equal(bg_renderer_error(r), BG_ERR_LIMIT);
     const char *msg = bg_renderer_error_message(r);
     if (!strstr(msg, "BG_PLAN_FUSED") || !strstr(msg, "rays"))
@@ -397,7 +400,7 @@ static void forced_fused_beyond_limits_fails(void **state)
     macs_context *ctx = util_context(util_fx.headless, &caps);
     r = util_renderer(ctx);
     s = util_scene(SCENE_TEXTURED_ANISO);
-    assert_int_equal(bg_render_gpu(r, s, &set, &img), BG_ERR_LIMIT);
+    assert_int_equal((bg_render_gpu)(r, s, &set, &img), BG_ERR_LIMIT);
     msg = bg_renderer_error_message(r);
     if (!strstr(msg, "texture units"))
         fail_msg("unclear message: \"%s\"", msg);

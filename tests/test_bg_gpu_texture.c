@@ -271,6 +271,7 @@ static void mesh_fallback_pixels(void **state)
 static void caller_gl_texture_as_target(void **state)
 {
     (void)state;
+    util_require_texture_size(util_fx.ctx, W, H);
     bg_scene *s = util_scene(SCENE_PAPER_EARTH_SHADOW);
     GLuint name = util_raw_texture(&raw, W, H, GL_RGBA8, GL_UNSIGNED_BYTE, NULL);
     macs_texture_wrap_desc d = {name, W, H, MACS_FORMAT_RGBA8, MACS_FILTER_LINEAR, MACS_WRAP_DEFAULT};
@@ -321,6 +322,7 @@ static void expect_wrap_refused(macs_status st, macs_status want, const char *a,
 static void bad_targets_are_refused(void **state)
 {
     (void)state;
+    util_require_texture_size(util_fx.ctx, W + 1, H); /* a 71-wide texture is refused by its width */
     bg_renderer *r = util_renderer(util_fx.ctx);
     bg_scene *s = util_scene(SCENE_PAPER_EARTH);
     bg_render_settings set = bg_render_settings_init();
@@ -353,7 +355,7 @@ static void bad_targets_are_refused(void **state)
     set.max_depth = 20; /* 2^21 - 1 rays a pixel without min_weight's pruning */
     set.min_weight = 0.0;
     bg_scene *glass = util_scene(SCENE_GLASS);
-    expect_refused(r, bg_render_gpu_to_texture(r, glass, &set, t), BG_ERR_LIMIT,
+    expect_refused(r, (bg_render_gpu_to_texture)(r, glass, &set, t), BG_ERR_LIMIT,
                    "bg_render_gpu_to_texture: BG_PLAN_FUSED cannot render this frame", NULL);
     bg_scene_destroy(glass);
     set = bg_render_settings_init();
@@ -374,7 +376,8 @@ static void bad_targets_are_refused(void **state)
     expect_wrap_refused(macs_texture_wrap(util_fx.ctx, &d, &wrapped), MACS_ERR_INVALID_ARGUMENT, "desc.gl_name",
                         "glIsTexture");
     assert_null(wrapped);
-    macs_limits caps = {0, 0, 0, 64, 0};
+    macs_limits caps = {0};
+    caps.max_texture_size = 64;
     macs_context *small = util_context(util_fx.headless, &caps);
     GLuint big = util_raw_texture(&raw, 128, 16, GL_RGBA8, GL_UNSIGNED_BYTE, NULL);
     macs_texture_wrap_desc bd = {big, 0, 0, MACS_FORMAT_DEFAULT, MACS_FILTER_DEFAULT, MACS_WRAP_DEFAULT};

@@ -223,6 +223,9 @@ static void gpu_out_of_memory_is_reported_and_recoverable(void **state)
     assert_int_equal(util_oom_injected(), 1);
     assert_null(t);
     assert_int_equal(macs_context_error(ctx), MACS_ERR_GPU_OUT_OF_MEMORY);
+    /* The message says what was asked, so a caller can tell which allocation the GPU could not hold. */
+    assert_non_null(strstr(macs_context_error_message(ctx), "GL_OUT_OF_MEMORY"));
+    assert_non_null(strstr(macs_context_error_message(ctx), "4x4 RGBA32F"));
     macs_context_clear_error(ctx);
     /* Still usable afterwards. */
     float in[64], out[64];

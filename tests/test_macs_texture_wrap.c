@@ -124,7 +124,8 @@ static void wrap_refusals_name_the_field(void **state)
     macs_context_destroy(ctx);
 
     /* Beyond the effective size limit, as macs_texture_create refuses it. */
-    macs_limits caps = {0, 0, 0, 16, 0};
+    macs_limits caps = {0};
+    caps.max_texture_size = 16;
     ctx = util_context(*state, &caps);
     GLuint big = util_raw_texture(&raw, 32, 8, GL_RGBA8, GL_UNSIGNED_BYTE, NULL);
     expect_error(ctx, wrap(ctx, big, 0, 0, MACS_FORMAT_DEFAULT, &t), MACS_ERR_LIMIT, "32x8", "maximum 16");

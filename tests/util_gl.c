@@ -87,6 +87,12 @@ macs_headless *util_headless(void)
     return h;
 }
 
+const char *util_profile(void)
+{
+    const char *p = getenv("MACS_TEST_PROFILE");
+    return p && *p ? p : NULL;
+}
+
 macs_context *util_context(macs_headless *headless, const macs_limits *caps)
 {
     macs_context_desc desc = {0};
@@ -94,11 +100,14 @@ macs_context *util_context(macs_headless *headless, const macs_limits *caps)
     desc.get_proc_address_user = macs_headless_proc_user(headless);
     if (caps)
         desc.caps = *caps;
+    /* MACS combines the profile with the test's caps, the smaller limit winning. */
+    desc.profile = util_profile();
     macs_context *ctx = NULL;
     char message[1024];
     macs_status st = macs_context_create(&desc, &ctx, message, sizeof message);
     if (st != MACS_OK)
-        fail_msg("macs_context_create: %s", message);
+        fail_msg("macs_context_create%s%s: %s", desc.profile ? " under MACS_TEST_PROFILE=" : "",
+                 desc.profile ? desc.profile : "", message);
     return ctx;
 }
 
@@ -122,9 +131,27 @@ macs_texture *util_texture(macs_context *ctx, int width, int height, macs_format
     desc.format = format;
     macs_texture *t = NULL;
     macs_status st = macs_texture_create(ctx, &desc, &t);
+    if (st == MACS_ERR_LIMIT && util_profile()) {
+        /* The test's own texture is beyond the profile's hardware: the test cannot run there. */
+        print_message("skipped: the test's %dx%d texture is beyond profile %s: %s\n", width, height, util_profile(),
+                      macs_context_error_message(ctx));
+        macs_context_clear_error(ctx);
+        skip();
+    }
     if (st != MACS_OK)
         fail_msg("macs_texture_create %dx%d: %s", width, height, macs_context_error_message(ctx));
     return t;
+}
+
+void util_require_texture_size(macs_context *ctx, int width, int height)
+{
+    macs_limits eff;
+    macs_context_get_limits(ctx, NULL, &eff);
+    if (!util_profile() || (width <= eff.max_texture_size && height <= eff.max_texture_size))
+        return;
+    print_message("skipped: the test needs %dx%d textures, beyond profile %s's max_texture_size %d\n", width, height,
+                  util_profile(), eff.max_texture_size);
+    skip();
 }
 
 void util_fill_pattern(float *data, size_t n, unsigned seed)

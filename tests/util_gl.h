@@ -1,4 +1,5 @@
-/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl | device) and MACS contexts with caps. */
+/* Test helpers: headless GL from MACS_TEST_BACKEND (osmesa | egl | device) and MACS contexts with caps
+ * and the limit profile MACS_TEST_PROFILE names. */
 #ifndef UTIL_GL_H
 #define UTIL_GL_H
 
@@ -21,7 +22,12 @@ bool util_osmesa_present(void);
  * asked for and not installed; fails the test if it cannot otherwise. */
 macs_headless *util_headless(void);
 
-/* Creates a MACS context on the current headless context with optional caps; fails the test on error. */
+/* The limit profile the environment asks for (MACS_TEST_PROFILE, a name of MACS_PROFILE_NAMES), or
+ * NULL: the library reads no environment, so the tests pass it on through macs_context_desc.profile. */
+const char *util_profile(void);
+
+/* Creates a MACS context on the current headless context with optional caps, under util_profile()
+ * (its limits and the caps combine, the smaller winning); fails the test on error. */
 macs_context *util_context(macs_headless *headless, const macs_limits *caps);
 
 /* Leaves the calling thread with no current GL context (EGL or OSMesa, whichever is current), as a
@@ -32,8 +38,13 @@ void util_release_current(void);
 int util_group_setup(void **state);
 int util_group_teardown(void **state);
 
-/* Creates a texture of the given size and format with no contents, failing the test on error. */
+/* Creates a texture of the given size and format with no contents, failing the test on error; under
+ * a limit profile a size beyond the profile's texture size skips the test, saying so. */
 macs_texture *util_texture(macs_context *ctx, int width, int height, macs_format format);
+
+/* Under a limit profile, skips the calling test, saying so, when ctx cannot hold a width x height
+ * texture (the test's own GL textures of that size would be refused); does nothing otherwise. */
+void util_require_texture_size(macs_context *ctx, int width, int height);
 
 /* Fills n floats with a deterministic pattern of signs and magnitudes. */
 void util_fill_pattern(float *data, size_t n, unsigned seed);

@@ -5,13 +5,17 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#define UTIL_GPU_LIBRARY_CALLS /* this file calls the library's bg_render_gpu*, not the macros */
 #include "gpu_thresholds.h"
 #include "scenes/image_metrics.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+
+static void skip_refused(bg_renderer *r, bg_status st, const char *label);
 
 unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height)
 {
@@ -70,6 +74,7 @@ bg_renderer *util_renderer(macs_context *ctx)
     bg_renderer *r = NULL;
     char message[256];
     bg_status st = bg_renderer_create(&d, &r, message, sizeof message);
+    util_skip_if_profile_refuses(st, message, "bg_renderer_create");
     if (st != BG_OK)
         fail_msg("bg_renderer_create: %s: %s", bg_status_string(st), message);
     assert_non_null(r);
@@ -109,9 +114,58 @@ void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_re
                      const char *label)
 {
     bg_status st = bg_render_gpu(r, s, set, img);
+    skip_refused(r, st, label);
     if (st != BG_OK)
         fail_msg("%s: bg_render_gpu: %s: %s (MACS: %s)", label, bg_status_string(st), bg_renderer_error_message(r),
                  macs_context_error_message(ctx));
+}
+
+void util_skip_if_profile_refuses(bg_status st, const char *message, const char *label)
+{
+    /* Only a limit refusal, and only under a profile: anywhere else BG_ERR_LIMIT stays a failure. */
+    if (st != BG_ERR_LIMIT || !util_profile())
+        return;
+    /* The renderer keeps its first error, which may be older than this refusal: said as such. */
+    print_message("skipped: %s: the renderer refuses profile %s's limits (BG_ERR_LIMIT); its first recorded "
+                  "error: %s\n", label, util_profile(), message);
+    skip();
+}
+
+/* A skipped test must leave nothing behind for the next: the refusal stays recorded (first error
+ * wins) in the renderer and in the MACS context, which the suite's fixture shares across tests. */
+static void skip_refused(bg_renderer *r, bg_status st, const char *label)
+{
+    if (st != BG_ERR_LIMIT || !util_profile())
+        return;
+    char message[1024];
+    snprintf(message, sizeof message, "%s", bg_renderer_error_message(r));
+    bg_renderer_clear_error(r);
+    if (util_fx.ctx)
+        macs_context_clear_error(util_fx.ctx);
+    util_skip_if_profile_refuses(st, message, label);
+}
+
+bg_status util_profiled_render_gpu(bg_renderer *r, bg_scene *s, const bg_render_settings *set, bg_image *img)
+{
+    bg_status st = bg_render_gpu(r, s, set, img);
+    skip_refused(r, st, "bg_render_gpu");
+    return st;
+}
+
+bg_status util_profiled_render_gpu_to_texture(bg_renderer *r, bg_scene *s, const bg_render_settings *set,
+                                              macs_texture *target)
+{
+    bg_status st = bg_render_gpu_to_texture(r, s, set, target);
+    skip_refused(r, st, "bg_render_gpu_to_texture");
+    return st;
+}
+
+bg_status util_profiled_render_gpu_accumulate(bg_renderer *r, bg_scene *s, const bg_render_settings *set,
+                                              bg_accumulation *acc, int first, int count)
+{
+    bg_status st = bg_render_gpu_accumulate(r, s, set, acc, first, count);
+    skip_refused(r, st, "bg_render_gpu_accumulate");
+    return st;
 }
 
 util_gpu util_fx;

@@ -37,7 +37,31 @@ bg_scene *util_triangle_stack_scene(void);
  * plan's passes, G-buffer, splits and skips (BG_PLAN_AUTO picks the fused plan where it can). */
 bg_render_settings util_multipass_settings(void);
 
-/* Renders s with bg_render_gpu; on failure fails the test with label, the status, the renderer's
+/* Under a limit profile (MACS_TEST_PROFILE), a render the renderer refuses with BG_ERR_LIMIT is a
+ * profile the renderer cannot work within: skips the calling test, printing label, the profile and
+ * message (which names the limit). Does nothing for any other status, or without a profile. */
+void util_skip_if_profile_refuses(bg_status st, const char *message, const char *label);
+
+/* The renderer's GPU entry points as the suites call them: the same, except that under a limit
+ * profile a BG_ERR_LIMIT refusal skips the calling test by name (util_skip_if_profile_refuses)
+ * instead of returning, so that a test the profile's hardware could not run is counted as skipped,
+ * never as passed or failed. Without MACS_TEST_PROFILE they return exactly what the library does.
+ * The suites get them through the macros below; util_gpu.c calls the library's own, and so does a
+ * test whose point is the refusal, by putting the name in parentheses: (bg_render_gpu)(r, s, set, img). */
+bg_status util_profiled_render_gpu(bg_renderer *r, bg_scene *s, const bg_render_settings *set, bg_image *img);
+bg_status util_profiled_render_gpu_to_texture(bg_renderer *r, bg_scene *s, const bg_render_settings *set,
+                                              macs_texture *target);
+bg_status util_profiled_render_gpu_accumulate(bg_renderer *r, bg_scene *s, const bg_render_settings *set,
+                                              bg_accumulation *acc, int first, int count);
+#ifndef UTIL_GPU_LIBRARY_CALLS
+#define bg_render_gpu(r, s, set, img) util_profiled_render_gpu(r, s, set, img)
+#define bg_render_gpu_to_texture(r, s, set, target) util_profiled_render_gpu_to_texture(r, s, set, target)
+#define bg_render_gpu_accumulate(r, s, set, acc, first, count) \
+    util_profiled_render_gpu_accumulate(r, s, set, acc, first, count)
+#endif
+
+/* Renders s with bg_render_gpu (skipping as util_skip_if_profile_refuses says); on failure fails the
+ * test with label, the status, the renderer's
  * message and the message of ctx (the MACS context r renders with). */
 void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_render_settings *set, bg_image *img,
                      const char *label);

@@ -87,6 +87,44 @@ static macs_status create_fail(macs_context *ctx, macs_status st, char *message,
     return st;
 }
 
+/* The profile, hidden extensions, GL version and float features of a descriptor; text gets the first
+ * fault. */
+static void check_options(const macs_context_desc *desc, char *text, size_t size)
+{
+    char names[256];
+    if (desc->profile && !macsi_profile_find(desc->profile)) {
+        macsi_profile_names(names, sizeof names);
+        snprintf(text, size, "macs_context_create: desc.profile \"%.64s\" is no profile: the names are %s (or NULL "
+                 "for none)", desc->profile, names);
+        return;
+    }
+    if (desc->max_gl_version != 0 && desc->max_gl_version < 21) {
+        snprintf(text, size, "macs_context_create: desc.max_gl_version %d: must be 0 (the context's) or at least 21 "
+                 "(GL 2.1, which MACS requires), as major * 10 + minor", desc->max_gl_version);
+        return;
+    }
+    unsigned all = MACS_FLOAT32_FILTER | MACS_FLOAT16_FILTER | MACS_FLOAT32_BLEND | MACS_FLOAT16_BLEND;
+    if (desc->lacking_float_features & ~all) {
+        snprintf(text, size, "macs_context_create: desc.lacking_float_features 0x%x holds bits other than the "
+                 "macs_float_feature values (0x%x)", desc->lacking_float_features, all);
+        return;
+    }
+    /* Each name must look like one, so that a typo (or a list separated by commas) is caught rather
+     * than hiding nothing. */
+    for (const char *p = desc->hidden_extensions; p && *p;) {
+        while (*p == ' ')
+            p++;
+        size_t n = strcspn(p, " ");
+        bool ok = n > 3 && strncmp(p, "GL_", 3) == 0 && strcspn(p, ",;\t\n") >= n;
+        if (n > 0 && !ok) {
+            snprintf(text, size, "macs_context_create: desc.hidden_extensions: \"%.*s\" is no extension name (names "
+                     "start with GL_ and are separated by spaces)", (int)(n > 64 ? 64 : n), p);
+            return;
+        }
+        p += n;
+    }
+}
+
 /* Refuses a descriptor before anything is allocated: there is no context yet to hold the message.
  * Each fault is named on its own, so the message says which argument to fix. */
 static macs_status check_desc(const macs_context_desc *desc, macs_context **out, char *message, size_t size)
@@ -104,8 +142,9 @@ static macs_status check_desc(const macs_context_desc *desc, macs_context **out,
     else if (!macsi_allocator_valid(&desc->allocator))
         snprintf(text, sizeof text, "macs_context_create: desc.allocator: set alloc, realloc and free together "
                  "or leave all NULL");
-    else
-        macsi_limits_check_caps(&desc->caps, text, sizeof text);
+    else if (macsi_limits_check_caps(&desc->caps, "caps", text, sizeof text) == MACS_OK &&
+             macsi_limits_check_caps(&desc->claims, "claims", text, sizeof text) == MACS_OK)
+        check_options(desc, text, sizeof text);
     if (!text[0])
         return MACS_OK;
     macsi_report(logger, message, size, MACS_ERR_INVALID_ARGUMENT, "%s", text);
@@ -124,6 +163,7 @@ static macs_status allocate_context(const macs_context_desc *desc, macs_context 
     ctx->allocator = desc->allocator;
     ctx->logger = desc->logger;
     ctx->allow_float_depth = desc->allow_float_depth;
+    ctx->profile = macsi_profile_find(desc->profile);
     *out = ctx;
     return MACS_OK;
 }
@@ -140,8 +180,10 @@ static macs_status load_query_functions(macs_context *ctx, const macs_context_de
     return MACS_OK;
 }
 
-/* Requires a current desktop GL 2.1 or later; gives its version string and major number. */
-static macs_status check_gl_version(macs_context *ctx, const char **out_version, int *out_major)
+/* Requires a current desktop GL 2.1 or later; gives its version string and the major number MACS
+ * goes by: the context's, or that of desc.max_gl_version or the profile's where lower. */
+static macs_status check_gl_version(macs_context *ctx, const macs_context_desc *desc, const char **out_version,
+                                    int *out_major)
 {
     const char *version = (const char *)ctx->gl.GetString(GL_VERSION);
     if (!version)
@@ -150,22 +192,40 @@ static macs_status check_gl_version(macs_context *ctx, const char **out_version,
     int major = 0, minor = 0;
     if (!parse_version(version, &major, &minor) || major < 2 || (major == 2 && minor < 1))
         return macsi_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "OpenGL 2.1 is required, the context offers \"%s\"", version);
+    int cap = desc->max_gl_version;
+    if (ctx->profile && (cap == 0 || ctx->profile->max_gl_version < cap))
+        cap = ctx->profile->max_gl_version;
+    int actual = major * 10 + (minor > 9 ? 9 : minor);
+    ctx->gl_version = cap > 0 && cap < actual ? cap : actual;
+    major = ctx->gl_version / 10;
     *out_version = version;
     *out_major = major;
     return MACS_OK;
 }
 
+/* Whether GL lists an extension that neither desc.hidden_extensions nor the profile takes away. */
+static bool has(const macs_context *ctx, const char *ext, const char *hidden, const char *name)
+{
+    if (macsi_gl_has_extension(hidden, name))
+        return false;
+    if (ctx->profile && macsi_gl_has_extension(ctx->profile->hidden_extensions, name))
+        return false;
+    return macsi_gl_has_extension(ext, name);
+}
+
 /* Requires float textures and a framebuffer object extension (core from 3.0), naming every one
- * missing at once; records which FBO flavour and which optional extensions are there. */
-static macs_status read_extensions(macs_context *ctx, int major)
+ * missing at once; records which FBO flavour and which optional extensions are there, and the float
+ * features the descriptor and the profile leave. */
+static macs_status read_extensions(macs_context *ctx, int major, const macs_context_desc *desc)
 {
     const char *ext = (const char *)ctx->gl.GetString(GL_EXTENSIONS);
+    const char *hidden = desc->hidden_extensions;
     char missing[1024] = "";
-    if (!macsi_gl_has_extension(ext, "GL_ARB_texture_float"))
+    if (!has(ctx, ext, hidden, "GL_ARB_texture_float"))
         snprintf(missing, sizeof missing, "GL_ARB_texture_float");
-    bool arb_fbo = major >= 3 || macsi_gl_has_extension(ext, "GL_ARB_framebuffer_object");
-    bool ext_fbo = macsi_gl_has_extension(ext, "GL_EXT_framebuffer_object") &&
-                   macsi_gl_has_extension(ext, "GL_EXT_packed_depth_stencil");
+    bool arb_fbo = major >= 3 || has(ctx, ext, hidden, "GL_ARB_framebuffer_object");
+    bool ext_fbo = has(ctx, ext, hidden, "GL_EXT_framebuffer_object") &&
+                   has(ctx, ext, hidden, "GL_EXT_packed_depth_stencil");
     if (!arb_fbo && !ext_fbo) {
         size_t used = strlen(missing);
         snprintf(missing + used, sizeof missing - used, "%sGL_ARB_framebuffer_object (or GL_EXT_framebuffer_object "
@@ -174,9 +234,14 @@ static macs_status read_extensions(macs_context *ctx, int major)
     if (missing[0])
         return macsi_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "missing extension(s): %s", missing);
     ctx->features.arb_framebuffer_object = arb_fbo;
-    ctx->features.depth_buffer_float = macsi_gl_has_extension(ext, "GL_ARB_depth_buffer_float");
-    ctx->features.color_buffer_float = macsi_gl_has_extension(ext, "GL_ARB_color_buffer_float");
-    ctx->features.half_float_pixel = macsi_gl_has_extension(ext, "GL_ARB_half_float_pixel");
+    ctx->features.depth_buffer_float = has(ctx, ext, hidden, "GL_ARB_depth_buffer_float");
+    ctx->features.color_buffer_float = has(ctx, ext, hidden, "GL_ARB_color_buffer_float");
+    ctx->features.half_float_pixel = has(ctx, ext, hidden, "GL_ARB_half_float_pixel");
+    unsigned lacking = desc->lacking_float_features | (ctx->profile ? ctx->profile->lacking_float_features : 0u);
+    ctx->features.float32_filter = !(lacking & MACS_FLOAT32_FILTER);
+    ctx->features.float16_filter = !(lacking & MACS_FLOAT16_FILTER);
+    ctx->features.float32_blend = !(lacking & MACS_FLOAT32_BLEND);
+    ctx->features.float16_blend = !(lacking & MACS_FLOAT16_BLEND);
     return MACS_OK;
 }
 
@@ -206,12 +271,21 @@ static macs_status copy_gl_strings(macs_context *ctx)
     return MACS_OK;
 }
 
-/* The hardware's limits, lowered by the descriptor's caps. */
-static macs_status read_limits(macs_context *ctx, const macs_limits *caps)
+/* The hardware's limits, replaced by the descriptor's claims and lowered by the profile's caps and
+ * the descriptor's. */
+static macs_status read_limits(macs_context *ctx, const macs_context_desc *desc)
 {
     macsi_limits_query(ctx);
-    macsi_apply_caps(ctx, caps);
-    return macsi_gl_check(ctx, "querying limits");
+    macsi_apply_caps(ctx, &desc->claims, ctx->profile ? &ctx->profile->caps : NULL, &desc->caps);
+    macs_status st = macsi_gl_check(ctx, "querying limits");
+    if (st != MACS_OK)
+        return st;
+    /* macs_fullscreen.vert's one vec2 varying takes a whole 4-float slot. */
+    if (ctx->effective.max_varying_components < 4)
+        return macsi_fail(ctx, MACS_ERR_LIMIT, "macs_context_create: max_varying_components %d (desc.caps): MACS's "
+                         "vertex shader passes one vec2 varying, which takes a slot of 4",
+                         ctx->effective.max_varying_components);
+    return MACS_OK;
 }
 
 /* One info line saying what the context runs on and with which limits, and a warning where float
@@ -219,9 +293,12 @@ static macs_status read_limits(macs_context *ctx, const macs_limits *caps)
 static void log_context_summary(macs_context *ctx, const char *version)
 {
     char info[256];
-    snprintf(info, sizeof info, "MACS context on \"%s\" (%s); draw buffers %d, colour attachments %d, texture "
-             "units %d", ctx->gl_strings[1] ? ctx->gl_strings[1] : "?", version, ctx->effective.max_draw_buffers,
-             ctx->effective.max_color_attachments, ctx->effective.max_texture_units);
+    snprintf(info, sizeof info, "MACS context on \"%s\" (%s, used as %d.%d%s%s); draw buffers %d, colour "
+             "attachments %d, texture units %d, texture size %d",
+             ctx->gl_strings[1] ? ctx->gl_strings[1] : "?", version, ctx->gl_version / 10, ctx->gl_version % 10,
+             ctx->profile ? "; profile " : "", ctx->profile ? ctx->profile->name : "",
+             ctx->effective.max_draw_buffers, ctx->effective.max_color_attachments,
+             ctx->effective.max_texture_units, ctx->effective.max_texture_size);
     macsi_log(ctx, MACS_LOG_INFO, info);
     if (!ctx->features.color_buffer_float)
         macsi_log(ctx, MACS_LOG_WARNING, "GL_ARB_color_buffer_float is missing: the implementation may clamp "
@@ -246,15 +323,15 @@ macs_status macs_context_create(const macs_context_desc *desc, macs_context **ou
     int major = 0;
     st = load_query_functions(ctx, desc);
     if (st == MACS_OK)
-        st = check_gl_version(ctx, &version, &major);
+        st = check_gl_version(ctx, desc, &version, &major);
     if (st == MACS_OK)
-        st = read_extensions(ctx, major);
+        st = read_extensions(ctx, major, desc);
     if (st == MACS_OK)
         st = load_gl_table(ctx, desc);
     if (st == MACS_OK)
         st = copy_gl_strings(ctx);
     if (st == MACS_OK)
-        st = read_limits(ctx, &desc->caps);
+        st = read_limits(ctx, desc);
     if (st == MACS_OK)
         st = build_shared_objects(ctx);
     if (st != MACS_OK)

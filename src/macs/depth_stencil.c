@@ -73,7 +73,15 @@ static macs_status create(macs_context *ctx, int width, int height, bool interna
     gl->BindRenderbuffer(GL_RENDERBUFFER, ds->renderbuffer);
     gl->RenderbufferStorage(GL_RENDERBUFFER, use_float ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8, width, height);
     gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
-    macs_status st = macsi_gl_check(ctx, "glRenderbufferStorage");
+    /* What was asked, so that GL_OUT_OF_MEMORY (or a size only desc.claims allows) reads as such. */
+    char what[256];
+    int driver = ctx->real.max_texture_size;
+    snprintf(what, sizeof what, "macs_depth_stencil_create: glRenderbufferStorage of a %dx%d %s buffer (%.0f MiB)%s",
+             width, height, use_float ? "DEPTH32F_STENCIL8" : "DEPTH24_STENCIL8",
+             (double)width * (double)height * (use_float ? 8.0 : 4.0) / (1024.0 * 1024.0),
+             width > driver || height > driver ? ", beyond the driver's max_texture_size: only desc.claims allows it"
+                                               : "");
+    macs_status st = macsi_gl_check(ctx, what);
     /* New storage is undefined; depth 1 and stencil 0 make the first run behave and set the invariant. */
     if (st == MACS_OK)
         st = clear(ds, 1.0f, 0, 0xFF);

@@ -35,6 +35,7 @@ struct macs_texture {
     GLuint id;
     int width, height;
     macs_format format;
+    macs_filter filter; /* as set at creation or wrapping: decides whether a pass may sample it */
     bool wrapped; /* the caller's GL texture (macs_texture_wrap): forgotten, never deleted */
     struct macs_texture *prev, *next;
 };
@@ -96,9 +97,12 @@ struct macs_context {
     macs_allocator allocator;
     macs_logger logger;
     macs_limits real, effective;
+    macs_limits claims; /* desc.claims: limits above the driver's, named when GL then refuses */
     macs_features features;
     char *gl_strings[4];
     bool allow_float_depth;
+    const struct macsi_profile *profile; /* desc.profile's entry, or NULL */
+    int gl_version;                      /* the version MACS goes by, major * 10 + minor */
     macs_first_error error; /* status is a macs_status */
     GLuint vertex_shader;
     GLuint vertex_buffer;
@@ -142,9 +146,27 @@ macs_status macsi_gl_load(macs_gl *gl, macs_get_proc_address_fn gpa, void *user,
 
 /* limits.c */
 void macsi_limits_query(macs_context *ctx);
-macs_status macsi_limits_check_caps(const macs_limits *caps, char *message, size_t size);
+macs_status macsi_limits_check_caps(const macs_limits *caps, const char *field, char *message, size_t size);
 int macsi_outputs_per_chunk(const macs_context *ctx);
-void macsi_apply_caps(macs_context *ctx, const macs_limits *caps);
+/* effective = claims over real, then lowered by each cap (NULL: none). */
+void macsi_apply_caps(macs_context *ctx, const macs_limits *claims, const macs_limits *profile_caps,
+                      const macs_limits *caps);
+
+/* profiles.c: a profile is caps, extensions taken away, float features lacking and a GL version. */
+typedef struct macsi_profile {
+    const char *name;
+    macs_limits caps;
+    const char *hidden_extensions; /* separated by spaces */
+    unsigned lacking_float_features;
+    int max_gl_version; /* major * 10 + minor */
+} macsi_profile;
+const macsi_profile *macsi_profile_find(const char *name);
+/* The valid names, separated by ", ". */
+void macsi_profile_names(char *out, size_t size);
+
+/* float_features.c: refusing a sampling or blending the context's float features cannot give. */
+macs_status macsi_check_filterable(macs_context *ctx, const macs_texture *t, const char *where);
+macs_status macsi_check_blendable(macs_context *ctx, const macs_texture *t, macs_blend blend, const char *where);
 
 /* program_cache.c */
 macs_status macsi_program_acquire(macs_context *ctx, const char *fragment_source, int input_count,

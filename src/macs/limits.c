@@ -9,6 +9,12 @@ static int capped(int real, int cap)
     return cap > 0 && cap < real ? cap : real;
 }
 
+/* The struct holds exactly the ints the one list names, so a field missing from the list (and so
+ * from every cap, claim and check) stops the build. */
+#define MACS_COUNT_FIELD_(field) +1
+typedef char macsi_limit_list_matches_struct_[sizeof(macs_limits) == sizeof(int) * (0 MACS_LIMIT_FIELDS(MACS_COUNT_FIELD_)) ? 1 : -1];
+#undef MACS_COUNT_FIELD_
+
 void macsi_limits_query(macs_context *ctx)
 {
     GLint v;
@@ -20,6 +26,9 @@ void macsi_limits_query(macs_context *ctx)
     /* GL 2.0 promises 64; a driver reporting less is taken at that word rather than at zero. */
     v = 0; ctx->gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &v);
     r->max_uniform_components = v < 64 ? 64 : v;
+    /* GL 2.0 promises 32; only MACS's vertex shader spends any (macs_uv), see macs_limits. */
+    v = 0; ctx->gl.GetIntegerv(GL_MAX_VARYING_FLOATS, &v);
+    r->max_varying_components = v < 32 ? 32 : v;
     /* Depth/stencil objects are renderbuffers of the output size, so the smaller limit rules both. */
     GLint rb = 0;
     ctx->gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
@@ -37,16 +46,12 @@ void macsi_limits_query(macs_context *ctx)
     if (r->max_color_attachments < 1) r->max_color_attachments = 1;
 }
 
-/* Every field of macs_limits, for the checks and copies that treat them all alike. */
-#define MACS_LIMIT_FIELDS(X) \
-    X(max_draw_buffers) X(max_color_attachments) X(max_texture_units) X(max_texture_size) X(max_uniform_components)
-
-macs_status macsi_limits_check_caps(const macs_limits *caps, char *message, size_t size)
+macs_status macsi_limits_check_caps(const macs_limits *caps, const char *name, char *message, size_t size)
 {
 #define MACS_CHECK_CAP_(field) \
     if (caps->field < 0) { \
-        snprintf(message, size, "macs_context_create: desc.caps." #field " %d: a cap must be 0 (no override) " \
-                 "or positive", caps->field); \
+        snprintf(message, size, "macs_context_create: desc.%s." #field " %d: must be 0 (no override) " \
+                 "or positive", name, caps->field); \
         return MACS_ERR_INVALID_ARGUMENT; \
     }
     MACS_LIMIT_FIELDS(MACS_CHECK_CAP_)
@@ -54,11 +59,18 @@ macs_status macsi_limits_check_caps(const macs_limits *caps, char *message, size
     return MACS_OK;
 }
 
-void macsi_apply_caps(macs_context *ctx, const macs_limits *caps)
+void macsi_apply_caps(macs_context *ctx, const macs_limits *claims, const macs_limits *profile_caps,
+                      const macs_limits *caps)
 {
-#define MACS_APPLY_CAP_(field) ctx->effective.field = capped(ctx->real.field, caps->field);
+    /* A claim replaces what GL reports, larger or not; then every cap lowers, the smaller winning. */
+#define MACS_APPLY_CAP_(field) \
+    ctx->effective.field = claims->field > 0 ? claims->field : ctx->real.field; \
+    if (profile_caps) \
+        ctx->effective.field = capped(ctx->effective.field, profile_caps->field); \
+    ctx->effective.field = capped(ctx->effective.field, caps->field);
     MACS_LIMIT_FIELDS(MACS_APPLY_CAP_)
 #undef MACS_APPLY_CAP_
+    ctx->claims = *claims;
 }
 
 int macsi_outputs_per_chunk(const macs_context *ctx)

@@ -175,6 +175,11 @@ macs_status macs_pass_set_input(macs_pass *pass, int index, macs_texture *textur
             return macsi_fail(pass->ctx, MACS_ERR_INVALID_ARGUMENT,
                              "macs_pass_set_input: input %d (%s) would also be output %d", index,
                              pass->input_names[index], i);
+    char where[160];
+    snprintf(where, sizeof where, "macs_pass_set_input: input %d \"%.64s\"", index, pass->input_names[index]);
+    macs_status st = macsi_check_filterable(pass->ctx, texture, where);
+    if (st != MACS_OK)
+        return st;
     pass->inputs[index] = texture;
     return MACS_OK;
 }
@@ -199,6 +204,11 @@ macs_status macs_pass_set_output(macs_pass *pass, int index, macs_texture *textu
         if (pass->inputs[i] == texture)
             return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_set_output: texture is input %d (%s)", i,
                              pass->input_names[i]);
+    char where[160];
+    snprintf(where, sizeof where, "macs_pass_set_output: output %d \"%.64s\"", index, pass->output_names[index]);
+    macs_status st = macsi_check_blendable(ctx, texture, pass->blend, where);
+    if (st != MACS_OK)
+        return st;
     if (pass->outputs[index] != texture) {
         pass->outputs[index] = texture;
         pass->attachments_dirty = true;

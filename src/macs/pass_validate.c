@@ -1,6 +1,7 @@
 /* Refusing a pass description before anything is built. Every message names the argument (output 1
  * "o__x", desc.blend, uniform 0 "k"), its bad value where it has one, and the rule it breaks, one
  * fault at a time, so that the caller can fix the call from the message alone. */
+#include <stdio.h>
 #include <string.h>
 
 #include "internal.h"
@@ -116,6 +117,26 @@ static macs_status check_outputs(macs_context *ctx, const macs_pass_desc *d)
     return MACS_OK;
 }
 
+/* Float features GL 2.1 cannot report: an input sampled linearly, or an output blended, in a format
+ * the context cannot do that for is refused (float_features.c). */
+static macs_status check_float_features(macs_context *ctx, const macs_pass_desc *d)
+{
+    char where[160];
+    for (int i = 0; d->input_textures && i < d->input_count; i++) {
+        snprintf(where, sizeof where, "macs_pass_create: input %d \"%.64s\"", i, d->inputs[i].name);
+        macs_status st = macsi_check_filterable(ctx, d->input_textures[i], where);
+        if (st != MACS_OK)
+            return st;
+    }
+    for (int i = 0; i < d->output_count; i++) {
+        snprintf(where, sizeof where, "macs_pass_create: output %d \"%.64s\"", i, d->outputs[i].name);
+        macs_status st = macsi_check_blendable(ctx, d->output_textures[i], d->blend, where);
+        if (st != MACS_OK)
+            return st;
+    }
+    return MACS_OK;
+}
+
 /* Each input: a name of its own, and a texture (if given now) of this context that is no output. */
 static macs_status check_inputs(macs_context *ctx, const macs_pass_desc *d)
 {
@@ -211,6 +232,8 @@ macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc)
         st = check_depth_stencil(ctx, desc);
     if (st == MACS_OK)
         st = check_state(ctx, desc);
+    if (st == MACS_OK)
+        st = check_float_features(ctx, desc);
     if (st != MACS_OK)
         return st;
     if (desc->input_count > ctx->effective.max_texture_units)

@@ -50,6 +50,39 @@ static void reset_pixel_store(macs_context *ctx)
     ctx->gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
 }
 
+static const char *format_name(macs_format f)
+{
+    return f == MACS_FORMAT_RGBA16F ? "RGBA16F" : f == MACS_FORMAT_RGBA8 ? "RGBA8" : "RGBA32F";
+}
+
+/* The GL error of glTexImage2D, told as what was asked: its size in bytes where GL ran out of memory,
+ * and the driver's own limit where the size is only allowed by desc.claims (GL then refuses it with
+ * GL_INVALID_VALUE, or runs out of memory). A claim exists to test big-GPU paths on a small driver,
+ * so its failures must read as what they are, never as a MACS or GL bug, and never crash. */
+static macs_status check_image(macs_texture *t)
+{
+    macs_context *ctx = t->ctx;
+    GLenum e = ctx->gl.GetError();
+    if (e == GL_NO_ERROR)
+        return MACS_OK;
+    macsi_gl_drain(ctx);
+    double mib = (double)t->width * (double)t->height * (double)texel_size(t->format) / (1024.0 * 1024.0);
+    int driver = ctx->real.max_texture_size;
+    if (t->width > driver || t->height > driver)
+        return macsi_fail(ctx, e == GL_OUT_OF_MEMORY ? MACS_ERR_GPU_OUT_OF_MEMORY : MACS_ERR_LIMIT,
+                         "macs_texture_create: a %dx%d %s texture (%.0f MiB) is beyond the driver's max_texture_size "
+                         "%d: only desc.claims.max_texture_size %d allows it, and GL refused it (%s)",
+                         t->width, t->height, format_name(t->format), mib, driver, ctx->effective.max_texture_size,
+                         e == GL_OUT_OF_MEMORY ? "GL_OUT_OF_MEMORY" : e == GL_INVALID_VALUE ? "GL_INVALID_VALUE"
+                                                                                           : "a GL error");
+    if (e == GL_OUT_OF_MEMORY)
+        return macsi_fail(ctx, MACS_ERR_GPU_OUT_OF_MEMORY,
+                         "macs_texture_create: GL ran out of memory (GL_OUT_OF_MEMORY) for a %dx%d %s texture "
+                         "(%.0f MiB)", t->width, t->height, format_name(t->format), mib);
+    return macsi_fail(ctx, MACS_ERR_GL, "macs_texture_create: glTexImage2D of a %dx%d %s texture failed (GL error "
+                     "0x%04x)", t->width, t->height, format_name(t->format), (unsigned)e);
+}
+
 macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc, macs_texture **out)
 {
     if (out)
@@ -84,6 +117,7 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     t->width = desc->width;
     t->height = desc->height;
     t->format = desc->format == MACS_FORMAT_DEFAULT ? MACS_FORMAT_RGBA32F : desc->format;
+    t->filter = desc->filter;
     const macs_gl *gl = &ctx->gl;
     macsi_gl_drain(ctx);
     if (desc->data) {
@@ -101,7 +135,7 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
                    texel_type(t->format), desc->data);
     reset_pixel_store(ctx);
     gl->BindTexture(GL_TEXTURE_2D, 0);
-    macs_status st = macsi_gl_check(ctx, "macs_texture_create: glTexImage2D");
+    macs_status st = check_image(t);
     if (st != MACS_OK) {
         gl->DeleteTextures(1, &t->id);
         macsi_free(&ctx->allocator, t);

@@ -170,6 +170,7 @@ macs_status macs_texture_wrap(macs_context *ctx, const macs_texture_wrap_desc *d
     t->width = w;
     t->height = h;
     t->format = format;
+    t->filter = desc->filter;
     t->wrapped = true;
     MACS_LIST_PUSH(ctx->textures, t);
     *out = t;
