@@ -113,6 +113,26 @@ void bgi_gpu_targets_release(bg_renderer *r)
     r->multipass->width = r->multipass->height = 0;
 }
 
+/* The accumulation takes the light passes' additive blending: RGBA32F where the hardware blends it,
+ * RGBA16F on parts that blend only 16-bit floats (GeForce 6/7, Radeon X1000: the context's
+ * features say so, since GL 2.1 cannot). Each add then rounds to 11 significant bits, at most 2^-11
+ * per add, far below one step of the 8-bit output for the handful of adds a pixel takes. A part
+ * that blends no float target cannot run the multipass at all. */
+static bg_status accumulation_format(bg_renderer *r, macs_format *out)
+{
+    macs_features f;
+    macs_context_get_features(r->ctx, &f);
+    if (f.float32_blend)
+        *out = MACS_FORMAT_RGBA32F;
+    else if (f.float16_blend)
+        *out = MACS_FORMAT_RGBA16F;
+    else
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "the multipass plan adds its light passes by blending into a float "
+                            "target, and this GL context blends neither RGBA32F nor RGBA16F targets (a fused plan "
+                            "needs no blending)");
+    return BG_OK;
+}
+
 bg_status bgi_gpu_targets_prepare(bg_renderer *r, int w, int h)
 {
     if (r->multipass->width != w || r->multipass->height != h)
@@ -123,8 +143,11 @@ bg_status bgi_gpu_targets_prepare(bg_renderer *r, int w, int h)
     for (int s = 0; s < GPU_SLOT_COUNT && st == BG_OK; s++)
         if (r->multipass->features.slot[s])
             st = bgi_gpu_texture_ensure(r, w, h, bgi_gpu_slot_format(r, (gpu_slot)s), &r->multipass->gbuffer[s], "G-buffer texture");
+    macs_format accumulation = MACS_FORMAT_RGBA32F;
     if (st == BG_OK)
-        st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA32F, &r->multipass->accum, "accumulation texture");
+        st = accumulation_format(r, &accumulation);
+    if (st == BG_OK)
+        st = bgi_gpu_texture_ensure(r, w, h, accumulation, &r->multipass->accum, "accumulation texture");
     /* Visibility is 0 or 1 per channel: 8 bits hold it exactly. */
     if (st == BG_OK)
         st = bgi_gpu_texture_ensure(r, w, h, MACS_FORMAT_RGBA8, &r->multipass->vis, "visibility texture");
