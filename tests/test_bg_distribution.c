@@ -233,7 +233,7 @@ static void expect_same_bytes(const unsigned char *a, const unsigned char *b, si
  * rounding (GL 2.1 appendix A, rule 4 covers one program only), so beyond equal bytes (Mesa) they
  * are held to the error model's floor for float evaluations of the same formulas: the common row of
  * gpu_thresholds.h. */
-static const gpu_threshold twin_row = {SCENE_COUNT, 2.0, 0.004, 80.0, 0.001};
+static const gpu_threshold twin_row = {SCENE_COUNT, 2.0, 0.004, 69.0, 0.001};
 
 static void expect_gpu_twins8(const unsigned char *a, const unsigned char *b, int w, int h, const char *label)
 {

@@ -22,9 +22,9 @@
 
 enum { W = 96, H = 96 };
 
-/* The removal scene is not a shared one; it is held to the many_spheres row, with the PSNR floor
- * of test_bg_gpu_tree's larger sphere grids (silhouettes of several spheres and a mirror). */
-static const gpu_threshold removal_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 70.0, 0.001};
+/* The removal scene is not a shared one; it is held to the error model's common row
+ * (gpu_thresholds.h): its spheres' and mirror's silhouettes fall under the silhouette allowance. */
+static const gpu_threshold removal_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 69.0, 0.001};
 
 static bg_gpu_plan render(bg_renderer *r, bg_scene *s, const bg_render_settings *set, unsigned char *px,
                           const char *label)

@@ -23,9 +23,9 @@
 enum { W = 160, H = 120 };
 
 /* many_spheres beyond the shared table's 16 spheres has more silhouettes: at 64 spheres one pixel on
- * a sphere's rim is 6/255 from the CPU reference in both fused variants (75.9 dB), none inside.
- * The other bounds are the shared row's; the PSNR floor sits 5 dB under that measurement. */
-static const gpu_threshold many_spheres_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 70.0, 0.001};
+ * a sphere's rim is 6/255 from the CPU reference in both fused variants (75.9 dB over every pixel),
+ * none inside. Rims are the silhouette allowance: the error model's common row (gpu_thresholds.h). */
+static const gpu_threshold many_spheres_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 69.0, 0.001};
 
 static void expect_within(bg_scene *s, const bg_render_settings *set, const bg_image *img, const char *label)
 {
