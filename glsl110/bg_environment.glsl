@@ -3,17 +3,19 @@
 // The environment (docs/shading.md 7.1), the twin of src/betelgeuse/cpu/environment_sample.c:
 // what a ray that meets nothing sees, and the environment's direction at a camera sample when it
 // lights the scene. info = (intensity, width, height, 1.0 with importance tables); the textures come
-// as arguments, since the pass declares its samplers (MACS inputs): the image (filtered, repeating),
-// the marginal table (one row of height texels) and the conditional one (width x height), NEAREST.
+// as arguments, since the pass declares its samplers (MACS inputs): the image, the marginal table
+// (one row of height texels) and the conditional one (width x height), all GL_NEAREST.
 
-vec3 bg_env_radiance(vec3 d, sampler2D env, vec4 info)
+// The image's (u, v) in direction d. What a miss sees is info.x times the image there, sampled
+// with the image's own filter and wrap, which the caller bakes into its lookup
+// (bgi_gpu_texture_lookup: bg_texture_linear for GL_LINEAR, as the CPU's bgi_cpu_texture_sample).
+vec2 bg_env_uv(vec3 d, vec4 info)
 {
     float y = clamp(d.y, -1.0, 1.0);
     // Straight up or down the azimuth is any: the centre column, as on the CPU.
     float u = abs(d.x) + abs(d.z) > 0.0 ? 0.5 + atan(d.x, -d.z) / 6.283185307 : 0.5;
     float lo = 0.5 / info.z;
-    float v = clamp(1.0 - acos(y) / 3.141592654, lo, 1.0 - lo);
-    return info.x * texture2D(env, vec2(u, v)).rgb;
+    return vec2(u, clamp(1.0 - acos(y) / 3.141592654, lo, 1.0 - lo));
 }
 
 // Value k of row `row` of a table texture of size `size`.

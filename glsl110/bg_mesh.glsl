@@ -90,10 +90,15 @@ float bg_mesh_mask_value(sampler2D tris, vec4 dims, float first, float k)
     return lane < 0.5 ? v.x : lane < 1.5 ? v.y : lane < 2.5 ? v.z : v.w;
 }
 
-// The texel index along one axis after the wrap (clamp 1.0: clamp to the edge, else repeat).
+// The texel index along one axis after the wrap (clamp 1.0: clamp to the edge, else repeat). i is
+// floor(x) or floor(x) + 1 for x in [-0.5, size - 0.5], so in [-1, size]: one whole-number step
+// wraps it exactly, where i - size * floor(i / size) could meet a division that rounds size / size
+// below 1 (GLSL allows an approximate one) and read texel size.
 float bg_mesh_mask_wrap(float i, float size, float clamp_mode)
 {
-    return clamp_mode > 0.5 ? clamp(i, 0.0, size - 1.0) : i - size * floor(i / size);
+    if (clamp_mode > 0.5)
+        return clamp(i, 0.0, size - 1.0);
+    return i < 0.0 ? i + size : (i >= size ? i - size : i);
 }
 
 // The coverage mask at uv as the CPU reference samples a texture (cpu/texture_sample.c): GL_NEAREST

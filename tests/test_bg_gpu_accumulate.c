@@ -75,6 +75,9 @@ static void same_as_render(bg_scene *s, int k, const char *label)
     assert_int_equal(bg_accumulation_samples(a), N);
     unsigned char *got8 = resolved(r, a, &set, BG_PIXEL_RGBA8);
     float *got32 = resolved(r, a, &set, BG_PIXEL_RGBA32F);
+    /* Equal on any conforming driver: bg_render_gpu sums its samples with the same sample and sum
+     * passes in the same order (samples.c, accumulate.c), so both run programs of the same source
+     * strings on the same inputs, and the RGBA32F sum stores each float as it is (GL 2.1 appendix A, rule 4). */
     assert_memory_equal(got8, want8, W * H * 4);
     assert_memory_equal(got32, want32, W * H * 16);
     free(got8);
@@ -174,6 +177,7 @@ static void refusals_and_cancels_change_nothing(void **state)
     bg_render_settings cancelling = set;
     cancelling.progress = cancel_after_one;
     cancelling.progress_user = &calls;
+    /* A cancelled or refused call draws nothing into the sum: equal whatever the driver. */
     assert_int_equal(bg_render_gpu_accumulate(r, s, &cancelling, a, 2, 2), BG_ERR_CANCELLED);
     print_message("cancelled: %s\n", bg_renderer_error_message(r));
     assert_int_equal(bg_accumulation_samples(a), 2);

@@ -1,7 +1,8 @@
 /* The limits matrix (docs/architecture.md, "Tests"): draw buffers and colour attachments capped at 1, 2, 4
- * and 8, and texture units at 8 and 16, give the same bits (RGBA32F output) as the uncapped
- * context, on the glass scene (bounces: the most pass kinds) and textured_aniso (textures, coats
- * and anisotropy: the most G-buffer targets); and the caps really split passes. */
+ * and 8, and texture units at 8 and 16, give the uncapped context's image (RGBA32F output; the
+ * same bits on Mesa, within the error model's bound for other programs elsewhere) on the glass
+ * scene (bounces: the most pass kinds) and textured_aniso (textures, coats and anisotropy: the most
+ * G-buffer targets); and the caps really split passes. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -16,6 +17,7 @@
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_thresholds.h"
 
 enum { W = 80, H = 60 };
 
@@ -49,15 +51,13 @@ static float *render(macs_headless *h, const macs_limits *caps, scene_id id, bg_
     return px;
 }
 
-/* Fails with the first differing pixel unless a and b hold the same bits. */
-static void assert_same_bits(const float *a, const float *b, const char *what)
+/* A capped render against the uncapped one. A cap on draw buffers splits passes into chunks, each a
+ * program of its own that runs main again for its outputs, and a cap on texture units makes smaller
+ * batches: other programs over the same formulas, which GL does not promise to round alike
+ * (util_expect_gpu_twins). Mesa's do, to the bit. */
+static void assert_same_image(const float *a, const float *b, scene_id id, const char *what)
 {
-    if (memcmp(a, b, (size_t)W * H * 4 * sizeof(float)) == 0)
-        return;
-    for (int i = 0; i < W * H * 4; i++)
-        if (memcmp(&a[i], &b[i], sizeof(float)) != 0)
-            fail_msg("%s: pixel (%d, %d) channel %d is %.9g, uncapped %.9g", what, i / 4 % W, i / 4 / W, i % 4,
-                     (double)b[i], (double)a[i]);
+    util_expect_gpu_twins(a, b, W, H, gpu_threshold_of(id), what);
 }
 
 static void check_caps(macs_headless *h, scene_id id)
@@ -84,7 +84,7 @@ static void check_caps(macs_headless *h, scene_id id)
         bg_render_stats st;
         float *px = render(h, &caps, id, &st);
         snprintf(what, sizeof what, "%s with %d draw buffers and colour attachments", name, caps_db[k]);
-        assert_same_bits(base, px, what);
+        assert_same_image(base, px, id, what);
         chunks[k] = st.chunks;
         print_message("%s: cap %d: %d chunks (uncapped %d, G-buffer targets %d)\n", name, caps_db[k], st.chunks,
                       base_stats.chunks, base_stats.gbuffer_targets);
@@ -111,7 +111,7 @@ static void check_caps(macs_headless *h, scene_id id)
         bg_render_stats st;
         float *px = render(h, &caps, id, &st);
         snprintf(what, sizeof what, "%s with %d texture units", name, units[k]);
-        assert_same_bits(base, px, what);
+        assert_same_image(base, px, id, what);
         free(px);
     }
     /* Everything capped at once: the smallest hardware of the matrix. */
@@ -121,7 +121,7 @@ static void check_caps(macs_headless *h, scene_id id)
     bg_render_stats st;
     float *px = render(h, &all, id, &st);
     snprintf(what, sizeof what, "%s with 1 draw buffer and 8 texture units", name);
-    assert_same_bits(base, px, what);
+    assert_same_image(base, px, id, what);
     free(px);
     free(base);
 }

@@ -1,6 +1,7 @@
 /* The RGBA16F G-buffer (bg_renderer_desc.half_gbuffer) on every shared scene: its error against the
  * CPU reference within the bounds below, no NaN or Inf, the stats counting the half targets, split
- * passes (mixed RGBA32F and RGBA16F chunks) giving the same bits, and the fallback to RGBA32F with a
+ * passes (mixed RGBA32F and RGBA16F chunks) giving the same image (the same bits on Mesa, the error
+ * model's bound elsewhere: util_expect_gpu_twins), and the fallback to RGBA32F with a
  * warning where GL refuses RGBA16F (simulated through a wrapped GL loader). 160x120 as in
  * test_bg_gpu_scenes, whose full-precision bounds (gpu_thresholds.h) these extend. */
 #include <math.h>
@@ -26,7 +27,9 @@
 enum { W = 160, H = 120 };
 
 /* Bounds of the half-precision G-buffer against the CPU reference, in the units and with the
- * silhouette split of gpu_thresholds.h. Measured on Mesa 22.3 llvmpipe (OSMesa, 2 cores) at 160x120;
+ * silhouette split of gpu_thresholds.h (interior max, mean and PSNR over the interior pixels, the over
+ * share over every pixel). These rows stay measured: the error model of gpu_thresholds.h covers
+ * float32 targets, not the 2^-11 steps of half floats. Measured on Mesa 22.3 llvmpipe (OSMesa, 2 cores) at 160x120;
  * the measured value is beside each row (interior max, largest channel mean, PSNR, over share with
  * its pixel count); the full-precision G-buffer's errors are those of gpu_thresholds.h. Each bound
  * is twice the measured error (PSNR 3 dB below it), with the floors of gpu_thresholds.h (interior
@@ -193,7 +196,8 @@ static void split_passes_give_the_same_bits(void **state)
     bg_renderer_get_stats(r, &stats);
     assert_int_equal(stats.gbuffer_half_targets, stats.gbuffer_targets - 2);
     assert_true(stats.chunks > stats.passes[BG_PASS_INTERSECT] * stats.gbuffer_targets - 1);
-    assert_memory_equal(a, b, n * sizeof(float));
+    /* One draw buffer: every chunk a program of its own (util_expect_gpu_twins). */
+    util_expect_gpu_twins(a, b, W, H, gpu_threshold_of(SCENE_TEXTURED_ANISO), "half G-buffer, one draw buffer");
     assert_int_equal(log.warnings + log.errors, 0);
     bg_scene_destroy(s);
     free(a);
@@ -286,6 +290,9 @@ static void fallback_without_rgba16f(void **state)
     bg_renderer_get_stats(r, &stats);
     assert_true(stats.gbuffer_targets >= 4);
     assert_int_equal(stats.gbuffer_half_targets, 0);
+    /* Equal on any conforming driver: the G-buffer's format is no part of any program, so both
+     * renderers run programs of the same source strings on the same inputs in the same order (GL 2.1
+     * appendix A, rule 4), into targets of the same format. */
     assert_memory_equal(a, b, n * sizeof(float));
     assert_int_equal(log.warnings, 1); /* rendering does not warn again */
     assert_int_equal(full_log.warnings + full_log.errors, 0);

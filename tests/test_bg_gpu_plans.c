@@ -27,6 +27,7 @@
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_thresholds.h"
 
 /* The size of test_bg_gpu_scenes, where the thresholds were measured. */
 enum { W = 160, H = 120 };
@@ -140,6 +141,8 @@ static void check_scene(scene_id id)
     if (st.plan != (walked ? BG_PLAN_FUSED_TREE : BG_PLAN_FUSED))
         fail_msg("%s: BG_PLAN_AUTO ran plan %d, not the %s fused plan", name, (int)st.plan,
                  walked ? "tree variant of the" : "unrolled");
+    /* Equal on any conforming driver: the same program (MACS's cache hands the forced variant's
+     * over) on the same uniforms and textures (GL 2.1 appendix A, rule 4). */
     assert_memory_equal(fused, other, bytes);
 
     free(cpu);
@@ -153,7 +156,7 @@ UTIL_EACH_SCENE(UTIL_SCENE_TEST)
 
 /* A forced multipass renders what the multipass always rendered, within the same thresholds: the
  * image BG_PLAN_AUTO gives when a skip is switched off, which sends it to the multipass (switching
- * off batching changes no bit, test_bg_gpu_skips). Two scenes, one with every bounce kind, keep the
+ * off batching changes no bit on Mesa, test_bg_gpu_skips). Two scenes, one with every bounce kind, keep the
  * suite short: test_bg_gpu_scenes holds the multipass to the thresholds on every scene. */
 static void forced_multipass_is_the_multipass(void **state)
 {
@@ -173,7 +176,9 @@ static void forced_multipass_is_the_multipass(void **state)
         set = plan_settings(BG_PLAN_AUTO);
         set.gpu_disable_skips = BG_SKIP_BATCH;
         assert_int_equal(render(util_fx.renderer, s, &set, &ai, scenes_name(ids[k])).plan, BG_PLAN_MULTIPASS);
-        assert_memory_equal(forced, automatic, sizeof forced);
+        /* Batching off makes one program per object: other programs over the same formulas, so the
+         * same bits on Mesa and the error model's bound on any driver. */
+        util_expect_near_row(forced, &ai, gpu_threshold_of(ids[k]), label);
         bg_scene_destroy(s);
     }
 }
@@ -531,8 +536,13 @@ static macs_gl_proc nofused_loader(const char *name, void *user)
 }
 
 /* Renders a scene on ctx with AUTO (expecting the multipass, with a reason logged) and with the
- * multipass forced on the default fixture: the two images must be the same bits. */
-static void auto_falls_back_to_the_same_image(macs_context *ctx, scene_id id, const char *why, const char *label)
+ * multipass forced on the default fixture. With same_programs (ctx has the fixture's limits, so the
+ * multipass batches alike) the two images must be the same bits on any conforming driver: programs of
+ * the same source strings on the same inputs in the same order (GL 2.1 appendix A, rule 4), compiled
+ * in two contexts. Otherwise (a cap that makes smaller batches) they come from other programs over
+ * the same formulas, within the error model's bound (util_expect_gpu_twins). */
+static void auto_falls_back_to_the_same_image(macs_context *ctx, scene_id id, const char *why, const char *label,
+                                              bool same_programs)
 {
     info_log log = {"", 0};
     bg_renderer_desc d = {0};
@@ -558,7 +568,9 @@ static void auto_falls_back_to_the_same_image(macs_context *ctx, scene_id id, co
     assert_int_equal(bg_renderer_error(r), BG_OK);
     set = plan_settings(BG_PLAN_MULTIPASS);
     util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &ib, label);
-    if (memcmp(a, b, (size_t)W * H * 16) != 0)
+    if (!same_programs)
+        util_expect_gpu_twins(a, b, W, H, gpu_threshold_of(id), label);
+    else if (memcmp(a, b, (size_t)W * H * 16) != 0)
         fail_msg("%s: the fallback's image differs from the forced multipass", label);
     free(a);
     free(b);
@@ -576,7 +588,7 @@ static void refused_program_falls_back(void **state)
     cd.get_proc_address = nofused_loader;
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
-    auto_falls_back_to_the_same_image(ctx, SCENE_GLASS, "multipass", "refused fused program");
+    auto_falls_back_to_the_same_image(ctx, SCENE_GLASS, "multipass", "refused fused program", true);
     assert_true(nofused.refused >= 1);
     assert_int_equal(macs_context_error(ctx), MACS_OK);
     macs_context_destroy(ctx);
@@ -595,7 +607,7 @@ static void uniform_cap_falls_back(void **state)
     macs_context_get_limits(ctx, NULL, &eff);
     assert_int_equal(eff.max_uniform_components, 256);
     assert_int_equal(macs_context_max_uniform_components(ctx), 256);
-    auto_falls_back_to_the_same_image(ctx, SCENE_MANY_LIGHTS, "uniform components", "uniform cap");
+    auto_falls_back_to_the_same_image(ctx, SCENE_MANY_LIGHTS, "uniform components", "uniform cap", false);
     macs_context_destroy(ctx);
 }
 

@@ -22,9 +22,9 @@
 
 enum { W = 96, H = 96 };
 
-/* The removal scene is not a shared one; it is held to the many_spheres row, with the PSNR floor
- * of test_bg_gpu_tree's larger sphere grids (silhouettes of several spheres and a mirror). */
-static const gpu_threshold removal_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 70.0, 0.001};
+/* The removal scene is not a shared one; it is held to the error model's common row
+ * (gpu_thresholds.h): its spheres' and mirror's silhouettes fall under the silhouette allowance. */
+static const gpu_threshold removal_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 69.0, 0.001};
 
 static bg_gpu_plan render(bg_renderer *r, bg_scene *s, const bg_render_settings *set, unsigned char *px,
                           const char *label)
@@ -59,6 +59,9 @@ static void check_plan(int spheres, bg_gpu_plan plan, bg_gpu_plan want, const ch
     bg_renderer *r2 = util_renderer(util_fx.ctx);
     assert_int_equal(render(r2, b, &set, fresh, label), want);
     assert_true(memcmp(full, fresh, bytes) != 0); /* the doomed items showed */
+    /* Equal on any conforming driver: the stripped commit has the fresh scene's structure and values,
+     * so both renderers run programs of the same source strings on the same uniforms and textures
+     * (GL 2.1 appendix A, rule 4). */
     if (memcmp(after, fresh, bytes) != 0)
         fail_msg("%s: after the removal the image differs from that of a scene built without the items", label);
     unsigned char *cpu = util_cpu_reference(b, &set, W, H);

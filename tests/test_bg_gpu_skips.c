@@ -1,5 +1,6 @@
-/* Every skip (docs/gpu_pipeline.md) changes no pixel (RGBA32F output, bit for bit, with the skip
- * switched off through bg_render_settings.gpu_disable_skips) and really saves work, shown by the
+/* Every skip (docs/gpu_pipeline.md) changes no pixel (RGBA32F output with the skip switched off
+ * through bg_render_settings.gpu_disable_skips: bit for bit on Mesa, within the error model's bound
+ * for other programs on any driver) and really saves work, shown by the
  * statistics on a scene where the skip applies. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,6 +16,7 @@
 #include "scenes/scenes.h"
 #include "util_gl.h"
 #include "util_gpu.h"
+#include "util_thresholds.h"
 
 enum { W = 96, H = 72 };
 
@@ -62,7 +64,11 @@ static void compare(scene_id id, unsigned disable, bool timing, int max_depth, r
     *off = render(s, disable, timing, max_depth);
     char what[128];
     snprintf(what, sizeof what, "%s, skips 0x%x off", scenes_name(id), disable);
-    assert_same_image(on, off, what);
+    /* A skip switched off changes the programs too (the stencil, facing and specialisation skips
+     * are tests in the shaders' text, the batch skip makes one program per object), so the two
+     * images come from other programs over the same formulas (util_expect_gpu_twins): the same bits
+     * on Mesa, within the error model's bound on any driver. */
+    util_expect_gpu_twins(on->px, off->px, W, H, gpu_threshold_of(id), what);
     bg_scene_destroy(s);
 }
 
@@ -246,6 +252,8 @@ static void timing_changes_nothing(void **state)
     (void)state;
     bg_scene *s = util_scene(SCENE_GLASS);
     run plain = render(s, 0, false, -1), timed = render(s, 0, true, -1);
+    /* Equal on any conforming driver: timing adds queries around the passes and changes no program,
+     * input or order (GL 2.1 appendix A, rule 4). */
     assert_same_image(&plain, &timed, "glass, gpu_timing on");
     assert_memory_equal(plain.stats.passes, timed.stats.passes, sizeof plain.stats.passes);
     assert_int_equal(plain.stats.chunks, timed.stats.chunks);

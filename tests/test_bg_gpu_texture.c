@@ -50,7 +50,9 @@ static double half_spacing(double v)
     return ldexp(1.0, e - 1 - 10);
 }
 
-/* Fails unless the texture's texels (rows bottom first) are the image's pixels (rows top first)
+/* Equal on any conforming driver: a frame into a texture runs the passes of the frame read back, on
+ * the same inputs, and the texture is what the last of them wrote (GL 2.1 appendix A, rule 4).
+ * Fails unless the texture's texels (rows bottom first) are the image's pixels (rows top first)
  * with the rows reversed: exactly for RGBA8 and RGBA32F; for RGBA16F within one half-float step of
  * the RGBA32F value (GL leaves the rounding of a float output to half to the implementation). */
 static void expect_texture_is_image(const void *texels, macs_format format, const bg_image *img, const char *label)
@@ -131,7 +133,7 @@ static bg_render_stats compare(bg_scene *s, const bg_render_settings *set, macs_
     img.pixels = again;
     render_texture(r, s, set, target, what);
     util_render_gpu(r, util_fx.ctx, s, set, &img, what);
-    assert_memory_equal(first, again, size);
+    assert_memory_equal(first, again, size); /* the same frame again: GL 2.1 appendix A, rule 4 */
     print_message("%-40s plan %d, %llu CPU pixels, same as bg_render_gpu\n", what, (int)ts.plan,
                   (unsigned long long)ts.fallback_pixels);
     free(first);

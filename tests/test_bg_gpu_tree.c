@@ -23,9 +23,9 @@
 enum { W = 160, H = 120 };
 
 /* many_spheres beyond the shared table's 16 spheres has more silhouettes: at 64 spheres one pixel on
- * a sphere's rim is 6/255 from the CPU reference in both fused variants (75.9 dB), none inside.
- * The other bounds are the shared row's; the PSNR floor sits 5 dB under that measurement. */
-static const gpu_threshold many_spheres_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 70.0, 0.001};
+ * a sphere's rim is 6/255 from the CPU reference in both fused variants (75.9 dB over every pixel),
+ * none inside. Rims are the silhouette allowance: the error model's common row (gpu_thresholds.h). */
+static const gpu_threshold many_spheres_row = {SCENE_MANY_SPHERES, 2.0, 0.004, 69.0, 0.001};
 
 static void expect_within(bg_scene *s, const bg_render_settings *set, const bg_image *img, const char *label)
 {
@@ -103,6 +103,7 @@ static void recommits_keep_the_program(void **state)
     tree_render(r, s, &img, "64 spheres");
     img.pixels = px;
     assert_int_equal(tree_render(r, s, &img, "cached"), 0);
+    /* Equal on any conforming driver: the same program on the same uniforms and tree textures (GL 2.1 appendix A, rule 4). */
     assert_memory_equal(first, px, bytes);
 
     assert_int_equal(bg_scene_set_transform(s, 5, &there), BG_OK);
@@ -120,7 +121,8 @@ static void recommits_keep_the_program(void **state)
     assert_int_equal(bg_scene_commit(s), BG_OK);
     assert_int_equal(tree_render(r, s, &img, "material recoloured"), 0);
 
-    /* Back where everything was: the first image, bit for bit. */
+    /* Back where everything was: the first image, bit for bit on any conforming driver (the CPU builds
+     * the same tree textures and uniforms from the same commit, the same program reads them). */
     assert_int_equal(bg_scene_set_material(s, 1, &m), BG_OK);
     assert_int_equal(bg_scene_set_camera(s, &cam), BG_OK);
     assert_int_equal(bg_scene_set_transform(s, 5, &here), BG_OK);

@@ -38,6 +38,8 @@ void util_raw_gl_load(macs_headless *headless, util_raw_gl *gl)
     UTIL_RAW_GL_LOAD_(TexImage2D, "glTexImage2D");
     UTIL_RAW_GL_LOAD_(TexImage1D, "glTexImage1D");
     UTIL_RAW_GL_LOAD_(GetTexImage, "glGetTexImage");
+    UTIL_RAW_GL_LOAD_(GetTexParameteriv, "glGetTexParameteriv");
+    UTIL_RAW_GL_LOAD_(GetIntegerv, "glGetIntegerv");
 }
 
 GLuint util_raw_texture(const util_raw_gl *gl, int width, int height, GLint internal_format, GLenum type,

@@ -21,6 +21,8 @@ typedef struct util_raw_gl {
     void (GLAPIENTRY *TexImage1D)(GLenum target, GLint level, GLint internalformat, GLsizei width, GLint border,
                                   GLenum format, GLenum type, const void *pixels);
     void (GLAPIENTRY *GetTexImage)(GLenum target, GLint level, GLenum format, GLenum type, void *pixels);
+    void (GLAPIENTRY *GetTexParameteriv)(GLenum target, GLenum pname, GLint *params);
+    void (GLAPIENTRY *GetIntegerv)(GLenum pname, GLint *data);
 } util_raw_gl;
 
 /* Fills every entry from the headless context's loader; fails the test if one is missing. */

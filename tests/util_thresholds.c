@@ -4,11 +4,14 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include <cmocka.h>
 
 #include "betelgeuse.h"
+#include "betelgeuse/common/encoding.h"
 #include "betelgeuse/scene/scene_internal.h"
 #include "util_gpu.h"
 #include "util_thresholds.h"
@@ -46,4 +49,35 @@ void util_thresholds_catch_half_pixel_offset(const gpu_threshold table[SCENE_COU
     }
     free(a);
     free(b);
+}
+
+/* An RGBA32F image as bg_render_gpu's RGBA8 output encodes it (sRGB, opaque). */
+static unsigned char *encoded(const float *px, int width, int height)
+{
+    size_t n = (size_t)width * (size_t)height;
+    unsigned char *out = malloc(n * 4);
+    assert_non_null(out);
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++)
+            out[i * 4 + c] = bgi_encode_channel(px[i * 4 + c], BG_ENCODING_SRGB);
+        out[i * 4 + 3] = 255;
+    }
+    return out;
+}
+
+void util_expect_gpu_twins(const float *a, const float *b, int width, int height, const gpu_threshold *row,
+                           const char *label)
+{
+    if (memcmp(a, b, (size_t)width * (size_t)height * 4 * sizeof(float)) == 0)
+        return;
+    unsigned char *ea = encoded(a, width, height), *eb = encoded(b, width, height);
+    bg_image ia = {width, height, BG_PIXEL_RGBA8, 0, ea}, ib = {width, height, BG_PIXEL_RGBA8, 0, eb};
+    image_metrics m;
+    char why[256], line[512];
+    assert_true(image_metrics_compare(&ia, &ib, GPU_SILHOUETTE_THRESHOLD, &m));
+    print_message("%s: not bit-equal; %s\n", label, image_metrics_format(&m, line, sizeof line));
+    if (!gpu_threshold_check(row, &m, why, sizeof why))
+        fail_msg("%s: two GPU programs of the same formulas differ beyond the error model: %s", label, why);
+    free(ea);
+    free(eb);
 }

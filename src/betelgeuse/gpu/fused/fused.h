@@ -145,7 +145,9 @@ typedef struct gpu_fused_layout {
     gpu_fused_object *objects;
     gpu_fused_material *materials;
     uint32_t *samplers;  /* scene textures (1-based) in sampler order */
+    gpu_texture_mode *sampler_modes; /* how each is sampled: its size, wrap and filter are in the text */
     int sampler_count;
+    bool filters;        /* some sampler is GL_LINEAR: the program holds bg_texture_filter.glsl */
     bool transparent, aniso, coat, shadows; /* some used material is / some caster can shadow another */
     int max_depth;       /* bounce levels traced: settings.max_depth, 0 when no material bounces */
     int stack;           /* pending rays the shader holds: max_depth with transparency, else 0 */

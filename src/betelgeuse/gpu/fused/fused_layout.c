@@ -158,8 +158,9 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
     l.objects = bgi_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.objects);
     l.materials = bgi_alloc(a, (l.material_count ? l.material_count : 1) * sizeof *l.materials);
     l.samplers = bgi_alloc(a, (state->texture_count ? state->texture_count : 1) * sizeof *l.samplers);
+    l.sampler_modes = bgi_alloc(a, (state->texture_count ? state->texture_count : 1) * sizeof *l.sampler_modes);
     l.unrolled = bgi_alloc(a, (l.object_count ? l.object_count : 1) * sizeof *l.unrolled);
-    if (!l.objects || !l.materials || !l.samplers || !l.unrolled) {
+    if (!l.objects || !l.materials || !l.samplers || !l.sampler_modes || !l.unrolled) {
         bgi_gpu_fused_layout_free(a, &l);
         return false;
     }
@@ -206,6 +207,10 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         l.env_sampler = l.sampler_count++;
         l.samplers[l.env_sampler] = env->texture;
     }
+    for (int k = 0; k < l.sampler_count; k++) {
+        l.sampler_modes[k] = bgi_gpu_texture_mode(&state->textures[l.samplers[k] - 1]);
+        l.filters |= l.sampler_modes[k].linear;
+    }
     l.shadows = any_shadow(&l) && bgi_gpu_fused_layout_lights(&l) > 0;
     l.max_depth = bounce ? settings->max_depth : 0;
     l.stack = l.transparent ? l.max_depth : 0;
@@ -229,6 +234,7 @@ void bgi_gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *l)
     bgi_free(a, l->unrolled);
     bgi_free(a, l->materials);
     bgi_free(a, l->samplers);
+    bgi_free(a, l->sampler_modes);
     memset(l, 0, sizeof *l);
 }
 

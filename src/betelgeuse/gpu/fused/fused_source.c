@@ -79,6 +79,8 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         ok = bgi_gpu_mesh_library(t, seen, &n, SEEN_CAP);
     if (ok && bgi_gpu_fused_layout_lights(l) > 0)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->filters)
+        ok = bgi_gpu_text_snippet(t, "bg_texture_filter.glsl", seen, &n, SEEN_CAP);
     if (ok && l->env)
         ok = bgi_gpu_text_snippet(t, "bg_environment.glsl", seen, &n, SEEN_CAP);
     /* The distribution effects' sample points, and the frame pixel's hash they start from. */
@@ -410,12 +412,15 @@ static void emit_material(const gpu_fused_layout *l, gpu_text *t, uint32_t k)
     for (int p = 0; p < GPU_P_COUNT_; p++) {
         if (!bgi_gpu_fused_uniform_present(l, GPU_FUSED_PARAM_ROW(p), k))
             continue;
-        char value[160];
+        char value[320], sampler[24], texel[192];
         name u = uniform(l, GPU_FUSED_PARAM_ROW(p), k);
-        if (m->sampler[p] >= 0)
-            snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, uv).%s", u.s, m->sampler[p],
+        if (m->sampler[p] >= 0) {
+            snprintf(sampler, sizeof sampler, "bg_tex%d", m->sampler[p]);
+            if (!bgi_gpu_texture_lookup(texel, sizeof texel, sampler, "uv", l->sampler_modes[m->sampler[p]]))
+                t->failed = true; /* cannot happen: every name above is short */
+            snprintf(value, sizeof value, "%s * %s.%s", u.s, texel,
                      bgi_gpu_param_is_color((gpu_param)p) ? "rgb" : channel_lane[m->channel[p] & 3]);
-        else
+        } else
             snprintf(value, sizeof value, "%s", u.s);
         if (bgi_gpu_param_is_unit((gpu_param)p))
             bgi_gpu_text_printf(t, "        %s = clamp(%s, 0.0, 1.0);\n", bgi_gpu_param_local((gpu_param)p), value);
@@ -583,14 +588,19 @@ static void emit_environment_ray(const gpu_fused_layout *l, gpu_text *t)
 {
     if (!l->env)
         return;
+    char sampler[24], texel[192];
+    snprintf(sampler, sizeof sampler, "bg_tex%d", l->env_sampler);
+    if (!bgi_gpu_texture_lookup(texel, sizeof texel, sampler, "bg_env_uv(rd.xyz, bg_env_info)",
+                                l->sampler_modes[l->env_sampler]))
+        t->failed = true; /* cannot happen: every name above is short */
     bgi_gpu_text_printf(t, "// ---- generated: the environment on a miss\n"
                            "bool bg_fused_ray_env(vec4 ro, vec4 rd, vec3 w, inout vec3 radiance, out vec4 hit, out vec4 nrm, "
                            "out vec4 base, out vec4 coat, out vec2 xparent)\n{\n"
                            "    if (bg_fused_ray(ro, rd, w, vec3(0.0), radiance, hit, nrm, base, coat, xparent))\n"
                            "        return true;\n"
-                           "    radiance += w * bg_env_radiance(rd.xyz, bg_tex%d, bg_env_info);\n"
+                           "    radiance += w * (bg_env_info.x * %s.rgb);\n"
                            "    return false;\n}\n",
-                        l->env_sampler);
+                        texel);
 }
 
 /* ---- main ---- */

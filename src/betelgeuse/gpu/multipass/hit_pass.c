@@ -183,6 +183,22 @@ int bgi_gpu_hit_shared_components(void)
     return bgi_gpu_uniform_components(shared_uniforms, SHARED_UNIFORM_COUNT);
 }
 
+/* How parameter q samples its lane's texture (the white texel when it has none). */
+static gpu_texture_mode param_mode(const bg_scene_state *state, const param *q)
+{
+    return bgi_gpu_texture_mode(q->texture ? &state->textures[q->texture - 1] : NULL);
+}
+
+/* Whether some member samples a GL_LINEAR texture: the pass then filters in the shader. */
+static bool members_filter(const bg_scene_state *state, const member *m, int count)
+{
+    for (int j = 0; j < count; j++)
+        for (int i = 0; i < GPU_P_COUNT_; i++)
+            if (m[j].p[i].sampler >= 0 && param_mode(state, &m[j].p[i]).linear)
+                return true;
+    return false;
+}
+
 /* The functions of the pass: each distinct shape's root and each distinct UV mapping, renamed by
  * suffix so that they coexist in one program. */
 static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member *m, int count, bool need_tangent)
@@ -190,6 +206,8 @@ static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member
     const char *seen[48];
     int n = 0;
     bool ok = bgi_gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, 48);
+    if (members_filter(state, m, count))
+        ok = ok && bgi_gpu_text_snippet(t, "bg_texture_filter.glsl", seen, &n, 48);
     if (need_tangent)
         ok = ok && bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, 48);
     int meshes = 0;
@@ -305,25 +323,28 @@ static void emit_shape_geometry(gpu_text *t, const bg_object_data *obj, const me
 }
 
 /* The winner's material parameters and index of refraction from member mb's uniforms. */
-static void emit_params(gpu_text *t, const member *mb, bool transparent, bool coat, bool glossy)
+static void emit_params(gpu_text *t, const bg_scene_state *state, const member *mb, bool transparent, bool coat,
+                        bool glossy)
 {
     const param *p = mb->p;
     for (int i = 0; i < GPU_P_COUNT_; i++) {
         if (!p[i].used)
             continue;
-        char value[128];
+        char value[320];
         if (p[i].sampler >= 0) {
-            char lane[8];
+            char lane[8], sampler[24], texel[192];
             if (p[i].color)
                 snprintf(lane, sizeof lane, "rgb");
             else
                 snprintf(lane, sizeof lane, "%c", "rgba"[p[i].channel & 3]);
-            snprintf(value, sizeof value, "%s * texture2D(bg_tex%d, bg_uv).%s", mb->param_uniform[i], p[i].sampler,
-                     lane);
+            snprintf(sampler, sizeof sampler, "bg_tex%d", p[i].sampler);
+            if (!bgi_gpu_texture_lookup(texel, sizeof texel, sampler, "bg_uv", param_mode(state, &p[i])))
+                t->failed = true; /* cannot happen: every name above is short */
+            snprintf(value, sizeof value, "%s * %s.%s", mb->param_uniform[i], texel, lane);
         } else {
             snprintf(value, sizeof value, "%s", mb->param_uniform[i]);
         }
-        char clamped[192];
+        char clamped[384];
         snprintf(clamped, sizeof clamped, p[i].clamp, value);
         bgi_gpu_text_printf(t, "    bg_%s = %s;\n", p[i].name, clamped);
     }
@@ -347,7 +368,7 @@ static void emit_surface(gpu_text *t, const bg_scene_state *state, const member 
         emit_mesh_geometry(t, state, mb, j, need_tangent);
     else
         emit_shape_geometry(t, obj, mb, j, need_tangent);
-    emit_params(t, mb, transparent, coat, glossy);
+    emit_params(t, state, mb, transparent, coat, glossy);
 }
 
 /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every

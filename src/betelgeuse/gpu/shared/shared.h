@@ -279,8 +279,23 @@ bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format forma
  * what names it in a failure. */
 bg_status bgi_gpu_float_texture(bg_renderer *r, int w, int h, macs_filter filter, macs_wrap wrap, const float *texels,
                                 const char *what, macs_texture **out);
-/* Uploads one scene texture as the samplers read it (RGBA32F, GL_LINEAR, its wrap). */
+/* Uploads one scene texture as the samplers read it: RGBA32F, GL_NEAREST whatever its filter (a
+ * GL_LINEAR texture is filtered in the shader, bgi_gpu_texture_lookup), its wrap. */
 bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
+
+/* How a program samples one scene texture: what it bakes into its text (docs/shading.md 5.1). */
+typedef struct gpu_texture_mode {
+    int width, height;
+    bool linear; /* BG_FILTER_LINEAR: bg_texture_linear's four fetches; else one NEAREST fetch */
+    bool repeat; /* BG_WRAP_REPEAT, else CLAMP */
+} gpu_texture_mode;
+/* The mode of t; NULL (the multipass's white texel) is 1 x 1 NEAREST. */
+gpu_texture_mode bgi_gpu_texture_mode(const bg_texture_data *t);
+/* Writes into out (size bytes, 192 are enough for any sampler and uv names up to 40 characters) the
+ * GLSL vec4 of the texture of mode m bound to sampler at uv: texture2D for NEAREST, else
+ * bg_texture_linear (glsl110/bg_texture_filter.glsl, which the program must then hold) with the
+ * size and wrap as constants. False when it does not fit. */
+bool bgi_gpu_texture_lookup(char *out, size_t size, const char *sampler, const char *uv, gpu_texture_mode m);
 
 /* ---- pass_create.c: making one pass; calls only shader_source.c and fail.c ---- */
 /* Fills the parts of a pass description every pass sets; depth, stencil, blend and colour mask stay

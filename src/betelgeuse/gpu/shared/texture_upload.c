@@ -1,5 +1,5 @@
 /* Textures both plans make: a target created on first use, and a scene texture as the samplers
- * read it. */
+ * read it (GL_NEAREST, filtered in the shader where the scene asks for GL_LINEAR). */
 #include <string.h>
 
 #include "shared.h"
@@ -34,9 +34,30 @@ bg_status bgi_gpu_float_texture(bg_renderer *r, int w, int h, macs_filter filter
 
 bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out)
 {
-    /* No mipmaps (docs/shading.md 5); both are GL row order: row 0 is v = 0. */
-    return bgi_gpu_float_texture(r, t->width, t->height,
-                                 t->filter == BG_FILTER_NEAREST ? MACS_FILTER_NEAREST : MACS_FILTER_LINEAR,
+    /* No mipmaps (docs/shading.md 5); both are GL row order: row 0 is v = 0. Always GL_NEAREST:
+     * the hardware filter's weights are the driver's (8-bit fixed point on NVIDIA, no float
+     * filtering at all on Radeon X1000), so GL_LINEAR is done in the shader. */
+    return bgi_gpu_float_texture(r, t->width, t->height, MACS_FILTER_NEAREST,
                                  t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE, t->texels,
                                  "scene texture", out);
+}
+
+gpu_texture_mode bgi_gpu_texture_mode(const bg_texture_data *t)
+{
+    gpu_texture_mode m = {1, 1, false, false};
+    if (t) {
+        m.width = t->width;
+        m.height = t->height;
+        m.linear = t->filter == BG_FILTER_LINEAR;
+        m.repeat = t->wrap == BG_WRAP_REPEAT;
+    }
+    return m;
+}
+
+bool bgi_gpu_texture_lookup(char *out, size_t size, const char *sampler, const char *uv, gpu_texture_mode m)
+{
+    int n = m.linear ? snprintf(out, size, "bg_texture_linear(%s, %s, vec2(%d.0, %d.0), %s)", sampler, uv, m.width,
+                                m.height, m.repeat ? "true" : "false")
+                     : snprintf(out, size, "texture2D(%s, %s)", sampler, uv);
+    return n >= 0 && (size_t)n < size;
 }
