@@ -309,7 +309,7 @@ check: all glsl-check check-symbols check-examples check-command check-view chec
 	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
 # Every suite that opens a GL context, on a second GL implementation: Mesa's zink (GL on Vulkan)
-# over lavapipe, through EGL surfaceless (docs/testing.md, "zink"; needs mesa-vulkan-drivers).
+# over lavapipe, through EGL surfaceless (README, "Run the tests"; needs mesa-vulkan-drivers).
 # tests/probe_stencil_clear.c runs first and says whether zink's masked stencil clear is still
 # broken, the defect the suites' zink skips name. ZINK_SUITES may name fewer suites; ZINK_ICD is
 # lavapipe's Vulkan driver manifest; XDG_RUNTIME_DIR is a private folder, as Mesa wants one.
