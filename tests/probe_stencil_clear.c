@@ -1,5 +1,6 @@
-/* A masked stencil clear, in raw GL: the reduced form of the zink defect that blacks out the
- * multipass (README, "Run the tests"; docs/gpu_pipeline.md, "One frame"). Not a suite; `make check-zink` runs it first.
+/* A masked stencil clear, in raw GL: the reduced form of the zink defect that blacked out the
+ * multipass (README, "Run the tests"; docs/gpu_pipeline.md, "One frame"). Not a suite: `make
+ * check-zink` runs it first.
  *
  * A packed DEPTH24_STENCIL8 renderbuffer is cleared to stencil 0x0F, then cleared again with
  * glStencilMask(0xB0) and glClearStencil(0x70). GL 2.1 (4.2.3, "Clearing the Buffers") makes the
