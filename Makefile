@@ -1,6 +1,6 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries and the betelgeuse command), check, check-zink, check-symbols, check-examples, check-command, check-view,
-# check-fuzz-corpus, check-cluster, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
+# Targets: all (libraries and the betelgeuse command), check, check-symbols, check-examples, check-command, check-view,
+# check-fuzz-corpus, check-cluster, check-zink, examples, bench, stress, install, uninstall, clean; fuzz-build and fuzz
 # (libFuzzer with clang: docs/fuzzing.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
 
