@@ -6,7 +6,8 @@
 # Environment: TEST_ENV (the Mesa settings of every run), PROBE (the backend probe program),
 # CHECK_JOBS (suites run at once; default: the number of processors), TIMES (a file that keeps each
 # run's duration, so that the next run starts the longest first; default: none), SUITE_BACKEND
-# (device: every suite on the first EGL device, a GPU, and no smoke reruns), RUN_WITH (a command
+# (device: every suite on the first EGL device, a GPU, and no smoke reruns; surfaceless: every suite
+# on EGL surfaceless and no smoke reruns, SUITE_DRIVER naming the driver TEST_ENV picks), RUN_WITH (a command
 # that runs each suite, such as valgrind with its options; default: none), SHADER_CACHE (no: every
 # run without Mesa's shader cache, as under valgrind, where Mesa's own cache writes raise reports),
 # SUITE_TIMEOUT (seconds a suite run may take before it is stopped and counted failed, "timed out
@@ -381,6 +382,11 @@ fi
 if [ "$SUITE_BACKEND" = device ]; then
 	main="MACS_TEST_BACKEND=device"; main_name="EGL device"; main_driver="the device's driver"
 	other=""; soft=""; osmesa=device
+elif [ "$SUITE_BACKEND" = surfaceless ]; then
+	# Every suite on EGL surfaceless with the driver TEST_ENV picks (make check-zink: zink), no reruns.
+	main="MACS_TEST_BACKEND=egl EGL_PLATFORM=surfaceless"; main_name="EGL surfaceless"
+	main_driver="${SUITE_DRIVER:-llvmpipe}"
+	other=""; soft=""; osmesa=unused
 elif [ -n "$PROBE" ] && osmesa_why=$("$PROBE" osmesa 2>&1); then
 	main="MACS_TEST_BACKEND=osmesa"; main_name="OSMesa"
 	other="MACS_TEST_BACKEND=egl EGL_PLATFORM=surfaceless"; other_name="EGL surfaceless"

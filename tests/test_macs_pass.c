@@ -11,6 +11,7 @@
 
 #include <cmocka.h>
 
+#include "util_driver.h"
 #include "util_gl.h"
 
 /* Runs a one-output pass with no inputs over a 1x1... WxH texture and returns it. */
@@ -403,6 +404,7 @@ static void depth_stencil_clear_honours_values_and_mask(void **state)
     assert_int_equal(count_passing(ctx, ds, t, 0x0F, 0.75f), 0);  /* behind the cleared depth */
     assert_int_equal(count_passing(ctx, ds, t, 0x0E, 0.25f), 0);
     /* Only bits 0x30 change: 0x0F becomes 0x3F; the reserved bit stays 0 whatever is asked. */
+    util_skip_masked_stencil_clear_on_zink(ctx);
     assert_int_equal(macs_depth_stencil_clear(ds, 0.5f, 0xF0, 0x30), MACS_OK);
     assert_int_equal(count_passing(ctx, ds, t, 0x3F, 0.25f), 16);
     assert_int_equal(macs_depth_stencil_clear(ds, 1.0f, 0xFF, 0xFF), MACS_OK);

@@ -126,6 +126,12 @@ typedef struct gpu_multipass {
 /* Stencil bits Betelgeuse owns (MACS keeps 0x80): a live ray, and a hit in the current set. */
 #define GPU_STENCIL_LIVE 0x1u
 #define GPU_STENCIL_HIT 0x2u
+/* The write mask of the multipass's stencil clears: every bit, though only the two above carry
+ * anything. The buffer is the multipass's own, so no other bit has a value to keep, and a clear of
+ * the whole stencil is the one every driver does as a plain clear: Mesa turns a masked one into a
+ * draw, and zink (Mesa 22.3 over lavapipe) drops a masked stencil clear altogether, which left the
+ * last level's marks in place and blacked out the multipass there (tests/probe_stencil_clear.c). */
+#define GPU_STENCIL_CLEAR_MASK 0xFFu
 /* The multipass plan: it renders every frame (it never declines). */
 extern const gpu_plan bgi_gpu_multipass_plan;
 /* Frees every object of the multipass (passes, targets, textures, meshes) and the gpu_multipass. */

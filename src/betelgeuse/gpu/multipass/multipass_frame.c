@@ -233,7 +233,7 @@ static bg_status mark(frame *f, const gpu_ray_set *set, int level, uint64_t *liv
 {
     bg_renderer *r = f->r;
     macs_status ms = macs_depth_stencil_clear(r->multipass->depth, 1.0f, (r->multipass->key.disable_skips & BG_SKIP_STENCIL) ? GPU_STENCIL_LIVE : 0u,
-                                              GPU_STENCIL_LIVE | GPU_STENCIL_HIT);
+                                              GPU_STENCIL_CLEAR_MASK);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "clearing depth and stencil");
     bg_status st = bind(r, r->multipass->passes.mark, GPU_MARK_IN_WEIGHT, set->weight);
@@ -274,7 +274,7 @@ static bg_status trace(frame *f)
         uint64_t live = (uint64_t)r->multipass->width * (uint64_t)r->multipass->height;
         if (first) {
             /* Camera rays are all alive. */
-            macs_status ms = macs_depth_stencil_clear(r->multipass->depth, 1.0f, GPU_STENCIL_LIVE, GPU_STENCIL_LIVE | GPU_STENCIL_HIT);
+            macs_status ms = macs_depth_stencil_clear(r->multipass->depth, 1.0f, GPU_STENCIL_LIVE, GPU_STENCIL_CLEAR_MASK);
             if (ms)
                 return bgi_gpu_fail_macs(r, ms, "clearing depth and stencil");
             first = false;
