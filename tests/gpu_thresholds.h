@@ -49,6 +49,7 @@
 #include <stdio.h>
 
 #include "scenes/image_metrics.h"
+#include "util_gl.h"
 #include "scenes/scenes.h"
 
 /* A reference pixel is a silhouette pixel when a neighbour differs from it by more than this. */
@@ -86,6 +87,24 @@ static const gpu_threshold gpu_thresholds[SCENE_COUNT] = {
  * this row catches. */
 static const gpu_threshold gpu_mesh_threshold = {SCENE_COUNT, 2.0, 0.004, 69.0, 0.001};
 
+/* A row widened for a context that blends only 16-bit floats, where the multipass accumulates its
+ * light passes in RGBA16F (src/betelgeuse/gpu/multipass/targets.c). Each add rounds the running sum
+ * to 11 significant bits, a relative error up to 2^-11, which the encoding turns into at most
+ * 255 * 2^-11 * max(x srgb'(x)) = 255 * 2^-11 * 0.44 = 0.055 of an 8-bit step per add (x srgb'(x)
+ * is largest at x = 1); a pixel takes 2 to 5 adds (ambient and emission, each light, each level),
+ * whose roundings are independent and partly cancel. The expected |d| of the model above thus gains
+ * at most 0.055 per add: the mean bound becomes 0.06 (measured 0.023 to 0.029 under the geforce7
+ * profile on llvmpipe, 160x120), the PSNR floor 10 log10(255^2 / (2 * 0.06)) = 57.3 dB. The
+ * interior max stays: one add's error is far below a step, so a pixel is still off by 1 at most
+ * (2 with the slack above). Only the tests under such a profile use it. */
+static inline gpu_threshold gpu_threshold_half_accumulation(const gpu_threshold *row)
+{
+    gpu_threshold t = *row;
+    t.mean = t.mean > 0.06 ? t.mean : 0.06;
+    t.psnr = t.psnr < 57.0 ? t.psnr : 57.0;
+    return t;
+}
+
 /* The row of a scene (the table is in scene_id order). */
 static inline const gpu_threshold *gpu_threshold_of(scene_id id)
 {
@@ -96,6 +115,12 @@ static inline const gpu_threshold *gpu_threshold_of(scene_id id)
  * PSNR over the interior pixels, over over every pixel (the error model above). */
 static inline bool gpu_threshold_check(const gpu_threshold *t, const image_metrics *m, char *why, size_t size)
 {
+    /* Under a profile whose context blends no RGBA32F target, every check takes the wider row. */
+    gpu_threshold half;
+    if (util_half_accumulation()) {
+        half = gpu_threshold_half_accumulation(t);
+        t = &half;
+    }
     for (int c = 0; c < 3; c++) {
         if (m->interior.max_abs[c] > t->interior_max) {
             snprintf(why, size, "channel %d: interior max error %.0f > %.1f at pixel (%d, %d)", c,

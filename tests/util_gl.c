@@ -93,6 +93,14 @@ const char *util_profile(void)
     return p && *p ? p : NULL;
 }
 
+/* Whether the last context made lacks float32 blending; tests run single-threaded. */
+static bool half_accumulation;
+
+bool util_half_accumulation(void)
+{
+    return half_accumulation;
+}
+
 macs_context *util_context(macs_headless *headless, const macs_limits *caps)
 {
     macs_context_desc desc = {0};
@@ -108,6 +116,9 @@ macs_context *util_context(macs_headless *headless, const macs_limits *caps)
     if (st != MACS_OK)
         fail_msg("macs_context_create%s%s: %s", desc.profile ? " under MACS_TEST_PROFILE=" : "",
                  desc.profile ? desc.profile : "", message);
+    macs_features f;
+    macs_context_get_features(ctx, &f);
+    half_accumulation = !f.float32_blend;
     return ctx;
 }
 

@@ -26,6 +26,10 @@ macs_headless *util_headless(void);
  * NULL: the library reads no environment, so the tests pass it on through macs_context_desc.profile. */
 const char *util_profile(void);
 
+/* True when the last context util_context made blends no RGBA32F target (a profile such as geforce7
+ * says so): the multipass then accumulates in RGBA16F, and images are held to its wider bound. */
+bool util_half_accumulation(void);
+
 /* Creates a MACS context on the current headless context with optional caps, under util_profile()
  * (its limits and the caps combine, the smaller winning); fails the test on error. */
 macs_context *util_context(macs_headless *headless, const macs_limits *caps);
