@@ -1,5 +1,5 @@
 # Betelgeuse and MACS: GPU ray tracing through OpenGL 2.1.
-# Targets: all (libraries and the betelgeuse command), check, check-profile, check-symbols, check-examples, check-command, check-view,
+# Targets: all (libraries and the betelgeuse command), check, check-profile, check-profiles, check-symbols, check-examples, check-command, check-view,
 # check-fuzz-corpus, check-runner, check-cluster, check-zink, examples, bench, stress, install, uninstall, clean; fuzz-build and
 # fuzz (libFuzzer with clang: docs/fuzzing.md); device-pack (the device check for a GPU machine: docs/device_check.md).
 # SANITIZE=1 builds everything with AddressSanitizer and UndefinedBehaviorSanitizer into build/san.
@@ -132,7 +132,7 @@ $(SF_OBJ): ALL_CFLAGS += $(SF_CFLAGS)
 
 .DEFAULT_GOAL := all
 FORCE:
-.PHONY: FORCE all check check-profile check-zink check-runner device-pack check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
+.PHONY: FORCE all check check-profile check-profiles check-zink check-runner device-pack check-symbols check-examples check-command check-view check-cluster check-no-osmesa test-programs examples bench bench-programs stress install uninstall clean glsl-check valgrind check-fuzz-corpus fuzz fuzz-build
 # Keep generated sources and objects: they are intermediate files of pattern chains.
 .SECONDARY:
 all: $(MACS_A) $(BG_A) $(SF_A) $(MACS_SO) $(BG_SO) $(SF_SO) $(BUILD)/macs.pc $(BUILD)/betelgeuse.pc \
@@ -311,6 +311,17 @@ check-no-osmesa: all $(NO_OSMESA_TESTS) $(BUILD)/tests/probe_headless
 # geforce7, radeon_x1600, gma_x3100, gl21), MACS_TEST_PROFILE added to TEST_ENV. A test the renderer
 # cannot run within the profile is skipped by name, with the limit it names.
 PROFILE_TESTS ?= $(filter $(BUILD)/tests/test_bg_gpu% $(BUILD)/tests/test_smoke_bg_gpu,$(TEST_BIN))
+# The GPU scene suites (images against the CPU reference on the shared scenes, every plan, meshes):
+# make check runs them under the most constrained profile the renderer runs on, radeon_x1600 (no
+# float filtering at all, 16-bit float blending only, EXT_framebuffer_object, 4 draw buffers, 4096
+# texels); make check-profiles under every profile (CI).
+PROFILE_SCENE_TESTS := $(filter $(BUILD)/tests/test_bg_gpu_scenes $(BUILD)/tests/test_smoke_bg_gpu \
+                         $(BUILD)/tests/test_bg_gpu_plans $(BUILD)/tests/test_bg_gpu_mesh,$(TEST_BIN))
+CHECK_PROFILES ?= radeon_x1600
+ALL_PROFILES := geforce7 radeon_x1600 gma_x3100 gl21
+check-profiles: all $(PROFILE_SCENE_TESTS) $(BUILD)/tests/probe_headless
+	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless PROFILES="$(ALL_PROFILES)" \
+	  PROFILE_SUITES="$(PROFILE_SCENE_TESTS)" sh tests/run_suites.sh "" ""
 check-profile: all $(PROFILE_TESTS) $(BUILD)/tests/probe_headless
 	@test -n "$(PROFILE)" || { echo "make check-profile: PROFILE=name is required: geforce7, radeon_x1600, gma_x3100 or gl21"; exit 2; }
 	@TEST_ENV="$(TEST_ENV) MACS_TEST_PROFILE=$(PROFILE)" PROBE=$(BUILD)/tests/probe_headless \
@@ -339,6 +350,7 @@ device-pack:
 check: all glsl-check check-symbols check-examples check-command check-view check-fuzz-corpus check-runner $(TEST_BIN) \
   $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless TIMES=build/suite-times \
+	  PROFILES="$(CHECK_PROFILES)" PROFILE_SUITES="$(PROFILE_SCENE_TESTS)" \
 	  sh tests/run_suites.sh "$(TEST_BIN)" "$(SMOKE_TESTS)"
 
 # Every suite that opens a GL context, on a second GL implementation: Mesa's zink (GL on Vulkan)

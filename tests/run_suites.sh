@@ -15,7 +15,9 @@
 # build/suite-logs/<date>-<time>-<pid>, the last 10 of them kept), SUITE_PRINT (failures: print the
 # logs of failing runs only; default: every log), BACKTRACE (a debugger command line that runs a
 # program and prints its stack, such as "gdb -batch -ex run -ex bt --args": each test that crashed
-# runs once more under it).
+# runs once more under it), PROFILES and PROFILE_SUITES (each suite of PROFILE_SUITES runs once more
+# on the main backend under each MACS limit profile of PROFILES, MACS_TEST_PROFILE set: the GPU
+# scene suites as a legacy GPU would run them; default: none).
 #
 # Where OSMesa is installed (Mesa 25.0 and older) every suite runs on it and the smoke suites also
 # on EGL surfaceless; where it is not (Mesa 25.1 and later) every suite runs on EGL surfaceless, and
@@ -412,6 +414,11 @@ done
 for t in $smoke; do
 	[ -n "$other" ] && add "$(basename "$t") ($other_name, llvmpipe)" "$t" "$other"
 	[ -n "$soft" ] && add "$(basename "$t") ($soft_name, softpipe)" "$t" "$soft"
+done
+for p in $PROFILES; do
+	for t in $PROFILE_SUITES; do
+		add "$(basename "$t") ($main_name, ${main_driver:-llvmpipe}, profile $p)" "$t" "$main MACS_TEST_PROFILE=$p"
+	done
 done
 
 # Longest first, by the last run's times where TIMES keeps them, so that no long suite starts last.

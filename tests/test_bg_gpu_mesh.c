@@ -212,8 +212,16 @@ static diff gpu_vs_cpu(bg_renderer *r, bg_scene *s, const char *label, bg_render
     return d;
 }
 
+/* A mean bound; under a profile without float32 blending the multipass sums in RGBA16F, and the error
+ * model's wider mean holds (gpu_threshold_half_accumulation in gpu_thresholds.h). */
+static double mean_bound(double mean)
+{
+    return util_half_accumulation() && mean < 0.06 ? 0.06 : mean;
+}
+
 static void expect_close(diff d, int max, double mean, double over)
 {
+    mean = mean_bound(mean);
     assert_int_equal(d.holes, 0);
     assert_true(d.max <= max);
     assert_true(d.mean <= mean);
@@ -609,7 +617,7 @@ static void mesh_past_one_texture_matches_cpu(void **state)
         bg_render_stats st;
         diff d = plan_vs_cpu(r, s, plans[k], cpu, "terrain 845,000", &st);
         assert_int_equal(d.holes, 0);
-        assert_true(d.mean <= CLOSE_MEAN);
+        assert_true(d.mean <= mean_bound(CLOSE_MEAN));
         assert_true(d.over <= CLOSE_OVER);
         bg_renderer_destroy(r);
     }

@@ -586,6 +586,7 @@ static void refused_program_falls_back(void **state)
     nofused.real_user = macs_headless_proc_user(util_fx.headless);
     macs_context_desc cd = {0};
     cd.get_proc_address = nofused_loader;
+    cd.profile = util_profile(); /* the fixture's limits and float features, so that the programs are the same */
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
     auto_falls_back_to_the_same_image(ctx, SCENE_GLASS, "multipass", "refused fused program", true);
@@ -601,6 +602,7 @@ static void uniform_cap_falls_back(void **state)
     cd.get_proc_address = macs_headless_get_proc_address(util_fx.headless);
     cd.get_proc_address_user = macs_headless_proc_user(util_fx.headless);
     cd.caps.max_uniform_components = 256; /* GL 2.0 hardware's budget; the multipass's batches fit it */
+    cd.profile = util_profile();
     macs_context *ctx = NULL;
     assert_int_equal(macs_context_create(&cd, &ctx, NULL, 0), MACS_OK);
     macs_limits eff;
