@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* No test context here: the thresholds take no profile (tests/gpu_thresholds.h). */
+#define GPU_THRESHOLDS_NO_PROFILES
 #include "../tests/stress_verdict.h"
 #include "lib/bench_util.h"
 #include "scenes/image_metrics.h"

@@ -49,7 +49,9 @@
 #include <stdio.h>
 
 #include "scenes/image_metrics.h"
+#ifndef GPU_THRESHOLDS_NO_PROFILES
 #include "util_gl.h"
+#endif
 #include "scenes/scenes.h"
 
 /* A reference pixel is a silhouette pixel when a neighbour differs from it by more than this. */
@@ -116,11 +118,13 @@ static inline const gpu_threshold *gpu_threshold_of(scene_id id)
 static inline bool gpu_threshold_check(const gpu_threshold *t, const image_metrics *m, char *why, size_t size)
 {
     /* Under a profile whose context blends no RGBA32F target, every check takes the wider row. */
+#ifndef GPU_THRESHOLDS_NO_PROFILES /* bench/stress.c: no test context, no profile */
     gpu_threshold half;
     if (util_half_accumulation()) {
         half = gpu_threshold_half_accumulation(t);
         t = &half;
     }
+#endif
     for (int c = 0; c < 3; c++) {
         if (m->interior.max_abs[c] > t->interior_max) {
             snprintf(why, size, "channel %d: interior max error %.0f > %.1f at pixel (%d, %d)", c,
