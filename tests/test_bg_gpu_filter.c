@@ -275,6 +275,7 @@ static double shader_against_cpu(const bg_texture_data *t, double *emulated, dou
     macs_texture_desc cd = {PW, PH, MACS_FORMAT_RGBA32F, MACS_FILTER_NEAREST, MACS_WRAP_CLAMP_TO_EDGE, uv, 0};
     macs_texture_desc id = {t->width, t->height, MACS_FORMAT_RGBA32F, MACS_FILTER_NEAREST,
                             repeat ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE, t->texels, 0};
+    util_require_texture_size(ctx, t->width, t->height);
     macs_texture *in[2], *out = util_texture(ctx, PW, PH, MACS_FORMAT_RGBA32F);
     assert_int_equal(macs_texture_create(ctx, &cd, &in[0]), MACS_OK);
     assert_int_equal(macs_texture_create(ctx, &id, &in[1]), MACS_OK);
