@@ -317,7 +317,7 @@ PROFILE_TESTS ?= $(filter $(BUILD)/tests/test_bg_gpu% $(BUILD)/tests/test_smoke_
 # texels); make check-profiles under every profile (CI).
 PROFILE_SCENE_TESTS := $(filter $(BUILD)/tests/test_bg_gpu_scenes $(BUILD)/tests/test_smoke_bg_gpu \
                          $(BUILD)/tests/test_bg_gpu_plans $(BUILD)/tests/test_bg_gpu_mesh,$(TEST_BIN))
-CHECK_PROFILES ?= radeon_x1600
+CHECK_PROFILES ?= radeon_x1600 gl21
 ALL_PROFILES := geforce7 radeon_x1600 gma_x3100 gl21
 check-profiles: all $(PROFILE_SCENE_TESTS) $(BUILD)/tests/probe_headless
 	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless PROFILES="$(ALL_PROFILES)" \

@@ -1,5 +1,6 @@
-/* Splitting: a pass with more outputs than draw buffers gives the same bits as the unsplit pass,
- * with discard, depth testing and the caller's stencil bits. */
+/* Splitting: a pass with more outputs than draw buffers gives the unsplit pass's values (equal bits, or
+ * within the rounding of another program: expect_split_matches), with discard, depth testing and the
+ * caller's stencil bits. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -46,6 +47,33 @@ static macs_context *capped_context(void **state, int c)
     caps.max_draw_buffers = cap_matrix[c][0];
     caps.max_color_attachments = cap_matrix[c][1];
     return util_context(*state, &caps);
+}
+
+/* The chunks of a split pass are other programs than the unsplit pass: each holds a subset of the
+ * outputs, so a compiler may contract or order the shared code's float operations otherwise (GL 2.1
+ * appendix A promises equal bits only to the same program). Every value here is a handful of float
+ * operations on operands below 16 in magnitude, plus sin and cos of such; contraction or reordering
+ * moves each by a few units in the last place, and sin or cos by as much again through their
+ * argument. So a value may differ from the unsplit pass's by 2^-16 of max(1, |value|) (about 500
+ * ULPs, far above rounding and far below any wrong output, input or texel, all of which move a value
+ * by 1e-3 or more). Equal bytes pass at once (Mesa gives them in every case so far). */
+static void expect_split_matches(const float *reference, const float *result, size_t n, const char *label, int c)
+{
+    if (memcmp(reference, result, n * sizeof(float)) == 0)
+        return;
+    size_t differing = 0;
+    for (size_t i = 0; i < n; i++) {
+        double a = reference[i], b = result[i];
+        if (a == b)
+            continue;
+        differing++;
+        double bound = ldexp(fmax(1.0, fmax(fabs(a), fabs(b))), -16);
+        if (!(fabs(a - b) <= bound))
+            fail_msg("%s: caps %d/%d: value %zu is %.9g, uncapped %.9g (bound %.3g)", label, cap_matrix[c][0],
+                     cap_matrix[c][1], i, b, a, bound);
+    }
+    print_message("%s: caps %d/%d: %zu values differ from uncapped within rounding\n", label, cap_matrix[c][0],
+                  cap_matrix[c][1], differing);
 }
 
 static int expected_chunks(macs_context *ctx, int outputs_n)
@@ -124,8 +152,8 @@ static void thirteen_outputs_identical_across_caps(void **state)
             continue;
         macs_context *ctx = capped_context(state, c);
         run_plain(ctx, c == 0 ? reference : result);
-        if (c > 0 && memcmp(reference, result, n * sizeof(float)) != 0)
-            fail_msg("caps %d/%d differ from uncapped", cap_matrix[c][0], cap_matrix[c][1]);
+        if (c > 0)
+            expect_split_matches(reference, result, n, "13 outputs", c);
         macs_context_destroy(ctx);
     }
     free(reference);
@@ -246,8 +274,8 @@ static void depth_tested_objects_identical_across_caps(void **state)
             macs_context *ctx = capped_context(state, c);
             run_depth_scene(ctx, c == 0 ? reference : result, keep != 0);
             check_nearest_wins(c == 0 ? reference : result);
-            if (c > 0 && memcmp(reference, result, n * sizeof(float)) != 0)
-                fail_msg("depth scene: caps %d/%d differ from uncapped", cap_matrix[c][0], cap_matrix[c][1]);
+            if (c > 0)
+                expect_split_matches(reference, result, n, "depth scene", c);
             macs_context_destroy(ctx);
         }
     free(reference);
