@@ -353,6 +353,8 @@ bg_status bg_scene_commit(bg_scene *scene)
         st = bgi_scene_tree_prepare(scene);
     if (st != BG_OK)
         return st;
+    char gpu_range[BGI_GPU_RANGE_NOTE_SIZE];
+    bgi_gpu_range_note(scene, &camera, gpu_range, sizeof gpu_range);
 
     bg_scene_state *state = &scene->state;
     state->object_count = install(&scene->c_objects, &scene->p_objects, sizeof(bg_object_data));
@@ -366,6 +368,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     install_bounds(state);
     state->mesh_object_count = scene->p_mesh_objects;
     state->camera = camera;
+    memcpy(state->gpu_range, gpu_range, sizeof gpu_range);
     memcpy(state->ambient, scene->ambient, sizeof state->ambient);
     bgi_environment_commit(scene, scene->texture_map.data, &state->environment);
     state->distribution = camera.camera.aperture_radius > 0.0 || (state->environment.on && state->environment.lights);

@@ -81,6 +81,8 @@ typedef struct bg_environment_data {
 /* What a commit produces. Lights' directions are normalised; materials keep their public form
  * except that each texture field holds a dense 1-based index (textures[t - 1]; 0 none), not the
  * API handle. */
+#define BGI_GPU_RANGE_NOTE_SIZE 256
+
 typedef struct bg_scene_state {
     bg_camera_data camera;
     double ambient[3];
@@ -109,6 +111,9 @@ typedef struct bg_scene_state {
     /* A number no other commit in the process had, of this scene or another (never 0): a renderer's
      * cache keyed by it stays right when a scene is freed and another made at the same address. */
     uint64_t serial;
+    /* Empty, or why the GPU renderer refuses this commit: the first object, light or camera value
+     * beyond the lengths it resolves in float, by handle (scene/gpu_range.c). */
+    char gpu_range[BGI_GPU_RANGE_NOTE_SIZE];
 } bg_scene_state;
 
 /* The committed state, or NULL when the scene was never committed successfully. */

@@ -116,6 +116,10 @@ struct bg_scene {
     bg_array c_always, p_always;             /* uint32_t */
 };
 
+/* Writes into note (empty when none) the first length of the commit in progress (p_objects, p_lights
+ * and camera) that the GPU renderer cannot resolve in float, naming the item by handle. */
+void bgi_gpu_range_note(const bg_scene *s, const bg_camera_data *camera, char *note, size_t size);
+
 /* Makes room for need items (keeping the contents); BG_ERR_LIMIT past BG_MAX_ITEMS, and
  * BG_ERR_OUT_OF_MEMORY leaves the array as it was. Records errors on the scene as from `where`. */
 bg_status bgi_array_reserve(bg_scene *scene, bg_array *array, uint32_t need, size_t elem,
