@@ -374,7 +374,7 @@ void bgi_gpu_marks_release(gpu_marks *m);
 
 /* ---- mesh_source.c ---- */
 /* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10). */
-#define GPU_MESH_OFFSET_ULPS 256.0
+#define GPU_MESH_OFFSET_ULPS 16.0
 /* The fused plans' mesh code for layouts with meshes: the globals a mesh hit leaves
  * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
  * nearest triangle and a shadow segment, both spending the pixel's walk steps, and bg_mesh_leave,
