@@ -373,7 +373,9 @@ bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_marks *m, const bg_scene_
 void bgi_gpu_marks_release(gpu_marks *m);
 
 /* ---- mesh_source.c ---- */
-/* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10). */
+/* The float offset of a ray leaving a mesh, in ulps of the point's magnitude (docs/shading.md 2.10):
+ * 4 leave no start behind a neighbour triangle; more moves cast shadow edges (256 gave dark speckles
+ * between thin parts), so 16 keeps a factor 4 and no more. */
 #define GPU_MESH_OFFSET_ULPS 16.0
 /* The fused plans' mesh code for layouts with meshes: the globals a mesh hit leaves
  * (its triangle, weights, point, geometric normal and offset), the walks of a mesh's own tree for the
