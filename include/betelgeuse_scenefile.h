@@ -77,7 +77,8 @@ typedef struct bg_scenefile_desc {
     const bg_vec3 *look_from; /* not NULL: replaces the chosen camera's position */
     const bg_vec3 *look_at;   /* not NULL: replaces the point it looks at */
     double fov_y_degrees;     /* 0: the chosen camera's; else in (0, 180), replacing it (the framing
-                                 camera keeps the model in view at this angle) */
+                                 camera keeps the model in view at this angle); refused for an
+                                 orthographic camera, which has no angle to set */
     /* The thin lens (bg_camera): pointers, since 0 is a value to ask for (the pinhole; in focus at
        look_at) and so cannot also mean "the file's". */
     const double *aperture_radius; /* not NULL: finite and >= 0, replacing the camera's */

@@ -417,7 +417,8 @@ static void stl_smoothing_welds_its_vertices(void **state)
 /* An orthographic glTF camera (xmag 2.4, ymag 1.6) stays orthographic: its half-height is ymag and
  * the image takes its aspect xmag / ymag. Before, it became a 45-degree perspective camera without a
  * word. A JSON camera says the same with "projection" and "half_height"; a lens on it, a bad name or
- * a half-height of 0 is refused by its path. */
+ * a half-height of 0 is refused by its path, and so is a field of view asked of it (the command's
+ * --fov), which it would ignore. */
 static void orthographic_cameras_load(void **state)
 {
     (void)state;
@@ -429,6 +430,15 @@ static void orthographic_cameras_load(void **state)
     assert_int_equal(r.image.width, 640);
     assert_int_equal(r.image.height, 427);
     bg_scene_destroy(s);
+    bg_scenefile_desc fov = {0};
+    fov.fov_y_degrees = 30.0;
+    char why[512];
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_status fov_st = bg_scenefile_load_any("tests/data/tetra_ortho.gltf", &fov, s, &r, why, sizeof why);
+    bg_scene_destroy(s);
+    print_message("%s\n", why);
+    if (fov_st != BG_ERR_INVALID_ARGUMENT || !strstr(why, "desc->fov_y_degrees: the camera is orthographic"))
+        fail_msg("a field of view on an orthographic camera: status %d, \"%s\"", fov_st, why);
 
     static const char ok[] = "{\"camera\": {\"position\": [0, 0, 5], \"projection\": \"orthographic\", "
                              "\"half_height\": 2.5}, \"objects\": [{\"sphere\": {}}]}";

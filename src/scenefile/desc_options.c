@@ -75,6 +75,13 @@ bg_status bgi_sf_apply_view(bgi_sf_ctx *ctx, const bg_scenefile_desc *d)
     if (!d)
         return BG_OK;
     bg_camera *c = &ctx->out->camera;
+    /* An orthographic view has no angle to widen; taking the value silently would leave the user's
+     * option without effect. */
+    if (d->fov_y_degrees != 0 && c->projection == BG_PROJECTION_ORTHOGRAPHIC)
+        return bgi_sf_fail(ctx, BG_ERR_INVALID_ARGUMENT,
+                           "desc->fov_y_degrees: the camera is orthographic (half_height %g), and a field of "
+                           "view applies to a perspective camera only",
+                           c->half_height);
     if (d->fov_y_degrees != 0)
         c->fov_y_degrees = d->fov_y_degrees;
     if (d->look_from)
