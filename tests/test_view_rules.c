@@ -91,6 +91,38 @@ static void frame_keeps_the_direction(void **state)
     assert_false(view_camera_frame(&c, &s, 1.0));
 }
 
+/* An orthographic camera: the wheel narrows the view (moving a parallel view would change nothing
+ * it shows), a pan moves by the view's own height per window height, and F fits the bounds into
+ * the half-sides with the view plane in front of them. */
+static void orthographic_view_zooms_pans_and_frames(void **state)
+{
+    (void)state;
+    bg_camera c = bg_camera_init();
+    c.position = bg_vec3_make(0, 0, 10);
+    c.look_at = bg_vec3_make(0, 0, 0);
+    c.projection = BG_PROJECTION_ORTHOGRAPHIC;
+    c.half_height = 2.0;
+    view_camera_dolly(&c, 1);
+    assert_true(fabs(c.half_height - 1.8) < 1e-12);
+    assert_true(c.position.z == 10.0);
+    view_camera_pan(&c, 0, 240, 480); /* half the window up: the view moves by its half-height */
+    assert_true(fabs(c.position.y - 1.8) < 1e-12 && fabs(c.look_at.y - 1.8) < 1e-12);
+    bg_scenefile_summary s = {0};
+    s.bounded = true;
+    s.bounds_min = bg_vec3_make(-3, -4, 0);
+    s.bounds_max = bg_vec3_make(3, 4, 0); /* radius 5 */
+    assert_true(view_camera_frame(&c, &s, 0.5));
+    assert_true(fabs(c.half_height - 1.05 * 5 / 0.5) < 1e-12);
+    assert_true(fabs(c.position.z - 10.0) < 1e-9 && fabs(c.look_at.z) < 1e-12);
+    bg_scene *scene = NULL;
+    assert_int_equal(bg_scene_create(NULL, &scene), BG_OK);
+    view_camera_dolly(&c, -100000);
+    assert_int_equal(bg_scene_set_camera(scene, &c), BG_OK);
+    view_camera_dolly(&c, 100000);
+    assert_int_equal(bg_scene_set_camera(scene, &c), BG_OK);
+    bg_scene_destroy(scene);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -98,6 +130,7 @@ int main(void)
         cmocka_unit_test(resolution_probes_a_finer_one),
         cmocka_unit_test(orbit_stops_short_of_the_poles),
         cmocka_unit_test(frame_keeps_the_direction),
+        cmocka_unit_test(orthographic_view_zooms_pans_and_frames),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

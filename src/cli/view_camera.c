@@ -50,7 +50,10 @@ void view_camera_pan(bg_camera *c, double dx, double dy, int window_height)
     double distance = sqrt(dot(forward, forward));
     forward = scale(forward, 1.0 / distance);
     bg_vec3 right = unit(cross(forward, c->up)), up = cross(right, forward);
-    double per_pixel = 2.0 * distance * tan(0.5 * c->fov_y_degrees * PI / 180.0) / (window_height > 0 ? window_height : 480);
+    /* The view's height in world units at look_at: a pixel there moves with the mouse. */
+    double height = c->projection == BG_PROJECTION_ORTHOGRAPHIC ? 2.0 * c->half_height
+                                                                 : 2.0 * distance * tan(0.5 * c->fov_y_degrees * PI / 180.0);
+    double per_pixel = height / (window_height > 0 ? window_height : 480);
     bg_vec3 move = add(scale(right, -dx * per_pixel), scale(up, dy * per_pixel));
     c->position = add(c->position, move);
     c->look_at = add(c->look_at, move);
@@ -63,6 +66,13 @@ void view_camera_dolly(bg_camera *c, double steps)
     /* A camera on look_at would be refused: the distance only shrinks geometrically. */
     if (!(factor > 1e-6))
         factor = 1e-6;
+    if (c->projection == BG_PROJECTION_ORTHOGRAPHIC) {
+        /* Moving a parallel view changes nothing it shows: the wheel narrows the view instead, kept
+         * inside the half-heights the scene takes. */
+        double h = c->half_height * factor;
+        c->half_height = h < 1e-90 ? 1e-90 : h > 1e90 ? 1e90 : h;
+        return;
+    }
     c->position = add(c->look_at, scale(offset, factor));
 }
 
@@ -75,10 +85,17 @@ bool view_camera_frame(bg_camera *c, const bg_scenefile_summary *s, double aspec
     double r = 0.5 * sqrt(dot(size, size));
     if (!(r > 0) || !isfinite(r))
         r = 1.0;
-    double half = 0.5 * c->fov_y_degrees * PI / 180.0;
-    double limit = aspect < 1 ? atan(tan(half) * aspect) : half;
-    double d = 1.05 * r / sin(limit);
     bg_vec3 back = unit(sub(c->position, c->look_at));
+    double d;
+    if (c->projection == BG_PROJECTION_ORTHOGRAPHIC) {
+        /* The bounding sphere within both half-sides, the view plane in front of all of it. */
+        c->half_height = 1.05 * r / (aspect < 1 ? aspect : 1.0);
+        d = 2.0 * r;
+    } else {
+        double half = 0.5 * c->fov_y_degrees * PI / 180.0;
+        double limit = aspect < 1 ? atan(tan(half) * aspect) : half;
+        d = 1.05 * r / sin(limit);
+    }
     c->look_at = centre;
     c->position = add(centre, scale(back, d));
     return true;
