@@ -8,7 +8,8 @@
 
 const char view_input_help[] = "  left drag              orbit about the point looked at\n"
                                "  right or middle drag   pan\n"
-                               "  wheel                  dolly towards (up) or away from the point looked at\n"
+                               "  wheel                  dolly towards (up) or away from the point looked at (an orthographic\n"
+                               "                         camera: narrow or widen the view)\n"
                                "  F                      frame the scene's bounds, looking the same way\n"
                                "  R                      reset to the camera the file gave\n"
                                "  P                      save the shown frame as betelgeuse-view-N.png (the\n"
