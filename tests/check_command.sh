@@ -40,7 +40,7 @@ echo "== check-command: $cli"
 # A scene that reads no other file, for checks that copy it around.
 printf '{"objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}}]}' >"$out/sphere.json"
 expect 0 "--help" "$cli" --help
-for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet --strict assemble info \
+for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet --strict --timings assemble info \
 	--up --smooth --camera --look-from --look-at --fov --aperture --focus-distance; do
 	grep -qF -- "$option" "$out/stdout" || fail "--help does not mention $option"
 done
@@ -82,6 +82,11 @@ said "2 warnings while loading, fatal under --strict" "a model warning under --s
 [ -e "$out/strict.png" ] && fail "render --strict wrote an image after a fatal warning"
 expect 2 "info under --strict" "$cli" info "$root/tests/data/emissive_webp_texture.gltf" --strict
 expect 0 "a clean scene under --strict" "$cli" info "$json/glass.json" --strict
+# --timings names every phase, and the frame rendered again compiles nothing new.
+expect 0 "--timings" "$cli" render "$json/glass.json" --size 48x36 -o "$out/timed.png" --quiet --timings
+for phase in "scene load" "context" "programs compiled" "render again" "PNG encode and write" "put in place"; do
+	said "$phase" "--timings"
+done
 
 # Tiles and crop windows are the full render's pixels: assembled they are the same file.
 for renderer in cpu gpu; do

@@ -43,6 +43,9 @@ static const char *const help[] = {
     "  --linear               write linear values instead of sRGB\n"
     "  --float OUT.pfm        also write the linear radiance as a PFM (renders the frame a second time)\n"
     "  -q, --quiet            print nothing but errors (no progress bar, no warnings)\n"
+    "  --timings              print each phase's wall time to stderr: scene load, context, render (with\n"
+    "                         the programs it compiled), the frame rendered again with its programs\n"
+    "                         cached (for this report only), PNG encode and write, putting in place\n"
     "  --strict               any warning while loading the scene (a missing model texture, a\n"
     "                         skipped PLY header line) is fatal: exit 2 (render, info and view)\n"
     "\n",

@@ -146,6 +146,8 @@ bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *
             o->tiles = in[1];
         } else if (strcmp(a, "--linear") == 0) {
             o->linear = true;
+        } else if (strcmp(a, "--timings") == 0) {
+            o->timings = true;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             o->quiet = true;
         } else if (a[0] == '-' && a[1] != '\0') {
@@ -157,6 +159,7 @@ bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *
         }
         if (eq && value == eq + 1 &&
             (strcmp(a, "--linear") == 0 || strcmp(a, "--quiet") == 0 || strcmp(a, "--strict") == 0 ||
+             strcmp(a, "--timings") == 0 ||
              strcmp(a, "--benchmark") == 0 ||
              strcmp(a, "--verbose") == 0))
             return fail(why, size, "%s takes no value%s", a, NULL);

@@ -28,6 +28,7 @@ typedef struct cli_options {
     bool linear;            /* --linear: the PNG holds linear values, not sRGB */
     bool quiet;             /* --quiet: errors only */
     bool strict;            /* --strict: a warning while loading the scene is fatal (exit 2) */
+    bool timings;           /* --timings (render): each phase's wall time to stderr */
     cli_model_options model; /* --up, --smooth, --camera, --look-from, --look-at, --fov */
     /* view only */
     double frame_ms;        /* --frame-ms: the frame time to hold while moving; 0: 33 */

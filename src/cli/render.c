@@ -147,6 +147,22 @@ static bool plan_render(const cli_options *o, const bg_scenefile_result *file, b
     return true;
 }
 
+/* Wall times of the command's phases for --timings (seconds). The render's first frame holds the
+ * programs' compilation; a second frame, rendered only for --timings, shows the frame alone. */
+typedef struct phase_times {
+    double load, context, render, again, png, write;
+    int compiled;
+} phase_times;
+
+static void print_times(const phase_times *t)
+{
+    fprintf(stderr,
+            "betelgeuse: timings: scene load %.1f ms, context %.1f ms, render %.1f ms (%d programs compiled), "
+            "render again %.1f ms, PNG encode and write %.1f ms, put in place %.1f ms\n",
+            1e3 * t->load, 1e3 * t->context, 1e3 * t->render, t->compiled, 1e3 * t->again, 1e3 * t->png,
+            1e3 * t->write);
+}
+
 /* The float frame (when asked for) and the PNG's; BG_OK or the failure, with the reason in why.
  * Ctrl-C cancels through the progress callback. */
 static bg_status render_images(const cli_options *o, gpu *g, bg_scene *scene, bg_render_settings *settings,
@@ -168,10 +184,13 @@ static bg_status render_images(const cli_options *o, gpu *g, bg_scene *scene, bg
 /* Both images into their temporaries, then both put in place: a failure anywhere before the
  * renames leaves every existing file as it was. */
 static bool write_outputs(const cli_options *o, cli_output outs[2], const bg_image *image, const bg_image *radiance,
-                          const cli_placement *where, char *why, size_t size)
+                          const cli_placement *where, char *why, size_t size, phase_times *times)
 {
+    double t0 = cli_now();
     if (!cli_png_write(outs[0].file, o->output, image, where, why, size) || !cli_output_finish(&outs[0], why, size))
         return false;
+    double t1 = cli_now();
+    times->png = t1 - t0;
     if (o->float_output && (!cli_pfm_write(outs[1].file, o->float_output, radiance, why, size) ||
                             !cli_output_finish(&outs[1], why, size)))
         return false;
@@ -180,13 +199,15 @@ static bool write_outputs(const cli_options *o, cli_output outs[2], const bg_ima
         snprintf(why, size, "cancelled; nothing was written");
         return false;
     }
-    return cli_outputs_commit(outs, o->float_output ? 2 : 1, why, size);
+    bool done = cli_outputs_commit(outs, o->float_output ? 2 : 1, why, size);
+    times->write = cli_now() - t1;
+    return done;
 }
 
 /* Renders the planned window and writes it; the exit code, with the message printed. The outputs'
  * temporaries are made first, so that a folder that cannot be written fails before the render. */
 static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_settings *settings,
-                            const cli_placement *where, int w, int h)
+                            const cli_placement *where, int w, int h, phase_times *times)
 {
     char why[1024];
     cli_output outs[2];
@@ -196,6 +217,7 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
     bg_image image = {w, h, BG_PIXEL_RGBA8, 0, NULL};
     bg_image radiance = {w, h, BG_PIXEL_RGBA32F, 0, NULL};
     int status = CLI_EXIT_FAILED;
+    double t0 = cli_now();
     if (!cli_output_open(&outs[0], o->output, why, sizeof why) ||
         (o->float_output && !cli_output_open(&outs[1], o->float_output, why, sizeof why))) {
         fprintf(stderr, "betelgeuse: %s\n", why);
@@ -211,8 +233,24 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
         action.sa_handler = on_interrupt;
         sigaction(SIGINT, &action, &previous);
         cli_progress bar;
-        if (render_images(o, &g, scene, settings, &image, &radiance, &bar, why, sizeof why) != BG_OK ||
-            !write_outputs(o, outs, &image, &radiance, where, why, sizeof why))
+        double t1 = cli_now();
+        times->context = t1 - t0;
+        bg_status st = render_images(o, &g, scene, settings, &image, &radiance, &bar, why, sizeof why);
+        double t2 = cli_now();
+        times->render = t2 - t1;
+        if (st == BG_OK && o->timings) {
+            bg_render_stats stats;
+            if (g.renderer) {
+                bg_renderer_get_stats(g.renderer, &stats);
+                times->compiled = stats.programs_compiled;
+            }
+            bg_render_settings quiet = *settings;
+            quiet.progress = NULL;
+            st = render_once(o, &g, scene, &quiet, &image, why, sizeof why);
+        }
+        double t3 = cli_now();
+        times->again = t3 - t2;
+        if (st != BG_OK || !write_outputs(o, outs, &image, &radiance, where, why, sizeof why, times))
             fprintf(stderr, "betelgeuse: %s\n", why);
         else
             status = CLI_EXIT_OK;
@@ -250,7 +288,11 @@ int cli_render(int argc, char **argv)
     bg_scenefile_result file;
     cli_inputs inputs;
     memset(&inputs, 0, sizeof inputs);
+    phase_times times;
+    memset(&times, 0, sizeof times);
+    double loading = cli_now();
     int status = cli_scene_load(o.scene, &o.model, &logs, &inputs, &scene, &file, NULL, 0);
+    times.load = cli_now() - loading;
     if (status == CLI_EXIT_OK)
         status = check_outputs(&o, &inputs);
     cli_inputs_free(&inputs);
@@ -262,7 +304,9 @@ int cli_render(int argc, char **argv)
         status = CLI_EXIT_USAGE;
     }
     if (status == CLI_EXIT_OK)
-        status = render_and_write(&o, scene, &settings, &where, w, h);
+        status = render_and_write(&o, scene, &settings, &where, w, h, &times);
+    if (status == CLI_EXIT_OK && o.timings)
+        print_times(&times);
     bg_scene_destroy(scene);
     return status;
 }

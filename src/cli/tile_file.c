@@ -75,6 +75,10 @@ bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_p
     t.key = (png_charp)TILE_KEY;
     t.text = text;
     png_set_text(png, info, &t, 1);
+    /* zlib's fastest level: at 1024x1024 (llvmpipe, 2 busy cores) level 6, libpng's default, took
+     * 185-465 ms to encode, longer than the frame (150-210 ms for paper_earth_shadow), and level 1
+     * 36-140 ms, for files 8 to 52 % larger (docs/benchmarks.md, "The command's own cost"). */
+    png_set_compression_level(png, 1);
     png_write_info(png, info);
     for (int y = 0; y < image->height; y++)
         png_write_row(png, (png_const_bytep)image->pixels + (size_t)y * stride);
