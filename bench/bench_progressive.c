@@ -4,18 +4,19 @@
  * effects. The preview is biased when the first k samples sit in one part of the pixel; the order in
  * which samples are taken (bgi_sample_order) decides where they sit.
  *
- * Usage: bench_progressive [size]   (default 96: a size x size image; QUICK=1 for 48)
+ * Usage: bench_progressive [out_dir]   (default bench/out; a 96 x 96 image, QUICK=1 for 48 x 48)
  * The CPU reference renders every pixel single-threaded through bgi_cpu_render_texel with a view of
  * samples = 64 and sample_first = 0, sample_count = k (the preview), then with count 64 (the image);
  * both are RGBA8 with the sRGB encoding, what a viewer shows. Each row: the RMSE of the preview
  * against the image over all pixels and channels RGB, in 8-bit steps (0..255), and the share of
- * pixels with a channel off by more than 8 steps. Prints a table; writes nothing. */
+ * pixels with a channel off by more than 8 steps. Prints a table and writes out_dir/progressive.csv
+ * (scene, k, rmse, over_share). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "betelgeuse/cpu/cpu_internal.h"
+#include "lib/bench_util.h"
 #include "lib/distribution_scenes.h"
 #include "scenes/scenes.h"
 
@@ -62,19 +63,15 @@ static void render(const bg_scene_state *state, const bg_render_settings *settin
 
 int main(int argc, char **argv)
 {
-    const char *quick = getenv("QUICK");
-    int size = quick && *quick && strcmp(quick, "0") ? QUICK_SIZE : DEFAULT_SIZE;
-    if (argc > 1) {
-        size = atoi(argv[1]);
-        if (size < 1 || size > 1024) {
-            fprintf(stderr, "bench_progressive: size %s is outside [1, 1024]\n", argv[1]);
-            return 2;
-        }
-    }
+    int size = bench_quick() ? QUICK_SIZE : DEFAULT_SIZE;
+    FILE *csv = bench_csv_open(bench_out_dir(argc, argv), "progressive.csv", "scene,k,rmse,over_share");
+    if (!csv)
+        return 1;
     size_t bytes = (size_t)size * size * 4;
     unsigned char *full = malloc(bytes), *preview = malloc(bytes);
     if (!full || !preview) {
         fprintf(stderr, "bench_progressive: out of memory\n");
+        fclose(csv);
         return 1;
     }
     bg_render_settings settings = bg_render_settings_init();
@@ -109,7 +106,9 @@ int main(int argc, char **argv)
                 }
                 over += off;
             }
-            printf("  %8.2f (%4.1f%%)", sqrt(sq / ((double)size * size * 3)), 100.0 * over / ((double)size * size));
+            double rmse = sqrt(sq / ((double)size * size * 3)), share = (double)over / ((double)size * size);
+            printf("  %8.2f (%4.1f%%)", rmse, 100.0 * share);
+            fprintf(csv, "%s,%d,%.4f,%.5f\n", cases[c].name, previews[i], rmse, share);
         }
         printf("\n");
         fflush(stdout);
@@ -117,5 +116,9 @@ int main(int argc, char **argv)
     }
     free(full);
     free(preview);
+    if (fclose(csv) != 0) {
+        fprintf(stderr, "bench_progressive: writing progressive.csv failed\n");
+        status = 1;
+    }
     return status;
 }
