@@ -1,7 +1,8 @@
 /* Several samples per pixel on the GPU (docs/shading.md 1.1): each sample is a whole frame pass of
  * whichever plan runs, its camera rays shifted by the sample's offset from the pixel centre, into a
- * float texture, summed on the GPU in the order the samples are taken (bgi_sample_order, accumulate.c), so the sum is deterministic and the
- * plans need no accumulation of their own, and read back once. The tree plan's CPU pixels of a pass
+ * float texture, summed on the GPU in the order the samples are taken (bgi_sample_order,
+ * accumulate.c), so the sum is deterministic and the plans need no accumulation of their own, and
+ * read back once. The tree plan's CPU pixels of a pass
  * are that sample's (bgi_cpu_render_texel renders r->view's one sample). The caller's image or texture
  * is written only after the last pass, so a cancelled or failed frame leaves it untouched. */
 #include <string.h>
