@@ -81,6 +81,74 @@ void bgi_sample_position(int samples, int s, double *px, double *py)
     *py = cell_centre(s / columns, rows);
 }
 
+/* The primes of m (>= 1) in ascending order into p (at most 8 of them for m <= 256); their count. */
+static int prime_factors(int m, int p[8])
+{
+    int count = 0;
+    for (int q = 2; m > 1 && count < 8; q++)
+        while (m % q == 0 && count < 8) {
+            p[count++] = q;
+            m /= q;
+        }
+    return count;
+}
+
+/* docs/shading.md 1.1, "The order the samples are taken in". Three steps, each one an integer map:
+ *  1. k -> t, the ends inwards: t = 0, n - 1, 1, n - 2, ... (for odd n the middle index (n - 1) / 2
+ *     first), so that indices t and n - 1 - t come as a pair;
+ *  2. t's digits in a mixed radix whose bases are the primes of columns and of rows, interleaved
+ *     (the axis with more cells left takes the next prime, columns first on a tie), least
+ *     significant digit first: each digit is the next most significant digit of its axis's cell
+ *     (a Morton order with each axis's digits reversed, van der Corput's radical inverse per axis),
+ *     so the first b_1 indices spread over b_1 strips of the first axis, the first b_1 b_2 over a
+ *     b_1 x b_2 grid of blocks, and so on;
+ *  3. every base-2 digit of an axis at an odd place (the second, fourth ... most significant) is
+ *     flipped: the first sample then sits about a third of the way in, not in the corner cell.
+ * n - 1 - t has every digit d of t replaced by b - 1 - d, and flipping a bit commutes with that, so
+ * the pair t, n - 1 - t is a cell and its mirror through the pixel centre: every even prefix (every
+ * odd one for odd n, which starts at the centre cell) has its mean at the pixel centre exactly, and
+ * the first 2^j of a grid of 2^a x 2^b cells hit each block of the first j digits once. */
+int bgi_sample_order(int samples, int k)
+{
+    int n = samples > 1 ? samples : 1;
+    if (k < 0 || k >= n)
+        return 0;
+    int j = k;
+    if (n % 2 == 1) {
+        if (k == 0)
+            return bgi_sample_index_cell(n, (n - 1) / 2);
+        j = k - 1;
+    }
+    return bgi_sample_index_cell(n, j % 2 == 0 ? j / 2 : n - 1 - j / 2);
+}
+
+int bgi_sample_index_cell(int samples, int t)
+{
+    int n = samples > 1 ? samples : 1;
+    int rows = bgi_sample_rows(n), columns = n / rows;
+    int px[8], py[8];
+    int nx = prime_factors(columns, px), ny = prime_factors(rows, py);
+    int ix = 0, iy = 0, x = 0, y = 0, left_x = columns, left_y = rows;
+    while (ix < nx || iy < ny) {
+        bool along_x = iy == ny || (ix < nx && left_x >= left_y);
+        int b = along_x ? px[ix] : py[iy], place = along_x ? ix : iy;
+        int d = t % b;
+        t /= b;
+        if (b == 2 && place % 2 == 1)
+            d ^= 1;
+        if (along_x) {
+            left_x /= b;
+            x += d * left_x;
+            ix++;
+        } else {
+            left_y /= b;
+            y += d * left_y;
+            iy++;
+        }
+    }
+    return y * columns + x;
+}
+
 bool bgi_render_progress(const bg_render_settings *settings, double fraction)
 {
     if (!settings->progress)

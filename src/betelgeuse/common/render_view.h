@@ -16,7 +16,8 @@ typedef struct bgi_render_view {
     int width, height;             /* the image */
     int samples;                   /* per pixel, >= 1 */
     int sample_first, sample_count; /* the samples this call computes and averages (all of them on the
-                                       CPU; one per pass on the GPU) */
+                                       CPU; one per pass on the GPU), counted in the order they are
+                                       taken: k is sample bgi_sample_order(samples, k) */
 } bgi_render_view;
 
 /* Fills view from settings for an image of width x height (already checked), all samples; on bad
@@ -27,6 +28,14 @@ bg_status bgi_render_view_make(const bg_render_settings *settings, int width, in
 /* The position of sample s (0 .. samples - 1) inside its pixel, from the pixel's top-left corner, x
  * right and y down, each in (0, 1) (docs/shading.md 1.1); (0.5, 0.5) for one sample. */
 void bgi_sample_position(int samples, int s, double *px, double *py);
+
+/* The sample of the pattern of `samples` (0 .. samples - 1, the s of bgi_sample_position and of the
+ * distribution effects' points) taken k-th (k = 0 .. samples - 1): a permutation of the samples such
+ * that every first k of them spread over the pixel (docs/shading.md 1.1). sample_first and
+ * sample_count of a view count in this order; 0 for one sample. */
+int bgi_sample_order(int samples, int k);
+/* Step 2 of the order: index t's cell, its mixed-radix digits spread over the axes. */
+int bgi_sample_index_cell(int samples, int t);
 
 /* The rows of the pattern of n samples: the largest divisor of n not above sqrt(n); columns = n / rows. */
 int bgi_sample_rows(int n);

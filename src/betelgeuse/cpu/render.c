@@ -33,7 +33,10 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
 {
     double rgb[3];
     int first = view->sample_first, count = view->sample_count;
-    for (int s = first; s < first + count; s++) {
+    for (int k = first; k < first + count; k++) {
+        /* The k-th sample taken (docs/shading.md 1.1): its place in the pixel and its points are
+         * sample s's, so that the first k of any count spread over the pixel. */
+        int s = bgi_sample_order(view->samples, k);
         double px, py, o[3], d[3], one[3];
         bgi_sample_position(view->samples, s, &px, &py);
         bgi_cpu_frame_ray(&state->camera, view->frame_width, view->frame_height, (double)(view->x0 + x) + px,
@@ -45,10 +48,10 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
         if (state->camera.camera.aperture_radius > 0.0)
             bgi_cpu_lens_ray(&state->camera, &sample, o, d);
         bgi_cpu_shade_ray(state, settings, &sample, o, d, one);
-        /* Summed in sample order, then divided once (docs/shading.md 1.1); one sample is kept as it
-         * is, so that samples 1 is today's image bit for bit (0 + -0 would be +0). */
+        /* Summed in the order taken, then divided once (docs/shading.md 1.1); one sample is kept as
+         * it is, so that samples 1 is today's image bit for bit (0 + -0 would be +0). */
         for (int i = 0; i < 3; i++)
-            rgb[i] = s == first ? one[i] : rgb[i] + one[i];
+            rgb[i] = k == first ? one[i] : rgb[i] + one[i];
     }
     if (count > 1)
         for (int i = 0; i < 3; i++)

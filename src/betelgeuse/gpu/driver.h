@@ -43,9 +43,10 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
 bg_status bgi_gpu_accumulation_read(bg_renderer *r, const bg_accumulation *a, float *top_down);
 
 /* ---- samples.c ---- */
-/* The gpu_view of sample s of view: that one sample, and its camera shift (docs/shading.md 1.1). */
-void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out);
-/* A frame of view->samples > 1: one pass per sample, summed on the GPU in sample order (accumulate.c),
+/* The gpu_view of the sample view takes k-th (sample bgi_sample_order(samples, k)): that one sample,
+ * and its camera shift (docs/shading.md 1.1). */
+void bgi_gpu_view_for_sample(const bgi_render_view *view, int k, gpu_view *out);
+/* A frame of view->samples > 1: one pass per sample, summed on the GPU in the order taken (accumulate.c),
  * read back once, divided by the count and encoded into out's image or uploaded into its texture;
  * progress after each pass, cancelling between passes leaves out untouched. */
 bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,

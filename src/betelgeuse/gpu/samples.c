@@ -1,7 +1,8 @@
 /* Several samples per pixel on the GPU (docs/shading.md 1.1): each sample is a whole frame pass of
  * whichever plan runs, its camera rays shifted by the sample's offset from the pixel centre, into a
- * float texture, summed on the GPU in sample order (accumulate.c), so the sum is deterministic and the
- * plans need no accumulation of their own, and read back once. The tree plan's CPU pixels of a pass
+ * float texture, summed on the GPU in the order the samples are taken (bgi_sample_order,
+ * accumulate.c), so the sum is deterministic and the plans need no accumulation of their own, and
+ * read back once. The tree plan's CPU pixels of a pass
  * are that sample's (bgi_cpu_render_texel renders r->view's one sample). The caller's image or texture
  * is written only after the last pass, so a cancelled or failed frame leaves it untouched. */
 #include <string.h>
@@ -10,12 +11,14 @@
 #include "../common/encoding.h"
 #include "driver.h"
 
-void bgi_gpu_view_for_sample(const bgi_render_view *view, int s, gpu_view *out)
+void bgi_gpu_view_for_sample(const bgi_render_view *view, int k, gpu_view *out)
 {
+    /* The k-th sample taken is sample s of the pattern (docs/shading.md 1.1); the pass's view keeps
+     * k, as the CPU's does, and its uniforms and the tree plan's CPU pixels take s from it. */
     double px, py;
-    bgi_sample_position(view->samples, s, &px, &py);
+    bgi_sample_position(view->samples, bgi_sample_order(view->samples, k), &px, &py);
     out->pixels = *view;
-    out->pixels.sample_first = s;
+    out->pixels.sample_first = k;
     out->pixels.sample_count = 1;
     /* gl_FragCoord is the window pixel's centre, GL rows bottom-up: the frame's GL row of window row
      * 0 is frame_height - y0 - height, and the doc's y + py is GL's row + (1 - py). Every term is a

@@ -14,7 +14,8 @@ void bgi_gpu_pixel_at(const gpu_view *view, float out[2])
 void bgi_gpu_sample_of(const gpu_view *view, float out[4])
 {
     int n = view->pixels.samples, rows = bgi_sample_rows(n);
-    out[0] = (float)view->pixels.sample_first;
+    /* The pass's sample taken k-th is sample s of the pattern: the shaders see s. */
+    out[0] = (float)bgi_sample_order(n, view->pixels.sample_first);
     out[1] = (float)n;
     out[2] = (float)(n / rows);
     out[3] = (float)rows;

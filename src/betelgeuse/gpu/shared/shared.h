@@ -247,7 +247,8 @@ void bgi_gpu_camera_half(const bg_scene_state *state, const gpu_view *view, floa
 bool bgi_gpu_scene_has_area_lights(const bg_scene_state *state);
 /* The distribution uniforms of a pass (docs/shading.md 1.3 and 1.4): bg_pixel_at, the frame column
  * of the window's first pixel and the frame row of its bottom GL row; bg_sample_of, (s, n,
- * columns, rows) of the view's sample; bg_lens, (aperture_radius, focus). */
+ * columns, rows) of the view's sample (s the pattern's sample that the view takes sample_first-th,
+ * bgi_sample_order); bg_lens, (aperture_radius, focus). */
 void bgi_gpu_pixel_at(const gpu_view *view, float out[2]);
 void bgi_gpu_sample_of(const gpu_view *view, float out[4]);
 /* bg_sample_perm: the cell permutation's constants for the view's sample count (bg_scramble.glsl). */
