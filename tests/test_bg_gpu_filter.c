@@ -342,7 +342,7 @@ static double shader_against_cpu(const bg_texture_data *t, double *emulated, dou
 /* A w x h texture of 0/1 texels (each channel its own noise): every texel edge a step of 1. */
 static bg_texture_data sharp_texture(int w, int h, bg_texture_wrap wrap, uint32_t seed)
 {
-    bg_texture_data t = {w, h, wrap, BG_FILTER_LINEAR, malloc(sizeof(float) * 4 * (size_t)w * h)};
+    bg_texture_data t = {w, h, wrap, BG_FILTER_LINEAR, malloc(sizeof(float) * 4 * (size_t)w * h), NULL, false};
     assert_non_null(t.texels);
     for (int i = 0; i < w * h * 4; i++) {
         seed = seed * 1664525u + 1013904223u;

@@ -29,12 +29,13 @@ static uint64_t textures_key(const bg_scene_state *state)
         h = bgi_gpu_hash_mix(h, (uint64_t)t->height);
         h = bgi_gpu_hash_mix(h, (uint64_t)t->wrap);
         h = bgi_gpu_hash_mix(h, (uint64_t)t->filter);
-        size_t n = (size_t)t->width * (size_t)t->height * 4;
-        for (size_t k = 0; k + 1 < n; k += 2) {
-            uint32_t a, b;
-            memcpy(&a, &t->texels[k], sizeof a);
-            memcpy(&b, &t->texels[k + 1], sizeof b);
-            h = bgi_gpu_hash_mix(h, ((uint64_t)a << 32) | b);
+        h = bgi_gpu_hash_mix(h, (uint64_t)(t->bytes != NULL) | (uint64_t)t->srgb << 1);
+        size_t n = bgi_texture_bytes(t);
+        const unsigned char *p = t->texels ? (const unsigned char *)t->texels : t->bytes;
+        for (size_t k = 0; k + 8 <= n; k += 8) {
+            uint64_t v;
+            memcpy(&v, p + k, sizeof v);
+            h = bgi_gpu_hash_mix(h, v);
         }
     }
     return h;

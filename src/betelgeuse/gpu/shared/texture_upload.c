@@ -2,6 +2,7 @@
  * read it (GL_NEAREST, filtered in the shader where the scene asks for GL_LINEAR). */
 #include <string.h>
 
+#include "../../common/alloc.h"
 #include "shared.h"
 
 bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format format, macs_texture **out, const char *what)
@@ -37,9 +38,21 @@ bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t,
     /* No mipmaps (docs/shading.md 5); both are GL row order: row 0 is v = 0. Always GL_NEAREST:
      * the hardware filter's weights are the driver's (8-bit fixed point on NVIDIA, no float
      * filtering at all on Radeon X1000), so GL_LINEAR is done in the shader. */
-    return bgi_gpu_float_texture(r, t->width, t->height, MACS_FILTER_NEAREST,
-                                 t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE, t->texels,
-                                 "scene texture", out);
+    macs_wrap wrap = t->wrap == BG_WRAP_REPEAT ? MACS_WRAP_REPEAT : MACS_WRAP_CLAMP_TO_EDGE;
+    if (t->texels)
+        return bgi_gpu_float_texture(r, t->width, t->height, MACS_FILTER_NEAREST, wrap, t->texels, "scene texture", out);
+    /* 8-bit texels decoded here, as the CPU reference decodes them. */
+    size_t n = (size_t)t->width * (size_t)t->height;
+    float *decoded = bgi_alloc(&r->allocator, n * 4 * sizeof *decoded);
+    if (!decoded)
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory decoding a %d x %d scene texture", t->width,
+                            t->height);
+    for (size_t k = 0; k < n; k++)
+        for (int c = 0; c < 4; c++)
+            decoded[4 * k + (size_t)c] = (float)bgi_texture_channel(t, k, c);
+    bg_status st = bgi_gpu_float_texture(r, t->width, t->height, MACS_FILTER_NEAREST, wrap, decoded, "scene texture", out);
+    bgi_free(&r->allocator, decoded);
+    return st;
 }
 
 gpu_texture_mode bgi_gpu_texture_mode(const bg_texture_data *t)
