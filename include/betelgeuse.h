@@ -796,6 +796,10 @@ typedef struct bg_render_stats {
     int tiles;                       /* tiles the image was rendered in (1: one piece); the other
                                         fields describe the last tile's last sample pass, but
                                         fallback_pixels and programs_compiled count every pass */
+    uint64_t texture_bytes;          /* GPU memory the scene's textures hold, in bytes of texels as
+                                        uploaded: 4 a texel for an 8-bit image, 16 for a float one,
+                                        and 4096 for the sRGB decode table where one is sampled
+                                        (docs/shading.md 5.2); no mipmaps, no driver overhead */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

@@ -289,7 +289,7 @@ static double shader_against_cpu(const bg_texture_data *t, double *emulated, dou
     assert_true(bgi_gpu_text_snippet(&functions, "bg_texture_filter.glsl", seen, &seen_count, 4));
     assert_false(functions.failed);
     char lookup[192], value[256];
-    gpu_texture_mode mode = bgi_gpu_texture_mode(t);
+    gpu_texture_mode mode = bgi_gpu_texture_mode(t, true);
     assert_true(mode.linear);
     assert_true(bgi_gpu_texture_lookup(lookup, sizeof lookup, "bg_img", "texture2D(bg_uv, macs_uv).xy", mode));
     snprintf(value, sizeof value, "%s", lookup);
