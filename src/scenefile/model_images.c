@@ -285,9 +285,10 @@ static bg_status add(bgi_sf_model *md, const bg_image *image, bg_texture_encodin
     return BG_OK;
 }
 
-bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out)
+bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, bg_texture_encoding encoding,
+                                   const char *what, uint32_t *out)
 {
-    return add(md, image, BG_TEXTURE_LINEAR, what, out);
+    return add(md, image, encoding, what, out);
 }
 
 bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, bg_texture_encoding encoding,

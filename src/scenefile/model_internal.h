@@ -48,8 +48,9 @@ bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, c
 /* The image's texture in the given encoding (repeat, linear filtering), added at its first use. */
 bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, bg_texture_encoding encoding,
                                      uint32_t *out);
-/* A texture the loader made (a bake, linear: RGBA32F or data), added and counted; what names it in a failure. */
-bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out);
+/* A texture the loader made (a bake, RGBA8 in the encoding), added and counted; what names it in a failure. */
+bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, bg_texture_encoding encoding,
+                                   const char *what, uint32_t *out);
 void bgi_sf_model_images_free(bgi_sf_model *md);
 
 /* ---- model_material.c ---- */
