@@ -176,6 +176,22 @@ static void occlusion_darkens_the_ambient_light(void **state)
     free(s);
 }
 
+/* Two materials bake from the same two images: the second reads them decoded again after the first
+ * released them (red | blue base, occlusion 255 | 64), on the front quad and on the back one. */
+static void a_second_bake_decodes_its_images_again(void **state)
+{
+    (void)state;
+    shot *s = render("img_occlusion_shared.gltf", AMBIENT_ONLY);
+    expect_color(s, "img_occlusion_shared.gltf, front left", LEFT_X, MID_Y, 255, 0, 0, 2);
+    expect_color(s, "img_occlusion_shared.gltf, front right", RIGHT_X, MID_Y, 0, 0, 137, 3);
+    expect_color(s, "img_occlusion_shared.gltf, back left", 6, MID_Y, 255, 0, 0, 2);
+    expect_color(s, "img_occlusion_shared.gltf, back right", 58, MID_Y, 0, 0, 137, 3);
+    assert_int_equal(s->r.summary.materials, 2);
+    assert_int_equal(s->r.summary.textures, 3); /* the base colour, and a bake per material */
+    assert_int_equal(s->w.count, 0);
+    free(s);
+}
+
 /* BLEND: the blue quad's texture alpha is 0 on the left, where the red quad behind shows, and 1 on
  * the right. */
 static void blend_shows_what_is_behind(void **state)
@@ -203,7 +219,7 @@ static void model_textures_stay_8_bit(void **state)
 {
     (void)state;
     static const char *const models[] = {"img_png.glb", "img_jpeg.obj", "img_occlusion.gltf", "img_blend.gltf",
-                                         "img_metal_rough.gltf"};
+                                         "img_metal_rough.gltf", "img_occlusion_shared.gltf"};
     for (size_t i = 0; i < sizeof models / sizeof models[0]; i++) {
         char text[256], message[1024];
         snprintf(text, sizeof text, "{\"objects\": [{\"mesh\": {\"file\": \"%s\"}}]}", models[i]);
@@ -235,6 +251,7 @@ int main(void)
         cmocka_unit_test(a_corrupt_image_is_an_error),
         cmocka_unit_test(roughness_follows_the_metallic_roughness_texture),
         cmocka_unit_test(occlusion_darkens_the_ambient_light),
+        cmocka_unit_test(a_second_bake_decodes_its_images_again),
         cmocka_unit_test(blend_shows_what_is_behind),
         cmocka_unit_test(opaque_ignores_alpha),
         cmocka_unit_test(model_textures_stay_8_bit),

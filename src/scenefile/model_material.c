@@ -191,7 +191,7 @@ static bg_status map_emission(bgi_sf_model *md, const struct aiMaterial *am, con
  * 1 + strength (R - 1), at the larger size of the two, each read at its nearest texel, stored as
  * 8-bit sRGB like the base texture (within half a code of the product). */
 static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, const char *mname, bg_material *m,
-                             const bgi_sf_model_image *base)
+                             bgi_sf_model_image *base)
 {
     static const enum aiTextureType occlusion_types[] = {aiTextureType_AMBIENT_OCCLUSION, aiTextureType_LIGHTMAP};
     const bg_color_param *b = &m->base.reflectance;
@@ -202,6 +202,9 @@ static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, cons
         BGI_SF_TRY(bgi_sf_model_image_of(md, am, occlusion_types, 2, mname, "occlusion", &occ, &dropped));
     if (!occ)
         return BG_OK;
+    BGI_SF_TRY(bgi_sf_model_image_pixels(md, occ));
+    if (base)
+        BGI_SF_TRY(bgi_sf_model_image_pixels(md, base));
     double strength = 1.0;
     if (!float_of(am, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), &strength))
         float_of(am, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_AMBIENT_OCCLUSION, 0), &strength);
@@ -238,7 +241,7 @@ static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, cons
  * times the base texture's alpha channel, which the texture keeps linear. OPAQUE ignores alpha, as
  * glTF says. A file without alphaMode (MTL) takes its opacity (d) as given. */
 static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_material *m, double alpha,
-                           const bgi_sf_model_image *base)
+                           bgi_sf_model_image *base)
 {
     char mode[16];
     double x;
@@ -258,6 +261,8 @@ static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_mat
         return BG_OK;
     m->ior = 1.0;
     m->transparency.value = 1.0 - alpha;
+    if (base)
+        BGI_SF_TRY(bgi_sf_model_image_pixels(md, base));
     bool has_alpha = false;
     const bg_image *im = base ? &base->image : NULL;
     for (int y = 0; im && y < im->height && !has_alpha; y++)
@@ -308,6 +313,8 @@ static bg_status map_material(bgi_sf_model *md, const struct aiMaterial *am, con
             m->coat.roughness.value = clamp01(sqrt(2.0 / (x + 2.0)));
     }
     BGI_SF_TRY(map_emission(md, am, mname, m));
+    /* Only the base image is read again (by the bakes below): the others' textures are added. */
+    bgi_sf_model_images_release(md, base);
     if (float_of(am, AI_MATKEY_REFRACTI, &x) && x > 0)
         m->ior = x;
     BGI_SF_TRY(map_alpha(md, am, m, alpha, base));
@@ -320,6 +327,7 @@ static bg_status map_material(bgi_sf_model *md, const struct aiMaterial *am, con
                        ? BG_SIDES_BOTH
                        : BG_SIDES_FRONT;
     BGI_SF_TRY(map_ambient(md, am, mname, m, base));
+    bgi_sf_model_images_release(md, NULL);
     /* Normal and bump maps need a per-vertex tangent frame and a perturbed shading normal, which
      * neither renderer has (docs/scene_format.md says so); the surface keeps its interpolated normals. */
     if (aiGetMaterialTextureCount(am, aiTextureType_NORMALS) > 0 || aiGetMaterialTextureCount(am, aiTextureType_HEIGHT) > 0)
