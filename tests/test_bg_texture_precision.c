@@ -321,8 +321,50 @@ static void gpu_keeps_rgba8_at_4_bytes(void **state)
     if (worst > 1e-6)
         fail_msg("the image with the table differs from the decoded upload's by %.3g", worst);
     util_gpu_close(&g);
+    assert_int_equal(macs_headless_make_current(util_fx.headless), MACS_OK); /* the suite's context again */
     free(a);
     free(b);
+}
+
+/* A committed scene: a sphere filling the middle of the default view, emitting a 1 x 1 RGBA8 texture
+ * of colour rgb (3 bytes, an odd count of texel bytes per word). */
+static bg_scene *one_texel_scene(const unsigned char rgb[3])
+{
+    unsigned char px[4] = {rgb[0], rgb[1], rgb[2], 255};
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    bg_image img = {1, 1, BG_PIXEL_RGBA8, 0, px};
+    uint32_t t = 0, m = 0, o = 0;
+    assert_int_equal(bg_scene_add_texture(s, &img, NULL, &t), BG_OK);
+    bg_material mat = bg_material_init();
+    mat.base.reflectance = (bg_color_param){0, 0, 0, 0};
+    mat.ambient = (bg_color_param){0, 0, 0, 0};
+    mat.emission = (bg_color_param){1, 1, 1, t};
+    assert_int_equal(bg_scene_add_material(s, &mat, &m), BG_OK);
+    /* The default camera looks at the origin from 5 away. */
+    assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(0, 0, 0), 1.0, m, &o), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    return s;
+}
+
+/* The GPU copy of the textures is kept while what they hold is the same (a hash of their bytes): a
+ * second scene whose one texture has the same size and modes but another colour is uploaded. */
+static void another_texel_of_the_same_size_is_uploaded(void **state)
+{
+    (void)state;
+    static const unsigned char colours[2][3] = {{255, 0, 0}, {0, 0, 255}};
+    for (int i = 0; i < 2; i++) {
+        bg_scene *s = one_texel_scene(colours[i]);
+        unsigned char px[W * H * 4];
+        bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
+        bg_render_settings set = bg_render_settings_init();
+        util_render_gpu(util_fx.renderer, util_fx.ctx, s, &set, &img, "one texel");
+        const unsigned char *c = px + 4 * ((size_t)(H / 2) * W + W / 2);
+        if (c[0] != colours[i][0] || c[1] != colours[i][1] || c[2] != colours[i][2])
+            fail_msg("scene %d: the centre is (%d, %d, %d), its texture (%d, %d, %d)", i + 1, c[0], c[1], c[2],
+                     colours[i][0], colours[i][1], colours[i][2]);
+        bg_scene_destroy(s);
+    }
 }
 
 int main(void)
@@ -333,6 +375,7 @@ int main(void)
         cmocka_unit_test(cpu_decodes_every_byte),
         cmocka_unit_test(shader_decodes_every_byte),
         cmocka_unit_test(gpu_keeps_rgba8_at_4_bytes),
+        cmocka_unit_test(another_texel_of_the_same_size_is_uploaded),
     };
     return cmocka_run_group_tests_name("bg_texture_precision", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

@@ -33,9 +33,9 @@ static uint64_t textures_key(const bg_scene_state *state, bool table)
         h = bgi_gpu_hash_mix(h, (uint64_t)(t->bytes != NULL) | (uint64_t)t->srgb << 1);
         size_t n = bgi_texture_bytes(t);
         const unsigned char *p = t->texels ? (const unsigned char *)t->texels : t->bytes;
-        for (size_t k = 0; k + 8 <= n; k += 8) {
-            uint64_t v;
-            memcpy(&v, p + k, sizeof v);
+        for (size_t k = 0; k < n; k += 8) {
+            uint64_t v = 0; /* an RGBA8 texture of an odd texel count ends in half a word */
+            memcpy(&v, p + k, n - k < sizeof v ? n - k : sizeof v);
             h = bgi_gpu_hash_mix(h, v);
         }
     }
