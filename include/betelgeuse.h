@@ -195,7 +195,8 @@ typedef enum bg_texture_wrap { BG_WRAP_REPEAT = 0, BG_WRAP_CLAMP } bg_texture_wr
 typedef enum bg_texture_filter { BG_FILTER_LINEAR = 0, BG_FILTER_NEAREST } bg_texture_filter;
 
 typedef enum bg_texture_encoding {
-    BG_TEXTURE_SRGB = 0, /* colour data: RGBA8 texels are decoded from sRGB to linear on add */
+    BG_TEXTURE_SRGB = 0, /* colour data: RGBA8 texels are decoded from sRGB to linear where they are
+                            sampled, before filtering (docs/shading.md 5) */
     BG_TEXTURE_LINEAR    /* data (roughness, masks): texels are used as stored, RGBA8 divided by 255 */
 } bg_texture_encoding;
 
@@ -207,15 +208,17 @@ typedef struct bg_texture_desc {
     bg_texture_filter filter;
 } bg_texture_desc;
 
-/* Copies a caller image into the scene as a texture (stored as linear float); desc may be NULL. */
+/* Copies a caller image into the scene as a texture at its own precision (docs/shading.md 5.2): an
+ * RGBA8 image stays 4 bytes a texel on the host and on the GPU, an RGBA32F one 16; desc may be NULL. */
 BG_API bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
                                       uint32_t *out_texture);
 /* Removes a texture; refused (BG_ERR_INVALID_ARGUMENT, naming the material and field) while a
  * material still references it, also through an unused coat. Takes effect at the next commit. */
 BG_API bg_status bg_scene_remove_texture(bg_scene *scene, uint32_t texture);
 /* Loads a PNG file as a texture: its samples as bg_png_load keeps them, decoded as desc says like an
- * RGBA8 image's, except that 16-bit files keep all 16 bits (v / 65535 is decoded); missing or
- * corrupt files give BG_ERR_IO naming the path and why. */
+ * RGBA8 image's (an 8-bit file stays 4 bytes a texel), except that 16-bit files keep all 16 bits
+ * (v / 65535 is decoded, into 16-byte linear float texels); missing or corrupt files give BG_ERR_IO
+ * naming the path and why. */
 BG_API bg_status bg_scene_load_texture_png(bg_scene *scene, const char *path, const bg_texture_desc *desc,
                                            uint32_t *out_texture);
 
@@ -799,6 +802,10 @@ typedef struct bg_render_stats {
     int tiles;                       /* tiles the image was rendered in (1: one piece); the other
                                         fields describe the last tile's last sample pass, but
                                         fallback_pixels and programs_compiled count every pass */
+    uint64_t texture_bytes;          /* GPU memory the scene's textures hold, in bytes of texels as
+                                        uploaded: 4 a texel for an 8-bit image, 16 for a float one,
+                                        and 4096 for the sRGB decode table where one is sampled
+                                        (docs/shading.md 5.2); no mipmaps, no driver overhead */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

@@ -289,7 +289,7 @@ static double shader_against_cpu(const bg_texture_data *t, double *emulated, dou
     assert_true(bgi_gpu_text_snippet(&functions, "bg_texture_filter.glsl", seen, &seen_count, 4));
     assert_false(functions.failed);
     char lookup[192], value[256];
-    gpu_texture_mode mode = bgi_gpu_texture_mode(t);
+    gpu_texture_mode mode = bgi_gpu_texture_mode(t, true);
     assert_true(mode.linear);
     assert_true(bgi_gpu_texture_lookup(lookup, sizeof lookup, "bg_img", "texture2D(bg_uv, macs_uv).xy", mode));
     snprintf(value, sizeof value, "%s", lookup);
@@ -342,7 +342,7 @@ static double shader_against_cpu(const bg_texture_data *t, double *emulated, dou
 /* A w x h texture of 0/1 texels (each channel its own noise): every texel edge a step of 1. */
 static bg_texture_data sharp_texture(int w, int h, bg_texture_wrap wrap, uint32_t seed)
 {
-    bg_texture_data t = {w, h, wrap, BG_FILTER_LINEAR, malloc(sizeof(float) * 4 * (size_t)w * h)};
+    bg_texture_data t = {w, h, wrap, BG_FILTER_LINEAR, malloc(sizeof(float) * 4 * (size_t)w * h), NULL, false};
     assert_non_null(t.texels);
     for (int i = 0; i < w * h * 4; i++) {
         seed = seed * 1664525u + 1013904223u;

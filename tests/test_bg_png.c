@@ -353,8 +353,10 @@ static void check_loads(const test_png *t)
         bg_scene_load_texture_png(s, path, &linear, &lin) != BG_OK)
         fail_msg("%s: bg_scene_load_texture_png failed: %s", t->label, bg_scene_error_message(s));
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const float *ts = bgi_scene_committed(s)->textures[srgb - 1].texels;
-    const float *tl = bgi_scene_committed(s)->textures[lin - 1].texels;
+    /* An 8-bit file keeps its bytes, a 16-bit one linear floats: each read as the samplers read it. */
+    const bg_texture_data *ts = &bgi_scene_committed(s)->textures[srgb - 1];
+    const bg_texture_data *tl = &bgi_scene_committed(s)->textures[lin - 1];
+    assert_true(t->bit_depth == 16 ? ts->texels && tl->texels : ts->bytes && tl->bytes);
 
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
@@ -373,9 +375,9 @@ static void check_loads(const test_png *t)
                     fail_msg("%s: RGBA32F pixel (%d, %d) channel %d is %.9g, want %.9g", t->label, x, y, c,
                              (double)got32, (double)(float)unit);
                 float want_srgb = c < 3 ? (float)bgi_srgb_to_linear(unit) : (float)unit;
-                if (ts[texel + (size_t)c] != want_srgb || tl[texel + (size_t)c] != (float)unit)
+                if ((float)bgi_texture_channel(ts, texel / 4, c) != want_srgb || (float)bgi_texture_channel(tl, texel / 4, c) != (float)unit)
                     fail_msg("%s: texel (%d, %d) channel %d is %.9g (sRGB) and %.9g (linear), want %.9g and %.9g",
-                             t->label, x, y, c, (double)ts[texel + (size_t)c], (double)tl[texel + (size_t)c],
+                             t->label, x, y, c, (double)(float)bgi_texture_channel(ts, texel / 4, c), (double)(float)bgi_texture_channel(tl, texel / 4, c),
                              (double)want_srgb, (double)(float)unit);
             }
         }
@@ -625,8 +627,11 @@ static void test_texture_from_png_file(void **state)
     assert_int_equal(tex->width, 1);
     assert_int_equal(tex->height, 2);
     assert_int_equal(tex->wrap, BG_WRAP_CLAMP);
-    assert_true(tex->texels[0] == (float)(128 / 255.0) && tex->texels[3] == (float)(64 / 255.0));
-    assert_true(tex->texels[4] == 1.0f && tex->texels[5] == 0.0f && tex->texels[7] == 1.0f);
+    assert_non_null(tex->bytes); /* an 8-bit file stays 8-bit */
+    assert_true(tex->texels == NULL && !tex->srgb);
+    assert_memory_equal(tex->bytes, ((const unsigned char[8]){128, 128, 128, 64, 255, 0, 0, 255}), 8);
+    assert_true(bgi_texture_channel(tex, 0, 0) == 128 / 255.0 && bgi_texture_channel(tex, 0, 3) == 64 / 255.0);
+    assert_true(bgi_texture_channel(tex, 1, 0) == 1.0 && bgi_texture_channel(tex, 1, 1) == 0.0);
     bg_scene_destroy(s);
     remove(path);
 }
@@ -682,7 +687,13 @@ static void test_srgb_decode(void **state)
     bg_texture_desc d = {BG_WRAP_REPEAT, BG_TEXTURE_LINEAR, BG_FILTER_LINEAR};
     assert_int_equal(bg_scene_add_texture(s, &img, &d, &lin), BG_OK);
     assert_int_equal(bg_scene_commit(s), BG_OK);
-    const float *a = bgi_scene_committed(s)->textures[0].texels, *b = bgi_scene_committed(s)->textures[1].texels;
+    const bg_texture_data *ta = &bgi_scene_committed(s)->textures[0], *tb = &bgi_scene_committed(s)->textures[1];
+    assert_true(ta->bytes && ta->srgb && tb->bytes && !tb->srgb);
+    float a[16], b[16];
+    for (int k = 0; k < 16; k++) {
+        a[k] = (float)bgi_texture_channel(ta, (size_t)k / 4, k % 4);
+        b[k] = (float)bgi_texture_channel(tb, (size_t)k / 4, k % 4);
+    }
     assert_true(a[0] == 0.0f);
     assert_true(a[1] == (float)(10.0 / 255.0 / 12.92));
     assert_true(a[2] == (float)pow((11.0 / 255.0 + 0.055) / 1.055, 2.4));

@@ -17,6 +17,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse_scenefile.h"
+#include "betelgeuse/scene/scene_internal.h"
 #include "util_warnings.h"
 
 enum { W = 64, H = 48 };
@@ -175,6 +176,22 @@ static void occlusion_darkens_the_ambient_light(void **state)
     free(s);
 }
 
+/* Two materials bake from the same two images: the second reads them decoded again after the first
+ * released them (red | blue base, occlusion 255 | 64), on the front quad and on the back one. */
+static void a_second_bake_decodes_its_images_again(void **state)
+{
+    (void)state;
+    shot *s = render("img_occlusion_shared.gltf", AMBIENT_ONLY);
+    expect_color(s, "img_occlusion_shared.gltf, front left", LEFT_X, MID_Y, 255, 0, 0, 2);
+    expect_color(s, "img_occlusion_shared.gltf, front right", RIGHT_X, MID_Y, 0, 0, 137, 3);
+    expect_color(s, "img_occlusion_shared.gltf, back left", 6, MID_Y, 255, 0, 0, 2);
+    expect_color(s, "img_occlusion_shared.gltf, back right", 58, MID_Y, 0, 0, 137, 3);
+    assert_int_equal(s->r.summary.materials, 2);
+    assert_int_equal(s->r.summary.textures, 3); /* the base colour, and a bake per material */
+    assert_int_equal(s->w.count, 0);
+    free(s);
+}
+
 /* BLEND: the blue quad's texture alpha is 0 on the left, where the red quad behind shows, and 1 on
  * the right. */
 static void blend_shows_what_is_behind(void **state)
@@ -196,6 +213,34 @@ static void opaque_ignores_alpha(void **state)
     free(s);
 }
 
+/* Every texture of a model file keeps its image's 8 bits a channel, 4 bytes a texel (docs/shading.md
+ * 5.2), the loader's bakes (occlusion, blend alpha) included. */
+static void model_textures_stay_8_bit(void **state)
+{
+    (void)state;
+    static const char *const models[] = {"img_png.glb", "img_jpeg.obj", "img_occlusion.gltf", "img_blend.gltf",
+                                         "img_metal_rough.gltf", "img_occlusion_shared.gltf"};
+    for (size_t i = 0; i < sizeof models / sizeof models[0]; i++) {
+        char text[256], message[1024];
+        snprintf(text, sizeof text, "{\"objects\": [{\"mesh\": {\"file\": \"%s\"}}]}", models[i]);
+        bg_scene *scene = NULL;
+        assert_int_equal(bg_scene_create(NULL, &scene), BG_OK);
+        bg_scenefile_result r;
+        util_warnings w = {0};
+        bg_scenefile_desc d = {.base_dir = "tests/data", .logger = {util_warnings_collect, &w}};
+        if (bg_scenefile_load_string(text, &d, scene, &r, message, sizeof message) != BG_OK)
+            fail_msg("%s: %s", models[i], message);
+        assert_int_equal(bg_scene_commit(scene), BG_OK);
+        const bg_scene_state *st = bgi_scene_committed(scene);
+        assert_true(st->texture_count > 0);
+        for (uint32_t k = 0; k < st->texture_count; k++)
+            if (!st->textures[k].bytes || st->textures[k].texels || bgi_texture_bytes(&st->textures[k]) !=
+                                                                        (size_t)st->textures[k].width * st->textures[k].height * 4)
+                fail_msg("%s: texture %u of %u is not 4 bytes a texel", models[i], k + 1, st->texture_count);
+        bg_scene_destroy(scene);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -206,8 +251,10 @@ int main(void)
         cmocka_unit_test(a_corrupt_image_is_an_error),
         cmocka_unit_test(roughness_follows_the_metallic_roughness_texture),
         cmocka_unit_test(occlusion_darkens_the_ambient_light),
+        cmocka_unit_test(a_second_bake_decodes_its_images_again),
         cmocka_unit_test(blend_shows_what_is_behind),
         cmocka_unit_test(opaque_ignores_alpha),
+        cmocka_unit_test(model_textures_stay_8_bit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

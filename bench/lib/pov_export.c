@@ -178,10 +178,11 @@ static bool write_texture(const bg_texture_data *t, const char *path, char *mess
         return fail(message, message_size, "pov_write_scene: out of memory for a %dx%d texture", t->width, t->height);
     for (int y = 0; y < t->height; y++)
         for (int x = 0; x < t->width; x++) {
-            const float *src = t->texels + ((size_t)(t->height - 1 - y) * t->width + x) * 4;
+            double src[4];
+            bgi_texture_texel(t, (size_t)(t->height - 1 - y) * t->width + x, src);
             unsigned char *dst = pixels + ((size_t)y * t->width + x) * 4;
             for (int c = 0; c < 3; c++) {
-                double l = src[c] < 0.0f ? 0.0 : src[c] > 1.0f ? 1.0 : src[c];
+                double l = src[c] < 0.0 ? 0.0 : src[c] > 1.0 ? 1.0 : src[c];
                 dst[c] = (unsigned char)floor(bgi_linear_to_srgb(l) * 255.0 + 0.5);
             }
             dst[3] = 255;

@@ -406,8 +406,11 @@ int cli_info(int argc, char **argv)
             bg_status st = bg_render_gpu(g.renderer, scene, &set, &one);
             bg_render_stats stats;
             bg_renderer_get_stats(g.renderer, &stats);
-            if (st == BG_OK)
+            if (st == BG_OK) {
                 printf("GPU plan   %s\n", cli_plan_name(stats.plan));
+                printf("GPU memory %.1f MiB of scene textures (%llu bytes)\n", (double)stats.texture_bytes / 1048576.0,
+                       (unsigned long long)stats.texture_bytes);
+            }
             else
                 printf("GPU plan   none: %s\n", bg_renderer_error_message(g.renderer));
             gpu_close(&g);

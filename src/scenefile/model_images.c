@@ -261,6 +261,8 @@ bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, c
         else
             snprintf(what, sizeof what, "model file \"%s\": material \"%.200s\": %s texture file \"%s\"",
                      md->desc->path, mname, slot, path);
+        if (!(im->what = strdup(what)))
+            return bgi_sf_fail(md->ctx, BG_ERR_OUT_OF_MEMORY, "out of memory reading \"%s\"", md->desc->path);
         BGI_SF_TRY(load_image(md, im, what));
     }
     if (im->unsupported) {
@@ -285,9 +287,10 @@ static bg_status add(bgi_sf_model *md, const bg_image *image, bg_texture_encodin
     return BG_OK;
 }
 
-bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out)
+bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, bg_texture_encoding encoding,
+                                   const char *what, uint32_t *out)
 {
-    return add(md, image, BG_TEXTURE_LINEAR, what, out);
+    return add(md, image, encoding, what, out);
 }
 
 bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, bg_texture_encoding encoding,
@@ -296,16 +299,32 @@ bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, b
     if (!im->texture[encoding]) {
         char what[128];
         snprintf(what, sizeof what, "the texture of image %s", im->name);
+        BGI_SF_TRY(bgi_sf_model_image_pixels(md, im));
         BGI_SF_TRY(add(md, &im->image, encoding, what, &im->texture[encoding]));
     }
     *out = im->texture[encoding];
     return BG_OK;
 }
 
+bg_status bgi_sf_model_image_pixels(bgi_sf_model *md, bgi_sf_model_image *im)
+{
+    return im->image.pixels || im->unsupported ? BG_OK : load_image(md, im, im->what);
+}
+
+void bgi_sf_model_images_release(bgi_sf_model *md, const bgi_sf_model_image *keep)
+{
+    for (size_t i = 0; i < md->image_count; i++)
+        if (md->images[i] != keep) {
+            free(md->images[i]->image.pixels);
+            md->images[i]->image.pixels = NULL;
+        }
+}
+
 void bgi_sf_model_images_free(bgi_sf_model *md)
 {
     for (size_t i = 0; i < md->image_count; i++) {
         free(md->images[i]->path);
+        free(md->images[i]->what);
         free(md->images[i]->image.pixels);
         free(md->images[i]);
     }

@@ -11,16 +11,19 @@
 
 /* ---- model_images.c ---- */
 
-/* One image of the model, from a file beside it or embedded in it, decoded at most once per load
- * and added as a texture at most once per encoding: a model whose materials share one image (a
- * texture atlas) gets one texture. */
+/* One image of the model, from a file beside it or embedded in it, added as a texture at most once
+ * per encoding: a model whose materials share one image (a texture atlas) gets one texture. It is
+ * decoded at its first use; once its textures are added its pixels are released (the scene holds
+ * its own copy), and decoded again only if a later texture or bake needs them, so that a model's
+ * decoded images do not all stay in memory until the end of the load. */
 typedef struct bgi_sf_model_image {
     int embedded;              /* index in aiScene.mTextures, or -1 for a file */
     char *path;                /* the resolved file path (files only) */
     char name[64];             /* the image in messages: "\"*0\" (embedded image 0)" or the file's name */
     bool unsupported;          /* a format not read (KTX2, WebP, ...): every use is warned */
     char format[16];           /* what it is, in messages about an unsupported one */
-    bg_image image;            /* RGBA8, tightly packed */
+    bg_image image;            /* RGBA8, tightly packed; pixels NULL while released */
+    char *what;                /* the image as its first use named it, for a failure to decode it again */
     uint32_t texture[2];       /* per bg_texture_encoding, 0 until added */
 } bgi_sf_model_image;
 
@@ -48,8 +51,13 @@ bg_status bgi_sf_model_image_of(bgi_sf_model *md, const struct aiMaterial *am, c
 /* The image's texture in the given encoding (repeat, linear filtering), added at its first use. */
 bg_status bgi_sf_model_image_texture(bgi_sf_model *md, bgi_sf_model_image *im, bg_texture_encoding encoding,
                                      uint32_t *out);
-/* A texture the loader made (a bake, linear: RGBA32F or data), added and counted; what names it in a failure. */
-bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, const char *what, uint32_t *out);
+/* A texture the loader made (a bake, RGBA8 in the encoding), added and counted; what names it in a failure. */
+bg_status bgi_sf_model_add_texture(bgi_sf_model *md, const bg_image *image, bg_texture_encoding encoding,
+                                   const char *what, uint32_t *out);
+/* Makes im's pixels there again after a release (bgi_sf_model_images_release). */
+bg_status bgi_sf_model_image_pixels(bgi_sf_model *md, bgi_sf_model_image *im);
+/* Releases the decoded pixels of every image but keep (NULL: all). */
+void bgi_sf_model_images_release(bgi_sf_model *md, const bgi_sf_model_image *keep);
 void bgi_sf_model_images_free(bgi_sf_model *md);
 
 /* ---- model_material.c ---- */

@@ -84,14 +84,24 @@ static const unsigned char *nearest(const bg_image *image, int x, int y, int w, 
     return (const unsigned char *)image->pixels + (size_t)sy * image->stride + 4 * (size_t)sx;
 }
 
-/* Linear float texels, for bakes: an 8-bit linear texture would band in the darks of an sRGB colour. */
-static float *alloc_float_image(bgi_sf_model *md, int w, int h, bg_image *out)
+/* A linear value in [0, 1] as the nearest 8-bit sRGB code: a colour bake keeps the precision of the
+ * 8-bit sRGB image it comes from (its steps are as fine in the darks), at 4 bytes a texel rather
+ * than the 16 of floats (docs/shading.md 5.2). */
+static unsigned char linear_to_srgb_byte(double l)
 {
-    float *px = malloc((size_t)w * h * 4 * sizeof *px);
+    l = l < 0.0 ? 0.0 : (l > 1.0 ? 1.0 : l);
+    double c = l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
+    return (unsigned char)floor(c * 255.0 + 0.5);
+}
+
+/* An RGBA8 image for a bake. */
+static unsigned char *alloc_byte_image(bgi_sf_model *md, int w, int h, bg_image *out)
+{
+    unsigned char *px = malloc((size_t)w * h * 4);
     if (!px)
         bgi_sf_fail(md->ctx, BG_ERR_OUT_OF_MEMORY, "out of memory baking a %d x %d texture of \"%s\"", w, h,
                     md->desc->path);
-    *out = (bg_image){w, h, BG_PIXEL_RGBA32F, 0, px};
+    *out = (bg_image){w, h, BG_PIXEL_RGBA8, 0, px};
     return px;
 }
 
@@ -177,10 +187,11 @@ static bg_status map_emission(bgi_sf_model *md, const struct aiMaterial *am, con
  * texture under ambient light; an eighth of it, so that the default grey 0.8 keeps the default
  * ambient colour 0.1. A file's own ambient colour (MTL Ka) is not read: exporters write white or a
  * copy of Kd by habit, which washed every textured surface out. A glTF occlusion texture scales it
- * texel by texel: a linear texture baked here, the base texture (as linear) times the occlusion,
- * 1 + strength (R - 1), at the larger size of the two, each read at its nearest texel. */
+ * texel by texel: a texture baked here, the base texture (as linear) times the occlusion,
+ * 1 + strength (R - 1), at the larger size of the two, each read at its nearest texel, stored as
+ * 8-bit sRGB like the base texture (within half a code of the product). */
 static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, const char *mname, bg_material *m,
-                             const bgi_sf_model_image *base)
+                             bgi_sf_model_image *base)
 {
     static const enum aiTextureType occlusion_types[] = {aiTextureType_AMBIENT_OCCLUSION, aiTextureType_LIGHTMAP};
     const bg_color_param *b = &m->base.reflectance;
@@ -191,6 +202,9 @@ static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, cons
         BGI_SF_TRY(bgi_sf_model_image_of(md, am, occlusion_types, 2, mname, "occlusion", &occ, &dropped));
     if (!occ)
         return BG_OK;
+    BGI_SF_TRY(bgi_sf_model_image_pixels(md, occ));
+    if (base)
+        BGI_SF_TRY(bgi_sf_model_image_pixels(md, base));
     double strength = 1.0;
     if (!float_of(am, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), &strength))
         float_of(am, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_AMBIENT_OCCLUSION, 0), &strength);
@@ -201,31 +215,33 @@ static bg_status map_ambient(bgi_sf_model *md, const struct aiMaterial *am, cons
         h = base->image.height > h ? base->image.height : h;
     }
     bg_image baked;
-    float *px = alloc_float_image(md, w, h, &baked);
+    unsigned char *px = alloc_byte_image(md, w, h, &baked);
     if (!px)
         return BG_ERR_OUT_OF_MEMORY;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            float o = (float)(1.0 + strength * (nearest(&occ->image, x, y, w, h)[0] / 255.0 - 1.0));
+            double o = 1.0 + strength * (nearest(&occ->image, x, y, w, h)[0] / 255.0 - 1.0);
             const unsigned char *c = base ? nearest(&base->image, x, y, w, h) : NULL;
-            float *p = &px[4 * ((size_t)y * w + x)];
+            unsigned char *p = &px[4 * ((size_t)y * w + x)];
             for (int k = 0; k < 3; k++)
-                p[k] = (c ? srgb_to_linear(c[k]) : 1.0f) * o;
-            p[3] = 1.0f;
+                p[k] = linear_to_srgb_byte((c ? srgb_to_linear(c[k]) : 1.0) * o);
+            p[3] = 255;
         }
-    bg_status st = bgi_sf_model_add_texture(md, &baked, "the baked ambient occlusion texture", &m->ambient.texture);
+    bg_status st = bgi_sf_model_add_texture(md, &baked, BG_TEXTURE_SRGB, "the baked ambient occlusion texture",
+                                            &m->ambient.texture);
     free(px);
     return st;
 }
 
 /* glTF alphaMode BLEND: transparency 1 - alpha, alpha the base colour factor's times the base
  * texture's, with ior 1 so that light passes straight through as a blended surface lets it. A base
- * texture with alpha gets a linear texture baked here holding 1 - alpha in channel 0. MASK: a
+ * texture with alpha gets a linear 8-bit texture baked here holding 1 - alpha in channel 0 (to
+ * the nearest 1/255, the precision of the texture's alpha). MASK: a
  * cut-out where that alpha is below alphaCutoff (default 0.5): the coverage is the factor's alpha
  * times the base texture's alpha channel, which the texture keeps linear. OPAQUE ignores alpha, as
  * glTF says. A file without alphaMode (MTL) takes its opacity (d) as given. */
 static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_material *m, double alpha,
-                           const bgi_sf_model_image *base)
+                           bgi_sf_model_image *base)
 {
     char mode[16];
     double x;
@@ -245,6 +261,8 @@ static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_mat
         return BG_OK;
     m->ior = 1.0;
     m->transparency.value = 1.0 - alpha;
+    if (base)
+        BGI_SF_TRY(bgi_sf_model_image_pixels(md, base));
     bool has_alpha = false;
     const bg_image *im = base ? &base->image : NULL;
     for (int y = 0; im && y < im->height && !has_alpha; y++)
@@ -253,18 +271,20 @@ static bg_status map_alpha(bgi_sf_model *md, const struct aiMaterial *am, bg_mat
     if (!has_alpha)
         return BG_OK;
     bg_image baked;
-    float *px = alloc_float_image(md, im->width, im->height, &baked);
+    unsigned char *px = alloc_byte_image(md, im->width, im->height, &baked);
     if (!px)
         return BG_ERR_OUT_OF_MEMORY;
     for (int y = 0; y < im->height; y++)
         for (int i = 0; i < im->width; i++) {
-            float *p = &px[4 * ((size_t)y * im->width + i)];
-            p[0] = (float)(1.0 - alpha * ((const unsigned char *)im->pixels)[im->stride * y + 4 * (size_t)i + 3] / 255.0);
-            p[1] = p[2] = 0.0f;
-            p[3] = 1.0f;
+            unsigned char *p = &px[4 * ((size_t)y * im->width + i)];
+            double t = 1.0 - alpha * ((const unsigned char *)im->pixels)[im->stride * y + 4 * (size_t)i + 3] / 255.0;
+            p[0] = (unsigned char)floor(t * 255.0 + 0.5);
+            p[1] = p[2] = 0;
+            p[3] = 255;
         }
     m->transparency = (bg_scalar_param){1.0, 0, 0};
-    bg_status st = bgi_sf_model_add_texture(md, &baked, "the baked transparency texture", &m->transparency.texture);
+    bg_status st = bgi_sf_model_add_texture(md, &baked, BG_TEXTURE_LINEAR, "the baked transparency texture",
+                                            &m->transparency.texture);
     free(px);
     return st;
 }
@@ -293,6 +313,8 @@ static bg_status map_material(bgi_sf_model *md, const struct aiMaterial *am, con
             m->coat.roughness.value = clamp01(sqrt(2.0 / (x + 2.0)));
     }
     BGI_SF_TRY(map_emission(md, am, mname, m));
+    /* Only the base image is read again (by the bakes below): the others' textures are added. */
+    bgi_sf_model_images_release(md, base);
     if (float_of(am, AI_MATKEY_REFRACTI, &x) && x > 0)
         m->ior = x;
     BGI_SF_TRY(map_alpha(md, am, m, alpha, base));
@@ -305,6 +327,7 @@ static bg_status map_material(bgi_sf_model *md, const struct aiMaterial *am, con
                        ? BG_SIDES_BOTH
                        : BG_SIDES_FRONT;
     BGI_SF_TRY(map_ambient(md, am, mname, m, base));
+    bgi_sf_model_images_release(md, NULL);
     /* Normal and bump maps need a per-vertex tangent frame and a perturbed shading normal, which
      * neither renderer has (docs/scene_format.md says so); the surface keeps its interpolated normals. */
     if (aiGetMaterialTextureCount(am, aiTextureType_NORMALS) > 0 || aiGetMaterialTextureCount(am, aiTextureType_HEIGHT) > 0)

@@ -197,6 +197,15 @@ def main(out):
     g.quad(1, 0, g.material({"name": "occluded", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]},
                              "occlusionTexture": {"index": t}}))
     g.write(at("img_occlusion.gltf"))
+    # Two materials over the same base colour (red | blue) and occlusion (255 | 64) images, front
+    # and back quads: the second material's bake reads both images after the first's released them.
+    g = Gltf(False)
+    b = g.image(png(halves(RED, BLUE)), "image/png")
+    t = g.image(png(halves((255, 0, 0, 255), (64, 0, 0, 255))), "image/png")
+    for name, half, z in (("front", 1, 0), ("back", 2, -0.5)):
+        g.quad(half, z, g.material({"name": name, "pbrMetallicRoughness": {"baseColorTexture": {"index": b}},
+                                    "occlusionTexture": {"index": t}}))
+    g.write(at("img_occlusion_shared.gltf"))
     # BLEND: a blue quad whose texture alpha is 0 on the left and 255 on the right, over a red back
     # quad; and an OPAQUE quad whose base colour alpha is 0.2, which must stay opaque.
     g = Gltf(False)

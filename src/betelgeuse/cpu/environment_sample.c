@@ -71,7 +71,8 @@ bool bgi_cpu_environment_light(const bg_scene_state *state, const bgi_sample_poi
     }
     double theta = PI * (1.0 - v), phi = 2.0 * PI * (u - 0.5);
     bg_v3_set(l, sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
-    const float *px = t->texels + ((size_t)j * (size_t)w + (size_t)i) * 4;
+    double px[4];
+    bgi_texture_texel(t, (size_t)j * (size_t)w + (size_t)i, px);
     /* As a light of 7, E_l = L / (pi pdf): then pi f E_l v' = f L v' / pdf estimates the integral. */
     double k = e->intensity / (PI * pdf);
     for (int c = 0; c < 3; c++)

@@ -33,9 +33,7 @@ static int nearest_index(double s, int size, bg_texture_wrap wrap)
 static void sample_nearest(const bg_texture_data *texture, double u, double v, double rgba[4])
 {
     int i = nearest_index(u, texture->width, texture->wrap), j = nearest_index(v, texture->height, texture->wrap);
-    const float *t = texture->texels + ((size_t)j * (size_t)texture->width + (size_t)i) * 4;
-    for (int c = 0; c < 4; c++)
-        rgba[c] = t[c];
+    bgi_texture_texel(texture, (size_t)j * (size_t)texture->width + (size_t)i, rgba);
 }
 
 void bgi_cpu_texture_sample(const bg_texture_data *texture, double u, double v, double rgba[4])
@@ -51,10 +49,13 @@ void bgi_cpu_texture_sample(const bg_texture_data *texture, double u, double v, 
     double ax = x - fx, ay = y - fy;
     int i0 = wrap_index((int)fx, w, texture->wrap), i1 = wrap_index((int)fx + 1, w, texture->wrap);
     int j0 = wrap_index((int)fy, h, texture->wrap), j1 = wrap_index((int)fy + 1, h, texture->wrap);
-    const float *t00 = texture->texels + ((size_t)j0 * (size_t)w + (size_t)i0) * 4;
-    const float *t10 = texture->texels + ((size_t)j0 * (size_t)w + (size_t)i1) * 4;
-    const float *t01 = texture->texels + ((size_t)j1 * (size_t)w + (size_t)i0) * 4;
-    const float *t11 = texture->texels + ((size_t)j1 * (size_t)w + (size_t)i1) * 4;
+    /* Each texel decoded (an 8-bit one through bgi_srgb_table) before the weights: the filter works
+     * in linear light, as the GPU's bg_texture_filter.glsl does. */
+    double t00[4], t10[4], t01[4], t11[4];
+    bgi_texture_texel(texture, (size_t)j0 * (size_t)w + (size_t)i0, t00);
+    bgi_texture_texel(texture, (size_t)j0 * (size_t)w + (size_t)i1, t10);
+    bgi_texture_texel(texture, (size_t)j1 * (size_t)w + (size_t)i0, t01);
+    bgi_texture_texel(texture, (size_t)j1 * (size_t)w + (size_t)i1, t11);
     for (int c = 0; c < 4; c++)
         rgba[c] = (1.0 - ax) * (1.0 - ay) * t00[c] + ax * (1.0 - ay) * t10[c] + (1.0 - ax) * ay * t01[c] +
                   ax * ay * t11[c];

@@ -94,6 +94,7 @@ bg_status bgi_gpu_plan_render(bg_renderer *r, const bg_scene *scene, const bg_sc
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     gpu_plan_frame f = {scene, state, settings, out, false};
     bg_status st = choose_and_render(r, &f);
+    r->stats.texture_bytes = r->scene_textures.bytes;
     r->stats.programs_compiled = (int)(macs_context_programs_compiled(r->ctx) - compiled);
     return st;
 }

@@ -176,7 +176,7 @@ static bg_status derive_textures(bg_scene *s)
         if (!bgi_pool_live(&s->textures, slot))
             continue;
         const bg_texture_data *t = bgi_pool_item(&s->textures, slot);
-        if (!t->texels || t->width <= 0 || t->height <= 0) {
+        if ((!t->texels && !t->bytes) || t->width <= 0 || t->height <= 0) {
             char where[64];
             item_where(where, sizeof where, "texture", &s->textures, slot);
             return bgi_scene_fail(s, BG_ERR_INVALID_ARGUMENT, "%s has no texels", where);
@@ -381,7 +381,7 @@ bg_status bg_scene_commit(bg_scene *scene)
     state->serial = bgi_scene_next_serial();
     scene->committed = true;
     /* No committed state holds the texels of textures removed before this commit any more. */
-    float **retired = scene->retired_texels.data;
+    void **retired = scene->retired_texels.data;
     for (uint32_t i = 0; i < scene->retired_texels.count; i++)
         bgi_free(&scene->allocator, retired[i]);
     scene->retired_texels.count = 0;

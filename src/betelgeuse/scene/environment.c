@@ -52,7 +52,8 @@ static bg_status tables_build(bg_scene *scene, uint32_t handle, const bg_texture
          * angles go as sin(theta). */
         double sin_t = sin(PI * (j + 0.5) / h), row = 0.0;
         for (int i = 0; i < w; i++) {
-            const float *px = t->texels + ((size_t)j * (size_t)w + (size_t)i) * 4;
+            double px[4];
+            bgi_texture_texel(t, (size_t)j * (size_t)w + (size_t)i, px);
             row += (0.2126 * px[0] + 0.7152 * px[1] + 0.0722 * px[2]) * sin_t;
             conditional[(size_t)j * (size_t)w + (size_t)i] = row;
         }

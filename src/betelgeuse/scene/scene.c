@@ -47,10 +47,14 @@ void bg_scene_destroy(bg_scene *scene)
 {
     if (!scene)
         return;
-    for (uint32_t i = 0; i < bgi_pool_slot_count(&scene->textures); i++)
-        if (bgi_pool_live(&scene->textures, i))
-            bgi_free(&scene->allocator, ((bg_texture_data *)bgi_pool_item(&scene->textures, i))->texels);
-    float **retired = scene->retired_texels.data;
+    for (uint32_t i = 0; i < bgi_pool_slot_count(&scene->textures); i++) {
+        if (!bgi_pool_live(&scene->textures, i))
+            continue;
+        bg_texture_data *t = bgi_pool_item(&scene->textures, i);
+        bgi_free(&scene->allocator, t->texels);
+        bgi_free(&scene->allocator, t->bytes);
+    }
+    void **retired = scene->retired_texels.data;
     for (uint32_t i = 0; i < scene->retired_texels.count; i++)
         bgi_free(&scene->allocator, retired[i]);
     for (uint32_t i = 0; i < bgi_pool_slot_count(&scene->objects); i++)

@@ -8,14 +8,27 @@
 #include "betelgeuse.h"
 #include "../common/bvh.h"
 
-/* A texture as stored in the scene: linear float RGBA, rows in GL order (row 0 is v = 0, the
- * bottom of the source image; PNG and bg_image rows are flipped on add). */
+/* A texture as stored in the scene, at its image's precision, rows in GL order (row 0 is v = 0, the
+ * bottom of the source image; PNG and bg_image rows are flipped on add): an RGBA8 image keeps its
+ * bytes (4 a texel), decoded where it is sampled; an RGBA32F image its linear floats (16 a texel).
+ * Exactly one of texels and bytes is set. */
 typedef struct bg_texture_data {
     int width, height;
     bg_texture_wrap wrap;
     bg_texture_filter filter;
-    float *texels; /* width * height * 4 */
+    float *texels;        /* RGBA32F: width * height * 4 linear floats; NULL for RGBA8 */
+    unsigned char *bytes; /* RGBA8: width * height * 4 bytes as the image held them; NULL for RGBA32F */
+    bool srgb;            /* RGBA8 only: R, G and B are sRGB-encoded (bgi_srgb_table decodes them);
+                             else every channel is k / 255. Alpha is always k / 255 */
 } bg_texture_data;
+
+/* Texel k (index j * width + i) of t as linear RGBA in double: floats as stored, bytes decoded
+ * (scene/texture.c). Both renderers read 8-bit texels through this one rule. */
+void bgi_texture_texel(const bg_texture_data *t, size_t k, double rgba[4]);
+/* Channel c of texel k as bgi_texture_texel gives it. */
+double bgi_texture_channel(const bg_texture_data *t, size_t k, int c);
+/* The bytes t's texels take on the host (and, uploaded at their precision, on the GPU). */
+size_t bgi_texture_bytes(const bg_texture_data *t);
 
 /* The shape value of a mesh object in bg_object_data (never a bg_shape of the API): past every
  * table indexed by bg_shape, so that no shape table can take a mesh for an analytic shape; such

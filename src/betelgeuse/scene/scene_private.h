@@ -87,7 +87,7 @@ struct bg_scene {
     bg_pool materials; /* bg_material */
     bg_pool lights;    /* bg_light */
     bg_pool textures;  /* bg_texture_data */
-    bg_array retired_texels; /* float *, freed at the next successful commit */
+    bg_array retired_texels; /* float * or unsigned char * (texels or bytes), freed at the next successful commit */
     bg_mesh_data *retired_meshes; /* meshes no pending object shows, freed like retired_texels */
 
     /* Committed state and the storage behind its arrays: dense (live items in slot order), with

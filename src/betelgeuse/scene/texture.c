@@ -1,6 +1,7 @@
-/* Textures: a caller image copied into linear float RGBA, rows flipped into GL order (row 0 of
- * the stored texture is the image's bottom row, v = 0). RGBA8 colour data is decoded from sRGB
- * with the exact piecewise EOTF (srgb.h); alpha is always linear. */
+/* Textures: a caller image copied at its own precision, rows flipped into GL order (row 0 of the
+ * stored texture is the image's bottom row, v = 0). RGBA8 stays bytes, 4 a texel, a quarter of
+ * linear floats; its colour channels are decoded from sRGB where they are sampled, by the one table
+ * of the exact piecewise EOTF (srgb.h) that both renderers read; alpha is always linear. */
 #include <math.h>
 #include <string.h>
 
@@ -44,29 +45,35 @@ bg_status bgi_texture_add(bg_scene *scene, const char *where, const bg_image *im
     st = bgi_pool_reserve(scene, &scene->textures, where);
     if (st != BG_OK)
         return st;
-    size_t bytes = (size_t)w * (size_t)h * 4 * sizeof(float);
-    float *texels = bgi_alloc(&scene->allocator, bytes);
+    bool bytes = image->format == BG_PIXEL_RGBA8;
+    size_t row = (size_t)w * 4 * (bytes ? 1 : sizeof(float));
+    unsigned char *texels = bgi_alloc(&scene->allocator, row * (size_t)h);
     if (!texels)
         return bgi_scene_fail(scene, BG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d texture", where, w, h);
-
-    float table[256];
-    for (int i = 0; i < 256; i++)
-        table[i] = d.encoding == BG_TEXTURE_SRGB ? (float)bgi_srgb_to_linear(i / 255.0) : (float)(i / 255.0);
-    for (int y = 0; y < h; y++) {
-        const unsigned char *src = (const unsigned char *)image->pixels + (size_t)(h - 1 - y) * stride;
-        float *dst = texels + (size_t)y * (size_t)w * 4;
-        if (image->format == BG_PIXEL_RGBA32F) {
-            memcpy(dst, src, (size_t)w * 4 * sizeof(float));
-            continue;
-        }
-        for (int x = 0; x < w; x++) {
-            for (int c = 0; c < 3; c++)
-                dst[4 * x + c] = table[src[4 * x + c]];
-            dst[4 * x + 3] = (float)(src[4 * x + 3] / 255.0);
-        }
-    }
-    bg_texture_data t = {w, h, d.wrap, d.filter, texels};
+    for (int y = 0; y < h; y++)
+        memcpy(texels + (size_t)y * row, (const unsigned char *)image->pixels + (size_t)(h - 1 - y) * stride, row);
+    bg_texture_data t = {w, h, d.wrap, d.filter, bytes ? NULL : (float *)(void *)texels, bytes ? texels : NULL,
+                         bytes && d.encoding == BG_TEXTURE_SRGB};
     return bgi_pool_add(scene, &scene->textures, where, &t, out_texture); /* reserved: cannot fail */
+}
+
+double bgi_texture_channel(const bg_texture_data *t, size_t k, int c)
+{
+    if (t->texels)
+        return t->texels[4 * k + (size_t)c];
+    unsigned char b = t->bytes[4 * k + (size_t)c];
+    return t->srgb && c < 3 ? bgi_srgb_table[b] : b / 255.0;
+}
+
+void bgi_texture_texel(const bg_texture_data *t, size_t k, double rgba[4])
+{
+    for (int c = 0; c < 4; c++)
+        rgba[c] = bgi_texture_channel(t, k, c);
+}
+
+size_t bgi_texture_bytes(const bg_texture_data *t)
+{
+    return (size_t)t->width * (size_t)t->height * 4 * (t->bytes ? 1 : sizeof(float));
 }
 
 bg_status bg_scene_add_texture(bg_scene *scene, const bg_image *image, const bg_texture_desc *desc,
@@ -118,12 +125,13 @@ bg_status bg_scene_remove_texture(bg_scene *scene, uint32_t texture)
     }
     /* The committed state may still read the texels: they are freed by the next successful commit. */
     bg_array *retired = &scene->retired_texels;
-    st = bgi_array_reserve(scene, retired, retired->count + 1, sizeof(float *), where);
+    st = bgi_array_reserve(scene, retired, retired->count + 1, sizeof(void *), where);
     if (st != BG_OK)
         return st;
     bg_texture_data *t = bgi_pool_item(&scene->textures, slot);
-    ((float **)retired->data)[retired->count++] = t->texels;
+    ((void **)retired->data)[retired->count++] = t->texels ? (void *)t->texels : (void *)t->bytes;
     t->texels = NULL;
+    t->bytes = NULL;
     bgi_pool_remove(&scene->textures, slot);
     return BG_OK;
 }

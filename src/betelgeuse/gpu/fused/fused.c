@@ -47,10 +47,11 @@ struct gpu_fused {
 /* ---- what the fused plan can render ---- */
 
 /* The program's textures: the scene's, then the object tree's two where it walks one, then the
- * meshes' (bind_frame sets them in this order). */
+ * meshes', the environment's tables and the sRGB table (bind_frame sets them in this order). */
 static int input_count(const gpu_fused_layout *l)
 {
-    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 2 : 0) + (l->env_importance ? 2 : 0);
+    return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 2 : 0) + (l->env_importance ? 2 : 0) +
+           (l->srgb ? 1 : 0);
 }
 
 static int mesh_input(const gpu_fused_layout *l)
@@ -62,6 +63,12 @@ static int mesh_input(const gpu_fused_layout *l)
 static int env_input(const gpu_fused_layout *l)
 {
     return mesh_input(l) + (l->mesh ? 2 : 0);
+}
+
+/* The sRGB table is the last. */
+static int srgb_input(const gpu_fused_layout *l)
+{
+    return env_input(l) + (l->env_importance ? 2 : 0);
 }
 
 /* False with the reason when the layout is beyond the GL limits or, for BG_PLAN_AUTO, beyond the
@@ -195,6 +202,8 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
         inputs[env_input(l)].name = "bg_env_marginal";
         inputs[env_input(l) + 1].name = "bg_env_conditional";
     }
+    if (l->srgb)
+        inputs[srgb_input(l)].name = "bg_srgb_table";
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
@@ -304,6 +313,8 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, env_input(l), r->env_tables.marginal);
     if (!ms && l->env_importance)
         ms = macs_pass_set_input(f->pass, env_input(l) + 1, r->env_tables.conditional);
+    if (!ms && l->srgb)
+        ms = macs_pass_set_input(f->pass, srgb_input(l), r->scene_textures.srgb_table);
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
@@ -387,7 +398,7 @@ static bg_status render_variant(bg_renderer *r, const gpu_plan_frame *f, bool tr
         memset(r->fused, 0, sizeof *r->fused);
     }
     gpu_fused_layout l;
-    if (!bgi_gpu_fused_layout_build(&r->allocator, f->state, f->settings, tree, &l))
+    if (!bgi_gpu_fused_layout_build(&r->allocator, f->state, f->settings, tree, bgi_gpu_srgb_table(r), &l))
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the fused plan's layout");
     bg_status st = BG_OK;
     if (fits(r, f->state, &l, f->forced, why, why_size)) {

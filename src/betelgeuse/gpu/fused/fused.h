@@ -148,6 +148,8 @@ typedef struct gpu_fused_layout {
     gpu_texture_mode *sampler_modes; /* how each is sampled: its size, wrap and filter are in the text */
     int sampler_count;
     bool filters;        /* some sampler is GL_LINEAR: the program holds bg_texture_filter.glsl */
+    bool srgb;           /* some sampler decodes 8-bit sRGB: the program holds bg_texture_srgb.glsl and
+                            samples the table bg_srgb_table, its last input */
     bool transparent, aniso, coat, shadows; /* some used material is / some caster can shadow another */
     int max_depth;       /* bounce levels traced: settings.max_depth, 0 when no material bounces */
     int stack;           /* pending rays the shader holds: max_depth with transparency, else 0 */
@@ -199,9 +201,10 @@ void bgi_gpu_fused_release(bg_renderer *r);
 
 /* ---- fused_layout.c ---- */
 /* Fills the layout of the committed scene for the settings (arrays from the renderer's allocator),
- * with tree the objects of the scene's object tree walked from textures; false when out of memory. */
+ * with tree the objects of the scene's object tree walked from textures and srgb_table whether 8-bit
+ * sRGB textures are decoded through the table (bgi_gpu_srgb_table); false when out of memory. */
 bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
-                            bool tree, gpu_fused_layout *out);
+                            bool tree, bool srgb_table, gpu_fused_layout *out);
 void bgi_gpu_fused_layout_free(const bg_allocator *a, gpu_fused_layout *layout);
 /* Whether a material has what a per-material uniform or parameter needs (the "need" columns). */
 bool bgi_gpu_fused_material_has(const gpu_fused_material *m, gpu_fused_need need);

@@ -145,7 +145,7 @@ static double rays_bound(int depth, bool tree, double min_weight)
 }
 
 bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *state, const bg_render_settings *settings,
-                            bool tree, gpu_fused_layout *out)
+                            bool tree, bool srgb_table, gpu_fused_layout *out)
 {
     gpu_fused_layout l;
     memset(&l, 0, sizeof l);
@@ -208,8 +208,9 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         l.samplers[l.env_sampler] = env->texture;
     }
     for (int k = 0; k < l.sampler_count; k++) {
-        l.sampler_modes[k] = bgi_gpu_texture_mode(&state->textures[l.samplers[k] - 1]);
+        l.sampler_modes[k] = bgi_gpu_texture_mode(&state->textures[l.samplers[k] - 1], srgb_table);
         l.filters |= l.sampler_modes[k].linear;
+        l.srgb |= l.sampler_modes[k].srgb;
     }
     l.shadows = any_shadow(&l) && bgi_gpu_fused_layout_lights(&l) > 0;
     l.max_depth = bounce ? settings->max_depth : 0;

@@ -81,6 +81,8 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         ok = bgi_gpu_text_snippet(t, "bg_fused_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->filters)
         ok = bgi_gpu_text_snippet(t, "bg_texture_filter.glsl", seen, &n, SEEN_CAP);
+    if (ok && l->srgb)
+        ok = bgi_gpu_text_snippet(t, "bg_texture_srgb.glsl", seen, &n, SEEN_CAP);
     if (ok && l->env)
         ok = bgi_gpu_text_snippet(t, "bg_environment.glsl", seen, &n, SEEN_CAP);
     /* The distribution effects' sample points, and the frame pixel's hash they start from. */

@@ -60,11 +60,22 @@ static bool merge_pays(const bg_renderer *r, const bg_scene_state *state, int fi
     return merged * (double)(count + 2) <= run * (double)(count + 1) + alone * 2.0 + PASS_COST_PIXELS;
 }
 
+/* Whether some texture of the scene is sampled through the sRGB table. */
+static bool srgb_table(const bg_renderer *r, const bg_scene_state *state)
+{
+    bool table = bgi_gpu_srgb_table(r);
+    for (uint32_t i = 0; i < state->texture_count && table; i++)
+        if (bgi_gpu_texture_mode(&state->textures[i], table).srgb)
+            return true;
+    return false;
+}
+
 int bgi_gpu_batch_plan_hits(const bg_renderer *r, const bg_scene_state *state, gpu_batch *out)
 {
     int n = (int)state->object_count, batches = 0;
-    /* The ray maps take three, the mesh textures two. */
-    int units = r->limits.max_texture_units - 3 - (r->multipass->features.mesh ? 2 : 0);
+    /* The ray maps take three, the mesh textures two, the sRGB table one where the scene has an
+     * 8-bit sRGB texture decoded through it (counted whether or not the batch samples it). */
+    int units = r->limits.max_texture_units - 3 - (r->multipass->features.mesh ? 2 : 0) - (srgb_table(r, state) ? 1 : 0);
     int budget = macs_context_max_uniform_components(r->ctx) - bgi_gpu_hit_shared_components();
     for (int o = 0; o < n;) {
         uint32_t textures[GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES];

@@ -184,30 +184,38 @@ int bgi_gpu_hit_shared_components(void)
 }
 
 /* How parameter q samples its lane's texture (the white texel when it has none). */
-static gpu_texture_mode param_mode(const bg_scene_state *state, const param *q)
+static gpu_texture_mode param_mode(const bg_renderer *r, const bg_scene_state *state, const param *q)
 {
-    return bgi_gpu_texture_mode(q->texture ? &state->textures[q->texture - 1] : NULL);
+    return bgi_gpu_texture_mode(q->texture ? &state->textures[q->texture - 1] : NULL, bgi_gpu_srgb_table(r));
 }
 
-/* Whether some member samples a GL_LINEAR texture: the pass then filters in the shader. */
-static bool members_filter(const bg_scene_state *state, const member *m, int count)
+/* Whether some member samples a GL_LINEAR texture (srgb false: the pass then filters in the shader)
+ * or an 8-bit sRGB one (srgb true: the pass then decodes through the table bg_srgb_table). */
+static bool members_sample(const bg_renderer *r, const bg_scene_state *state, const member *m, int count, bool srgb)
 {
     for (int j = 0; j < count; j++)
-        for (int i = 0; i < GPU_P_COUNT_; i++)
-            if (m[j].p[i].sampler >= 0 && param_mode(state, &m[j].p[i]).linear)
+        for (int i = 0; i < GPU_P_COUNT_; i++) {
+            if (m[j].p[i].sampler < 0)
+                continue;
+            gpu_texture_mode mode = param_mode(r, state, &m[j].p[i]);
+            if (srgb ? mode.srgb : mode.linear)
                 return true;
+        }
     return false;
 }
 
 /* The functions of the pass: each distinct shape's root and each distinct UV mapping, renamed by
  * suffix so that they coexist in one program. */
-static bool hit_functions(gpu_text *t, const bg_scene_state *state, const member *m, int count, bool need_tangent)
+static bool hit_functions(gpu_text *t, const bg_renderer *r, const bg_scene_state *state, const member *m, int count,
+                          bool need_tangent)
 {
     const char *seen[48];
     int n = 0;
     bool ok = bgi_gpu_text_snippet(t, "bg_stage_hit.glsl", seen, &n, 48);
-    if (members_filter(state, m, count))
+    if (members_sample(r, state, m, count, false))
         ok = ok && bgi_gpu_text_snippet(t, "bg_texture_filter.glsl", seen, &n, 48);
+    if (members_sample(r, state, m, count, true))
+        ok = ok && bgi_gpu_text_snippet(t, "bg_texture_srgb.glsl", seen, &n, 48);
     if (need_tangent)
         ok = ok && bgi_gpu_text_snippet(t, "bg_tangent.glsl", seen, &n, 48);
     int meshes = 0;
@@ -323,8 +331,8 @@ static void emit_shape_geometry(gpu_text *t, const bg_object_data *obj, const me
 }
 
 /* The winner's material parameters and index of refraction from member mb's uniforms. */
-static void emit_params(gpu_text *t, const bg_scene_state *state, const member *mb, bool transparent, bool coat,
-                        bool glossy)
+static void emit_params(gpu_text *t, const bg_renderer *r, const bg_scene_state *state, const member *mb,
+                        bool transparent, bool coat, bool glossy)
 {
     const param *p = mb->p;
     for (int i = 0; i < GPU_P_COUNT_; i++) {
@@ -338,7 +346,7 @@ static void emit_params(gpu_text *t, const bg_scene_state *state, const member *
             else
                 snprintf(lane, sizeof lane, "%c", "rgba"[p[i].channel & 3]);
             snprintf(sampler, sizeof sampler, "bg_tex%d", p[i].sampler);
-            if (!bgi_gpu_texture_lookup(texel, sizeof texel, sampler, "bg_uv", param_mode(state, &p[i])))
+            if (!bgi_gpu_texture_lookup(texel, sizeof texel, sampler, "bg_uv", param_mode(r, state, &p[i])))
                 t->failed = true; /* cannot happen: every name above is short */
             snprintf(value, sizeof value, "%s * %s.%s", mb->param_uniform[i], texel, lane);
         } else {
@@ -360,21 +368,21 @@ static void emit_params(gpu_text *t, const bg_scene_state *state, const member *
 }
 
 /* The winner's surface: normal, hit code, UV, tangent and material, all from member j's uniforms. */
-static void emit_surface(gpu_text *t, const bg_scene_state *state, const member *mb, int j, bool need_tangent,
-                         bool transparent, bool coat, bool glossy)
+static void emit_surface(gpu_text *t, const bg_renderer *r, const bg_scene_state *state, const member *mb, int j,
+                         bool need_tangent, bool transparent, bool coat, bool glossy)
 {
     const bg_object_data *obj = &state->objects[mb->object];
     if (mb->mesh)
         emit_mesh_geometry(t, state, mb, j, need_tangent);
     else
         emit_shape_geometry(t, obj, mb, j, need_tangent);
-    emit_params(t, state, mb, transparent, coat, glossy);
+    emit_params(t, r, state, mb, transparent, coat, glossy);
 }
 
 /* Texture lanes: distinct scene textures of the batch become inputs 3.. ; in generic mode every
  * used parameter samples something, the white texel where the material has no texture. The mesh
  * texture follows them in a pass with a mesh. */
-#define MAX_INPUTS (5 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
+#define MAX_INPUTS (6 + GPU_BATCH_MAX * GPU_HIT_MAX_TEXTURES)
 #define MAX_UNIFORMS (SHARED_UNIFORM_COUNT + GPU_BATCH_MAX * (U_COUNT + GPU_P_COUNT_))
 
 /* Everything a pass description points at while the pass is made. */
@@ -411,8 +419,9 @@ static void describe_members(const bg_renderer *r, const bg_scene_state *state, 
     }
 }
 
-/* The ray maps (rebound per ray set: GPU_HIT_IN_*), then one sampler per texture lane. */
-static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
+/* The ray maps (rebound per ray set: GPU_HIT_IN_*), then one sampler per texture lane, the mesh
+ * textures and the sRGB table where a member decodes through it. */
+static void add_inputs(const bg_renderer *r, const bg_scene_state *state, hit_pass_parts *hp)
 {
     static const char *const ray_maps[3] = {"bg_ray_origin", "bg_ray_dir", "bg_ray_weight"};
     hp->input_count = 0;
@@ -431,6 +440,10 @@ static void add_inputs(const bg_renderer *r, hit_pass_parts *hp)
         hp->input_tex[hp->input_count++] = r->meshes.nodes;
         hp->inputs[hp->input_count].name = "bg_mesh_tris";
         hp->input_tex[hp->input_count++] = r->meshes.triangles;
+    }
+    if (members_sample(r, state, hp->members, hp->count, true)) {
+        hp->inputs[hp->input_count].name = "bg_srgb_table";
+        hp->input_tex[hp->input_count++] = r->scene_textures.srgb_table;
     }
 }
 
@@ -557,7 +570,7 @@ static void emit_winner_surface(const bg_renderer *r, const bg_scene_state *stat
             bgi_gpu_text_append(main, "else {\n");
         else
             bgi_gpu_text_printf(main, "%sif (bg_win == %d.0) {\n", j ? "else " : "", j);
-        emit_surface(main, state, &hp->members[j], j, need_tangent, f->transparent, f->coat, f->glossy);
+        emit_surface(main, r, state, &hp->members[j], j, need_tangent, f->transparent, f->coat, f->glossy);
         bgi_gpu_text_append(main, "}\n");
     }
     if (!f->transparent)
@@ -591,7 +604,7 @@ static bg_status create_pass(bg_renderer *r, const bg_scene_state *state, hit_pa
     bgi_gpu_text_init(&functions, &r->allocator);
     emit_nearest_root(r, state, hp, &main);
     emit_winner_surface(r, state, hp, &main);
-    bool have = hit_functions(&functions, state, hp->members, hp->count, need_tangent);
+    bool have = hit_functions(&functions, r, state, hp->members, hp->count, need_tangent);
 
     macs_pass_desc desc;
     bgi_gpu_pass_desc_init(&desc, main.s, hp->inputs, hp->input_tex, hp->input_count, hp->uniforms, hp->uniform_count,
@@ -629,7 +642,7 @@ bg_status bgi_gpu_hit_pass_build(bg_renderer *r, const bg_scene_state *state, ui
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building an intersection pass");
     hp.count = count;
     describe_members(r, state, first, &hp);
-    add_inputs(r, &hp);
+    add_inputs(r, state, &hp);
     add_uniforms(&hp);
     add_outputs(r, &hp);
     bg_status st = create_pass(r, state, &hp, trial, out, rejected);

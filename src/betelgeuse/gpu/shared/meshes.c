@@ -249,7 +249,7 @@ static void fill_meshes(const bg_scene_state *state, const uint32_t *first, cons
             size_t n = (size_t)f.mask->width * (size_t)f.mask->height;
             float *mask = tris + (size_t)first_mask * 4;
             for (size_t k = 0; k < n; k++)
-                mask[k] = f.mask->texels[4 * k + (size_t)channel];
+                mask[k] = (float)bgi_texture_channel(f.mask, k, channel);
         }
         memcpy(o - 4 * MESH_FILTER_TEXELS, f.record, sizeof f.record);
         for (uint32_t k = 0; k < mesh->triangle_count; k++) {
@@ -288,7 +288,8 @@ static uint64_t filter_key(const bg_scene_state *state, uint32_t i)
         int channel = (int)f.record[3];
         for (size_t k = 0; k < n; k++) {
             uint32_t bits;
-            memcpy(&bits, &f.mask->texels[4 * k + (size_t)channel], sizeof bits);
+            float value = (float)bgi_texture_channel(f.mask, k, channel);
+            memcpy(&bits, &value, sizeof bits);
             h = bgi_gpu_hash_mix(h, bits);
         }
     }

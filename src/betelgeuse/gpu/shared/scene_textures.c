@@ -20,21 +20,23 @@ uint64_t bgi_gpu_hash_mix(uint64_t h, uint64_t v)
 }
 
 /* The key of what the textures of a commit hold. */
-static uint64_t textures_key(const bg_scene_state *state)
+static uint64_t textures_key(const bg_scene_state *state, bool table)
 {
     uint64_t h = bgi_gpu_hash_mix(0x13198a2e03707344ull, state->texture_count);
+    h = bgi_gpu_hash_mix(h, table);
     for (uint32_t i = 0; i < state->texture_count; i++) {
         const bg_texture_data *t = &state->textures[i];
         h = bgi_gpu_hash_mix(h, (uint64_t)t->width);
         h = bgi_gpu_hash_mix(h, (uint64_t)t->height);
         h = bgi_gpu_hash_mix(h, (uint64_t)t->wrap);
         h = bgi_gpu_hash_mix(h, (uint64_t)t->filter);
-        size_t n = (size_t)t->width * (size_t)t->height * 4;
-        for (size_t k = 0; k + 1 < n; k += 2) {
-            uint32_t a, b;
-            memcpy(&a, &t->texels[k], sizeof a);
-            memcpy(&b, &t->texels[k + 1], sizeof b);
-            h = bgi_gpu_hash_mix(h, ((uint64_t)a << 32) | b);
+        h = bgi_gpu_hash_mix(h, (uint64_t)(t->bytes != NULL) | (uint64_t)t->srgb << 1);
+        size_t n = bgi_texture_bytes(t);
+        const unsigned char *p = t->texels ? (const unsigned char *)t->texels : t->bytes;
+        for (size_t k = 0; k < n; k += 8) {
+            uint64_t v = 0; /* an RGBA8 texture of an odd texel count ends in half a word */
+            memcpy(&v, p + k, n - k < sizeof v ? n - k : sizeof v);
+            h = bgi_gpu_hash_mix(h, v);
         }
     }
     return h;
@@ -48,6 +50,9 @@ void bgi_gpu_scene_textures_release(bg_renderer *r)
     bgi_free(&r->allocator, t->texture);
     t->texture = NULL;
     t->count = 0;
+    macs_texture_destroy(t->srgb_table);
+    t->srgb_table = NULL;
+    t->bytes = 0;
     t->held = false;
     t->serial = 0;
     t->uploads++;
@@ -58,7 +63,8 @@ bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *s
     gpu_scene_textures *t = &r->scene_textures;
     if (t->serial != 0 && t->serial == state->serial)
         return BG_OK; /* the same commit: keyed, and held */
-    uint64_t key = textures_key(state);
+    bool table = bgi_gpu_srgb_table(r);
+    uint64_t key = textures_key(state, table);
     if (t->held && t->key == key) {
         t->serial = state->serial;
         return BG_OK;
@@ -70,10 +76,20 @@ bg_status bgi_gpu_scene_textures_prepare(bg_renderer *r, const bg_scene_state *s
             return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %u textures", state->texture_count);
         memset(t->texture, 0, state->texture_count * sizeof *t->texture);
         t->count = state->texture_count;
+        bool decodes = false;
         for (uint32_t i = 0; i < state->texture_count; i++) {
-            bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], &t->texture[i]);
+            uint64_t bytes = 0;
+            bg_status st = bgi_gpu_scene_texture_upload(r, &state->textures[i], table, &t->texture[i], &bytes);
             if (st != BG_OK)
                 return st; /* not held: the next frame uploads them again */
+            t->bytes += bytes;
+            decodes |= bgi_gpu_texture_mode(&state->textures[i], table).srgb;
+        }
+        if (decodes) {
+            bg_status st = bgi_gpu_srgb_table_upload(r, &t->srgb_table);
+            if (st != BG_OK)
+                return st;
+            t->bytes += 256 * 16;
         }
     }
     t->key = key;

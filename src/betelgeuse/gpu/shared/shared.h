@@ -59,6 +59,9 @@ typedef struct gpu_meshes {
 typedef struct gpu_scene_textures {
     macs_texture **texture; /* per scene texture (handle - 1) */
     uint32_t count;
+    macs_texture *srgb_table; /* bgi_srgb_table as 256 x 1 RGBA32F, while some held texture is 8-bit
+                               * sRGB sampled through it (bgi_gpu_srgb_table); else NULL */
+    uint64_t bytes;           /* texel bytes of the held textures and the table, as uploaded */
     uint64_t key;           /* what they hold: a hash of the textures' sizes, modes and texels */
     bool held;              /* they hold key's textures (an upload that failed leaves it false) */
     uint64_t serial;        /* the last commit found to hold key's textures; 0 none */
@@ -280,22 +283,39 @@ bg_status bgi_gpu_texture_ensure(bg_renderer *r, int w, int h, macs_format forma
  * what names it in a failure. */
 bg_status bgi_gpu_float_texture(bg_renderer *r, int w, int h, macs_filter filter, macs_wrap wrap, const float *texels,
                                 const char *what, macs_texture **out);
-/* Uploads one scene texture as the samplers read it: RGBA32F, GL_NEAREST whatever its filter (a
- * GL_LINEAR texture is filtered in the shader, bgi_gpu_texture_lookup), its wrap. */
-bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, macs_texture **out);
+/* The texture units a context needs before 8-bit sRGB textures go up as RGBA8 and are decoded
+ * through the table, which takes a unit of its own in every pass that samples one: the multipass's
+ * hit pass holds 3 ray maps and 2 mesh textures, so 8 leave it the table and two material textures.
+ * Below (the gl21 profile's 2 units) they go up decoded to RGBA32F, 16 bytes a texel as before; the
+ * values a shader filters are the same floats either way (docs/shading.md 5.2). */
+enum { GPU_SRGB_TABLE_MIN_UNITS = 8 };
+/* Whether this renderer samples 8-bit sRGB textures through the table (GPU_SRGB_TABLE_MIN_UNITS). */
+bool bgi_gpu_srgb_table(const bg_renderer *r);
+/* Uploads one scene texture as the samplers read it, GL_NEAREST whatever its filter (a GL_LINEAR
+ * texture is filtered in the shader, bgi_gpu_texture_lookup), with its wrap: RGBA32F texels as they
+ * are, RGBA8 bytes as RGBA8 (decoded to RGBA32F for an sRGB one when table is false); *bytes gets
+ * the bytes its texels take. */
+bg_status bgi_gpu_scene_texture_upload(bg_renderer *r, const bg_texture_data *t, bool table, macs_texture **out,
+                                       uint64_t *bytes);
+/* Creates *out as the 256 x 1 RGBA32F table of bgi_srgb_table (bg_texture_srgb.glsl). */
+bg_status bgi_gpu_srgb_table_upload(bg_renderer *r, macs_texture **out);
 
 /* How a program samples one scene texture: what it bakes into its text (docs/shading.md 5.1). */
 typedef struct gpu_texture_mode {
     int width, height;
     bool linear; /* BG_FILTER_LINEAR: bg_texture_linear's four fetches; else one NEAREST fetch */
     bool repeat; /* BG_WRAP_REPEAT, else CLAMP */
+    bool srgb;   /* 8-bit sRGB texels decoded through the table bg_srgb_table (bg_texture_srgb.glsl) */
 } gpu_texture_mode;
-/* The mode of t; NULL (the multipass's white texel) is 1 x 1 NEAREST. */
-gpu_texture_mode bgi_gpu_texture_mode(const bg_texture_data *t);
+/* The mode of t, sampled through the sRGB table where table says so (bgi_gpu_srgb_table); NULL (the
+ * multipass's white texel) is 1 x 1 NEAREST. */
+gpu_texture_mode bgi_gpu_texture_mode(const bg_texture_data *t, bool table);
 /* Writes into out (size bytes, 192 are enough for any sampler and uv names up to 40 characters) the
  * GLSL vec4 of the texture of mode m bound to sampler at uv: texture2D for NEAREST, else
  * bg_texture_linear (glsl110/bg_texture_filter.glsl, which the program must then hold) with the
- * size and wrap as constants. False when it does not fit. */
+ * size and wrap as constants; for an sRGB mode bg_srgb_decode of the fetch, or
+ * bg_texture_linear_srgb (glsl110/bg_texture_srgb.glsl, likewise), reading the sampler
+ * bg_srgb_table. False when it does not fit. */
 bool bgi_gpu_texture_lookup(char *out, size_t size, const char *sampler, const char *uv, gpu_texture_mode m);
 
 /* ---- pass_create.c: making one pass; calls only shader_source.c and fail.c ---- */
