@@ -799,6 +799,14 @@ typedef struct bg_render_stats {
     int tiles;                       /* tiles the image was rendered in (1: one piece); the other
                                         fields describe the last tile's last sample pass, but
                                         fallback_pixels and programs_compiled count every pass */
+    macs_work gl_work;               /* the GL work the whole call issued (macs_work, counted by MACS at
+                                        each GL call): of every tile and sample pass, the resolve and
+                                        the read-back into the image, the fallback pixels' uploads and
+                                        any scene upload or program build. Set by bg_render_gpu,
+                                        bg_render_gpu_to_texture and bg_render_gpu_accumulate, and by
+                                        the accumulation resolves, which set only this field (the
+                                        others stay the last render's). docs/gpu_pipeline.md, "GL work
+                                        per frame", gives each plan's budget */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

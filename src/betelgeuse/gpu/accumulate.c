@@ -173,8 +173,8 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
     return BG_OK;
 }
 
-bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
-                                   bg_accumulation *accumulation, int first, int count)
+static bg_status accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                            bg_accumulation *accumulation, int first, int count)
 {
     bg_renderer *r = renderer;
     bg_accumulation *a = accumulation;
@@ -253,8 +253,8 @@ static bg_status resolve_check(bg_renderer *r, const bg_accumulation *a, const b
     return st != BG_OK ? bgi_gpu_fail_checked(r, st, message) : BG_OK;
 }
 
-bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
-                                  const bg_render_settings *settings, bg_image *image)
+static bg_status resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
+                         const bg_render_settings *settings, bg_image *image)
 {
     bg_renderer *r = renderer;
     const bg_accumulation *a = accumulation;
@@ -312,8 +312,8 @@ static bg_status resolve_prepare(bg_renderer *r, bg_accumulation *a, macs_textur
     return st;
 }
 
-bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
-                                             const bg_render_settings *settings, macs_texture *target)
+static bg_status resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                    const bg_render_settings *settings, macs_texture *target)
 {
     bg_renderer *r = renderer;
     if (!r)
@@ -344,4 +344,41 @@ bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_acc
     if (!ms)
         ms = macs_pass_run(a->resolve, NULL);
     return ms ? bgi_gpu_fail_macs(r, ms, "the accumulation's resolve pass") : BG_OK;
+}
+
+/* The entry points: each is its body above with the GL work it issued in stats.gl_work. */
+bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                                   bg_accumulation *accumulation, int first, int count)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = accumulate(renderer, scene, settings, accumulation, first, count);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
+}
+
+bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                  const bg_render_settings *settings, bg_image *image)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = resolve(renderer, accumulation, settings, image);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
+}
+
+bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                             const bg_render_settings *settings, macs_texture *target)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = resolve_to_texture(renderer, accumulation, settings, target);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
 }

@@ -12,6 +12,10 @@
 /* Frees every GPU object (both plans' and the shared ones) so the next render starts afresh. */
 void bgi_gpu_release_all(bg_renderer *r);
 
+/* The GL work of one entry call: before is macs_context_get_work's copy at its start; stats.gl_work
+ * becomes the work since, whatever the call did to the other statistics. */
+void bgi_gpu_work_end(bg_renderer *r, const macs_work *before);
+
 /* ---- frame.c ---- */
 /* One frame of the committed scene into out (whose arguments the entry point checked, view their
  * window and samples): progress at 0, the one pass of a single sample, or samples.c's passes,
