@@ -216,6 +216,43 @@ static void n_samples_rgba8(void **state)
     free(got);
 }
 
+/* Into an RGBA8 texture nothing comes back and nothing waits, at one sample and at N (the exact
+ * resolve writes the target), on the plans without run-out marks to read. */
+static void to_texture(void **state)
+{
+    (void)state;
+    bg_scene *s = util_scene(SCENE_PAPER_EARTH_SHADOW);
+    macs_texture_desc td;
+    memset(&td, 0, sizeof td);
+    td.width = W;
+    td.height = H;
+    td.format = MACS_FORMAT_RGBA8;
+    macs_texture *t = NULL;
+    assert_int_equal(macs_texture_create(util_fx.ctx, &td, &t), MACS_OK);
+    static const bg_gpu_plan unmarked[] = {BG_PLAN_FUSED, BG_PLAN_MULTIPASS};
+    for (int k = 0; k < 2; k++) {
+        bg_renderer *r = util_renderer(util_fx.ctx);
+        for (int samples = 1; samples <= N; samples += N - 1) {
+            bg_render_settings set = settings_of(unmarked[k], samples);
+            expect_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "first frame");
+            expect_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "cached frame");
+            bg_render_stats st;
+            bg_renderer_get_stats(r, &st);
+            char label[96];
+            snprintf(label, sizeof label, "paper_earth_shadow, %s, %d sample(s), to an RGBA8 texture, cached",
+                     k ? "multipass" : "fused", samples);
+            print_work(label, &st.gl_work);
+            assert_int_equal(st.gl_work.readback_bytes, 0);
+            assert_int_equal(st.gl_work.syncs, 0);
+            assert_int_equal(st.gl_work.upload_bytes, 0);
+            assert_int_equal(st.gl_work.programs_compiled, 0);
+        }
+        bg_renderer_destroy(r);
+    }
+    macs_texture_destroy(t);
+    bg_scene_destroy(s);
+}
+
 /* Each plan's cached frame of the paper scenes at 1 and 16 samples into RGBA8: the table of
  * docs/gpu_pipeline.md, "GL work per frame", held where it is exact. */
 static void plan_budgets(void **state)
@@ -271,6 +308,7 @@ int main(void)
         cmocka_unit_test(float_image),
         cmocka_unit_test(camera_move),
         cmocka_unit_test(n_samples_rgba8),
+        cmocka_unit_test(to_texture),
         cmocka_unit_test(plan_budgets),
     };
     return cmocka_run_group_tests_name("bg_gpu_budget", tests, util_gpu_group_setup, util_gpu_group_teardown);
