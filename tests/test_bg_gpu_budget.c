@@ -14,6 +14,7 @@
 
 #include "betelgeuse.h"
 #include "betelgeuse/common/encoding.h"
+#include "betelgeuse/gpu/driver.h"
 #include "util_gl.h"
 #include "util_gpu.h"
 
@@ -173,6 +174,56 @@ static void camera_move(void **state)
     bg_scene_destroy(s);
 }
 
+/* The host's byte of a float sum s of n samples, as samples.c writes it. */
+static int host_byte(float s, int n, bg_output_encoding e)
+{
+    return bgi_encode_channel(s / (float)n, e);
+}
+
+static float from_bits(uint32_t u)
+{
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+/* The exact resolve's premise, on the host: the byte of any sum is the number of thresholds it
+ * reaches, which the shader's binary search finds. Checked at each threshold and its two float neighbours, and at 200000 spread sums per
+ * (n, encoding), for sample counts a power of two and not. */
+static void thresholds_count_bytes(void **state)
+{
+    (void)state;
+    static const int counts[] = {2, 3, 4, 7, 16, 100, 256};
+    uint32_t rng = 12345u;
+    for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
+        for (int e = 0; e < 2; e++) {
+            int n = counts[i];
+            bg_output_encoding enc = e ? BG_ENCODING_LINEAR : BG_ENCODING_SRGB;
+            float t[256];
+            t[0] = 0.0f;
+            for (int k = 1; k < 256; k++) {
+                t[k] = from_bits(bgi_gpu_exact_threshold(k, n, enc));
+                assert_true(t[k] >= t[k - 1]);
+                assert_true(host_byte(t[k], n, enc) >= k);
+                assert_true(host_byte(from_bits(bgi_gpu_exact_threshold(k, n, enc) - 1u), n, enc) < k);
+            }
+            int wrong = 0;
+            for (int j = 0; j < 200000; j++) {
+                rng = rng * 1664525u + 1013904223u;
+                /* Over [0, 1.25 n): every byte's range, and the clamp above it. */
+                float s = (float)((double)(rng >> 8) / 16777216.0 * 1.25 * n);
+                /* The shader's search: eight steps, 128 down to 1 (bg_stage_exact_bytes.glsl). */
+                int b = 0;
+                for (int step = 128; step >= 1; step /= 2)
+                    b = s >= t[b + step] ? b + step : b;
+                wrong += b != host_byte(s, n, enc);
+            }
+            assert_int_equal(wrong, 0);
+        }
+    print_message("thresholds of n = 2 .. 256 samples, sRGB and linear: every byte is the count of thresholds "
+                  "reached\n");
+}
+
 /* N samples into RGBA8: the divide and the encoding on the GPU, 4 bytes a pixel read back, and each
  * byte the host's encoding of the RGBA32F image's value (sum / N in float), in both encodings. */
 static void n_samples_rgba8(void **state)
@@ -307,6 +358,7 @@ int main(void)
         cmocka_unit_test(one_sample_rgba8),
         cmocka_unit_test(float_image),
         cmocka_unit_test(camera_move),
+        cmocka_unit_test(thresholds_count_bytes),
         cmocka_unit_test(n_samples_rgba8),
         cmocka_unit_test(to_texture),
         cmocka_unit_test(plan_budgets),

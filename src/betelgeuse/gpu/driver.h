@@ -61,6 +61,9 @@ typedef struct gpu_exact_bytes gpu_exact_bytes;
 bg_status bgi_gpu_exact_bytes_run(bg_renderer *r, gpu_exact_bytes **state, macs_texture *sum, int samples,
                                   bg_output_encoding encoding, macs_texture *target);
 void bgi_gpu_exact_bytes_destroy(gpu_exact_bytes *e, const bg_allocator *allocator);
+/* T_k as float bits: the least non-negative float sum of n samples whose host byte is at least k
+ * (1 .. 255); +inf's byte is 255. */
+uint32_t bgi_gpu_exact_threshold(int k, int n, bg_output_encoding encoding);
 
 /* ---- samples.c ---- */
 /* The gpu_view of sample s of view: that one sample, and its camera shift (docs/shading.md 1.1). */

@@ -34,8 +34,7 @@ static int host_byte(uint32_t bits, int n, bg_output_encoding encoding)
     return bgi_encode_channel(mean, encoding);
 }
 
-/* The least non-negative float, as bits, whose byte is at least k (1 .. 255): +inf's byte is 255. */
-static uint32_t threshold(int k, int n, bg_output_encoding encoding)
+uint32_t bgi_gpu_exact_threshold(int k, int n, bg_output_encoding encoding)
 {
     uint32_t lo = 0, hi = 0x7F800000u;
     while (lo < hi) {
@@ -54,7 +53,7 @@ static bg_status thresholds_ensure(bg_renderer *r, gpu_exact_bytes *e, int n, bg
         return BG_OK;
     float texels[256 * 4];
     for (int k = 0; k < 256; k++) {
-        uint32_t bits = k == 0 ? 0u : threshold(k, n, encoding);
+        uint32_t bits = k == 0 ? 0u : bgi_gpu_exact_threshold(k, n, encoding);
         float t;
         memcpy(&t, &bits, sizeof t);
         for (int c = 0; c < 4; c++)
