@@ -163,7 +163,9 @@ static void print_time_header(const bench_gpu *gpu, int runs, int samples)
     printf("Rounds: GPU, CPU, and the same on the scene's plain twin (the effect taken out), interleaved; cells: n\n"
            "rounds, ms per sample median [min-max] (a frame's time / %d); GPU/CPU: median of the per-round ratios;\n"
            "target: GPU/CPU <= %.1f; plain: the twin's GPU/CPU; effect ms: the scene's median less the twin's, per\n"
-           "sample, GPU / CPU\n", samples, TARGET_RATIO);
+           "sample, GPU / CPU. Under each row, the GPU frame's GL work (bg_render_stats.gl_work): d draws, p program\n"
+           "binds, f framebuffer binds, u uniform calls, up bytes uploaded, rb bytes read back a pixel, s syncs, c\n"
+           "programs compiled\n", samples, TARGET_RATIO);
     printf(TIME_FORMAT, "scene", "plan", "GPU: n ms/sample", "CPU: n ms/sample", "GPU/CPU", "target", "plain",
            "effect ms", "GPU error vs CPU (same samples)");
 }
@@ -184,6 +186,9 @@ static bool time_row(FILE *csv, const char *name, const time_run *run)
     const char *plan = bench_plan_name(run->gpu[0].stats.plan);
     printf(TIME_FORMAT, name, plan, cell[GPU], cell[CPU], ratio, met ? "met" : "MISSED", plain, effect,
            bench_error_text(&run->error, error, sizeof error));
+    char work[160];
+    printf("  (%s: GL work per GPU frame of %d samples: %s)\n", name, run->gpu[0].settings.samples,
+           bench_work_text(&run->gpu[0].stats.gl_work, TIME_SIZE, TIME_SIZE, work, sizeof work));
     if (run->gpu[0].recompiled_frames > 0 || run->gpu[1].recompiled_frames > 0)
         printf("  (%s: %d GPU frames after the first compiled a program)\n", name,
                run->gpu[0].recompiled_frames + run->gpu[1].recompiled_frames);

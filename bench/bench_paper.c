@@ -123,7 +123,10 @@ static void print_header(const bench_gpu *gpu, bool pov, int runs)
         printf("povray not installed: the POV-Ray columns are empty\n");
     printf("GPU: the fused plan; MP: the multipass plan; tree: the fused tree plan (each forced, each its own\n"
            "renderer). Rounds: GPU, MP, tree, CPU; cells: n rounds, ms median [min-max]; ratios against the fused\n"
-           "plan, medians of the per-round ratios (POV/GPU: of the medians, POV-Ray timed after the rounds)\n");
+           "plan, medians of the per-round ratios (POV/GPU: of the medians, POV-Ray timed after the rounds).\n"
+           "Under each row, each plan's GL work per frame (bg_render_stats.gl_work): d draws, p program binds,\n"
+           "f framebuffer binds, u uniform calls, up bytes uploaded, rb bytes read back a pixel, s syncs, c programs\n"
+           "compiled\n");
     printf(TABLE_FORMAT("s"), "scene", "size", "GPU: n ms [min-max]", "MP: n ms [min-max]", "tree: n ms [min-max]",
            "CPU: n ms [min-max]", "POV ms median [min-max]", "MP/GPU", "CPU/GPU", "POV/GPU", "tree/GPU",
            "GPU error vs CPU", "tree error", "note");
@@ -148,6 +151,12 @@ static void print_row(scene_id id, int size, const case_run *run)
     printf(TABLE_FORMAT("d"), scenes_name(id), size, cell[FUSED], cell[MULTIPASS], cell[TREE], cell[CPU], pov_text,
            ratio[0], ratio[1], pov_ratio, ratio[2], bench_error_text(&run->error[FUSED], error, sizeof error),
            bench_error_brief(&run->error[TREE], tree, sizeof tree), note);
+    /* The GL work of each plan's last timed frame, beside its time (the cached frame: no uploads). */
+    for (int p = 0; p < PLANS; p++) {
+        char work[160];
+        printf("  GL work per frame, %-10s %s\n", contestant_names[p],
+               bench_work_text(&run->gpu[p].stats.gl_work, size, size, work, sizeof work));
+    }
     fflush(stdout);
 }
 

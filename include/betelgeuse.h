@@ -687,8 +687,9 @@ BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_
  * per pixel, ceil(width / 32) x height x 4 bytes are read back (the call waits for the GPU there, as
  * bg_render_gpu's read-back does), and the CPU reference's pixels go up with one glTexSubImage2D per
  * run of marked pixels in a row; the frame is then what bg_render_gpu gives. With settings.samples > 1
- * every sample pass is read back and the average is uploaded into target once all are done
- * (docs/gpu_pipeline.md, "Samples, windows and progress"), so a cancelled render leaves target
+ * the samples are summed on the GPU and written into target once all are done (docs/gpu_pipeline.md,
+ * "Samples, windows and progress"): an RGBA8 target gets bg_render_gpu's bytes by a GPU pass with
+ * nothing read back, a float target the mean read back and uploaded; a cancelled render leaves target
  * untouched; a window (settings.frame_*, window_*) is honoured as by bg_render_gpu, but target is
  * never tiled. The renderer keeps no hold on target: destroying it after the call is fine.
  * Errors: as bg_render_gpu's, with target in the image's place: BG_ERR_INVALID_ARGUMENT when target
@@ -728,14 +729,15 @@ BG_API bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene
 /* The samples in the sum (0 for NULL). */
 BG_API int bg_accumulation_samples(const bg_accumulation *accumulation);
 /* The mean of the samples so far into a caller image of the accumulation's size, RGBA8 encoded as
- * settings->encoding says or RGBA32F linear, as bg_render_gpu writes them: one read-back of the sum.
+ * settings->encoding says or RGBA32F linear, as bg_render_gpu writes them: one read-back, of the
+ * bytes resolved on the GPU for RGBA8 (4 bytes a pixel), of the sum for RGBA32F (16).
  * BG_ERR_INVALID_ARGUMENT without samples, or for another size or renderer. */
 BG_API bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
                                          const bg_render_settings *settings, bg_image *image);
 /* The same into a MACS texture of the renderer's context and the accumulation's size, on the GPU
- * with nothing read back: RGBA8 encoded by the plans' GLSL encoding, a float format linear. The
- * division and the sRGB curve are the GPU's, so a byte may differ from bg_accumulation_resolve's by
- * the rounding of a value on a step's edge (measured: none on llvmpipe in tests/test_bg_gpu_accumulate.c). */
+ * with nothing read back: RGBA8 the bytes of bg_accumulation_resolve exactly (the GPU compares the sum
+ * with the host encoding's thresholds: docs/gpu_pipeline.md, "Exact bytes"), a float format linear,
+ * divided by the GPU. */
 BG_API bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
                                                     const bg_render_settings *settings, macs_texture *target);
 
@@ -806,6 +808,14 @@ typedef struct bg_render_stats {
                                         uploaded: 4 a texel for an 8-bit image, 16 for a float one,
                                         and 4096 for the sRGB decode table where one is sampled
                                         (docs/shading.md 5.2); no mipmaps, no driver overhead */
+    macs_work gl_work;               /* the GL work the whole call issued (macs_work, counted by MACS at
+                                        each GL call): of every tile and sample pass, the resolve and
+                                        the read-back into the image, the fallback pixels' uploads and
+                                        any scene upload or program build. Set by bg_render_gpu,
+                                        bg_render_gpu_to_texture and bg_render_gpu_accumulate, and by
+                                        the accumulation resolves, which set only this field (the
+                                        others stay the last render's). docs/gpu_pipeline.md, "GL work
+                                        per frame", gives each plan's budget */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

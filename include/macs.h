@@ -305,6 +305,31 @@ MACS_API int macs_context_max_uniform_components(const macs_context *ctx);
  * the frame compiled. */
 MACS_API uint64_t macs_context_programs_compiled(const macs_context *ctx);
 
+/* The GL work a context has issued since its creation, counted exactly at the GL calls themselves
+ * (src/macs/work.c), so the counts are the same on every driver and a caller may assert them. Every
+ * count only grows; the difference of two copies (macs_work_since) is the work between them.
+ * Nothing is counted twice: a GL call is counted where MACS issues it, whichever function asked. */
+typedef struct macs_work {
+    uint64_t draws;             /* glDrawArrays calls: one per chunk of a pass run */
+    uint64_t program_binds;     /* glUseProgram calls, the unbinding ones (program 0) included */
+    uint64_t framebuffer_binds; /* glBindFramebuffer calls, the unbinding ones (framebuffer 0) included */
+    uint64_t uniform_calls;     /* glUniform* calls: each pass uniform a chunk's program uses, per run,
+                                   and each sampler set once when a program is linked */
+    uint64_t upload_bytes;      /* texel bytes handed to glTexImage2D and glTexSubImage2D (width x height
+                                   x bytes per texel of the format and type given; a texture created
+                                   without data counts 0) */
+    uint64_t readback_bytes;    /* texel bytes glGetTexImage wrote into host memory, counted the same way */
+    uint64_t syncs;             /* calls that wait for the GPU: glFinish, glGetTexImage, and a query's
+                                   GL_QUERY_RESULT read (macs_pass_occlusion_result) */
+    uint64_t programs_compiled; /* programs compiled and linked (macs_context_programs_compiled) */
+} macs_work;
+
+/* Copies the context's work counters (all zero for a NULL context; work may not be NULL). */
+MACS_API void macs_context_get_work(const macs_context *ctx, macs_work *work);
+
+/* after - before, field by field: the work issued between two macs_context_get_work copies. */
+MACS_API macs_work macs_work_since(const macs_work *after, const macs_work *before);
+
 /* Copies the GL strings read at creation. */
 MACS_API void macs_context_get_gl_info(const macs_context *ctx, macs_gl_info *info);
 

@@ -105,6 +105,17 @@ char *bench_error_brief(const bench_error *e, char *buffer, size_t size)
     return buffer;
 }
 
+char *bench_work_text(const macs_work *w, int width, int height, char *buffer, size_t size)
+{
+    double pixels = (double)width * (double)height;
+    snprintf(buffer, size, "d %llu p %llu f %llu u %llu up %llu rb %.1f B/px s %llu c %llu",
+             (unsigned long long)w->draws, (unsigned long long)w->program_binds,
+             (unsigned long long)w->framebuffer_binds, (unsigned long long)w->uniform_calls,
+             (unsigned long long)w->upload_bytes, pixels > 0.0 ? (double)w->readback_bytes / pixels : 0.0,
+             (unsigned long long)w->syncs, (unsigned long long)w->programs_compiled);
+    return buffer;
+}
+
 int bench_total_passes(const bg_render_stats *stats)
 {
     int passes = 0;

@@ -49,6 +49,11 @@ char *bench_error_text(const bench_error *e, char *buffer, size_t size);
 /* A narrower one for tables with several error columns: "71.1 dB max 2" (or "identical"). */
 char *bench_error_brief(const bench_error *e, char *buffer, size_t size);
 
+/* The GL work of a frame (bg_render_stats.gl_work) in one short cell: "d 33 p 66 f 98 u 352 up 0
+ * rb 4.0 B/px s 1 c 0": draws, program binds, framebuffer binds, uniform calls, bytes uploaded,
+ * bytes read back per pixel of width x height, syncs, programs compiled. */
+char *bench_work_text(const macs_work *w, int width, int height, char *buffer, size_t size);
+
 /* Passes of every kind the last frame drew. */
 int bench_total_passes(const bg_render_stats *stats);
 

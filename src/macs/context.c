@@ -386,7 +386,7 @@ void macs_context_get_features(const macs_context *ctx, macs_features *features)
 void macs_context_finish(macs_context *ctx)
 {
     if (ctx)
-        ctx->gl.Finish();
+        macsi_finish(ctx);
 }
 
 GLenum macsi_gl_compare(macs_compare c, GLenum fallback)

@@ -23,7 +23,7 @@ static macs_status clear(macs_depth_stencil *ds, float depth, unsigned stencil, 
 {
     macs_context *ctx = ds->ctx;
     const macs_gl *gl = &ctx->gl;
-    gl->BindFramebuffer(GL_FRAMEBUFFER, ctx->scratch_fbo);
+    macsi_bind_framebuffer(ctx, ctx->scratch_fbo);
     macsi_fbo_attach_depth_stencil(ctx, ds);
     /* A framebuffer without colour needs NONE draw and read buffers to be complete under EXT_fbo. */
     static const GLenum none = GL_NONE;
@@ -40,7 +40,7 @@ static macs_status clear(macs_depth_stencil *ds, float depth, unsigned stencil, 
         gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     }
     macsi_fbo_attach_depth_stencil(ctx, NULL);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    macsi_bind_framebuffer(ctx, 0);
     if (st != MACS_OK)
         return st;
     return macsi_gl_check(ctx, "clearing a depth/stencil object");

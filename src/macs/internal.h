@@ -109,6 +109,7 @@ struct macs_context {
     GLuint scratch_fbo;
     macs_program *programs;
     uint64_t programs_compiled; /* cache misses that compiled and linked */
+    macs_work work;             /* the counted GL calls (work.c); programs_compiled is the field above */
     macs_texture *textures;
     macs_depth_stencil *depth_stencils;
     macs_pass *passes;
@@ -201,6 +202,19 @@ void macsi_texture_apply_sampling(macs_context *ctx, macs_filter filter, macs_wr
 /* pass.c: detaching destroyed objects from passes */
 void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture);
 void macsi_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil *ds);
+
+/* work.c: the GL calls macs_work counts, each counted and issued in one place. region is x, y, width,
+ * height; the target is always GL_TEXTURE_2D level 0 and the draw one full-screen triangle. */
+void macsi_draw_triangle(macs_context *ctx);
+void macsi_use_program(macs_context *ctx, GLuint program);
+void macsi_bind_framebuffer(macs_context *ctx, GLuint framebuffer);
+void macsi_uniform(macs_context *ctx, macs_uniform_type type, GLint location, GLsizei count, const void *value);
+void macsi_tex_image(macs_context *ctx, GLint internal_format, GLsizei width, GLsizei height, GLenum format,
+                     GLenum type, const void *pixels);
+void macsi_tex_sub_image(macs_context *ctx, const int region[4], GLenum format, GLenum type, const void *pixels);
+void macsi_get_tex_image(macs_context *ctx, GLsizei width, GLsizei height, GLenum format, GLenum type, void *pixels);
+void macsi_finish(macs_context *ctx);
+void macsi_query_result(macs_context *ctx, GLuint query, GLuint *value);
 
 /* GL enum of a comparison, with the default given. */
 GLenum macsi_gl_compare(macs_compare c, GLenum fallback);

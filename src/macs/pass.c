@@ -259,10 +259,10 @@ static void detach_output(macs_pass *p, int i)
         const macs_chunk *ch = &p->chunks[c];
         if (!ch->fbo || i < ch->first_output || i >= ch->first_output + ch->output_count)
             continue;
-        gl->BindFramebuffer(GL_FRAMEBUFFER, ch->fbo);
+        macsi_bind_framebuffer(p->ctx, ch->fbo);
         gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)(i - ch->first_output), GL_TEXTURE_2D,
                                  0, 0);
-        gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        macsi_bind_framebuffer(p->ctx, 0);
     }
 }
 

@@ -47,13 +47,13 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
     }
     /* Input i always samples texture unit i; the source names the inputs in order, so every pass
      * sharing this program binds its inputs the same way. */
-    gl->UseProgram(program);
+    macsi_use_program(ctx, program);
     for (int i = 0; i < input_count; i++) {
         GLint loc = gl->GetUniformLocation(program, input_names[i]);
         if (loc >= 0)
-            gl->Uniform1i(loc, i);
+            macsi_uniform(ctx, MACS_UNIFORM_INT, loc, 1, &i);
     }
-    gl->UseProgram(0);
+    macsi_use_program(ctx, 0);
     macs_status st = macsi_gl_check(ctx, "linking a pass program");
     if (st != MACS_OK) {
         gl->DeleteProgram(program);

@@ -36,7 +36,7 @@ macs_status macs_pass_occlusion_result(macs_pass *pass, uint64_t *samples)
     macsi_gl_drain(pass->ctx);
     GLuint value = 0;
     /* GL_QUERY_RESULT waits for the GPU; that is the documented blocking behaviour. */
-    pass->ctx->gl.GetQueryObjectuiv(pass->query, GL_QUERY_RESULT, &value);
+    macsi_query_result(pass->ctx, pass->query, &value);
     macs_status st = macsi_gl_check(pass->ctx, "glGetQueryObjectuiv");
     if (st == MACS_OK)
         *samples = value;

@@ -9,7 +9,7 @@ static macs_status attach(macs_pass *p, macs_depth_stencil *ds)
     macs_status st = MACS_OK;
     for (int c = 0; c < p->chunk_count && st == MACS_OK; c++) {
         const macs_chunk *ch = &p->chunks[c];
-        gl->BindFramebuffer(GL_FRAMEBUFFER, ch->fbo);
+        macsi_bind_framebuffer(ctx, ch->fbo);
         for (int j = 0; j < ch->output_count; j++)
             gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)j, GL_TEXTURE_2D,
                                      p->outputs[ch->first_output + j]->id, 0);
@@ -21,7 +21,7 @@ static macs_status attach(macs_pass *p, macs_depth_stencil *ds)
         gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
         st = macsi_fbo_check(ctx, "attaching pass outputs");
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    macsi_bind_framebuffer(ctx, 0);
     if (st == MACS_OK) {
         p->attached_ds = ds;
         p->attachments_dirty = false;
@@ -31,25 +31,12 @@ static macs_status attach(macs_pass *p, macs_depth_stencil *ds)
 
 static void apply_uniforms(const macs_pass *p, const macs_chunk *ch)
 {
-    const macs_gl *gl = &p->ctx->gl;
     for (int i = 0; i < p->uniform_count; i++) {
         const macs_pass_uniform *u = &p->uniforms[i];
         GLint loc = ch->uniform_locations[i];
-        GLsizei n = u->count > 0 ? u->count : 1;
         if (loc < 0)
             continue; /* unused by this chunk's code, so the compiler removed it */
-        const GLfloat *f = u->value;
-        const GLint *iv = u->value;
-        switch (u->type) {
-        case MACS_UNIFORM_FLOAT: gl->Uniform1fv(loc, n, f); break;
-        case MACS_UNIFORM_VEC2: gl->Uniform2fv(loc, n, f); break;
-        case MACS_UNIFORM_VEC3: gl->Uniform3fv(loc, n, f); break;
-        case MACS_UNIFORM_VEC4: gl->Uniform4fv(loc, n, f); break;
-        case MACS_UNIFORM_INT:
-        case MACS_UNIFORM_BOOL: gl->Uniform1iv(loc, n, iv); break;
-        case MACS_UNIFORM_MAT3: gl->UniformMatrix3fv(loc, n, GL_FALSE, f); break;
-        case MACS_UNIFORM_MAT4: gl->UniformMatrix4fv(loc, n, GL_FALSE, f); break;
-        }
+        macsi_uniform(p->ctx, u->type, loc, u->count > 0 ? u->count : 1, u->value);
     }
 }
 
@@ -134,20 +121,20 @@ macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run)
     apply_common_state(pass, run);
     for (int c = 0; c < pass->chunk_count; c++) {
         const macs_chunk *ch = &pass->chunks[c];
-        gl->BindFramebuffer(GL_FRAMEBUFFER, ch->fbo);
-        gl->UseProgram(ch->program->id);
+        macsi_bind_framebuffer(ctx, ch->fbo);
+        macsi_use_program(ctx, ch->program->id);
         apply_uniforms(pass, ch);
         macsi_split_apply_state(pass, c, pass->depth_stencil != NULL, ds != NULL);
         if (c == 0 && run->occlusion_query)
             macsi_query_begin(pass);
-        gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        macsi_draw_triangle(ctx);
         if (c == 0 && run->occlusion_query)
             macsi_query_end(pass);
     }
     /* Leave the caller's default framebuffer and no program bound, as a caller sharing the context
      * would expect. */
-    gl->UseProgram(0);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    macsi_use_program(ctx, 0);
+    macsi_bind_framebuffer(ctx, 0);
     gl->BindBuffer(GL_ARRAY_BUFFER, 0);
     return macsi_gl_check(ctx, "macs_pass_run");
 }

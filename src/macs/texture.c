@@ -131,8 +131,8 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, t->id);
     macsi_texture_apply_sampling(ctx, desc->filter, desc->wrap);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, internal_format(t->format), t->width, t->height, 0, GL_RGBA,
-                   texel_type(t->format), desc->data);
+    macsi_tex_image(ctx, internal_format(t->format), t->width, t->height, GL_RGBA, texel_type(t->format),
+                    desc->data);
     reset_pixel_store(ctx);
     gl->BindTexture(GL_TEXTURE_2D, 0);
     macs_status st = check_image(t);
@@ -183,10 +183,9 @@ static macs_status transfer(macs_texture *t, bool upload, const int region[4], v
     ctx->gl.ActiveTexture(GL_TEXTURE0);
     ctx->gl.BindTexture(GL_TEXTURE_2D, t->id);
     if (upload)
-        ctx->gl.TexSubImage2D(GL_TEXTURE_2D, 0, region[0], region[1], region[2], region[3], GL_RGBA,
-                              texel_type(t->format), data);
+        macsi_tex_sub_image(ctx, region, GL_RGBA, texel_type(t->format), data);
     else
-        ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, texel_type(t->format), data);
+        macsi_get_tex_image(ctx, t->width, t->height, GL_RGBA, texel_type(t->format), data);
     ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
     reset_pixel_store(ctx);
     char what[64];
@@ -242,7 +241,7 @@ macs_status macs_texture_clear(macs_texture *t, const float rgba[4])
     macs_context *ctx = t->ctx;
     const macs_gl *gl = &ctx->gl;
     macsi_gl_drain(ctx);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, ctx->scratch_fbo);
+    macsi_bind_framebuffer(ctx, ctx->scratch_fbo);
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->id, 0);
     static const GLenum buffer = GL_COLOR_ATTACHMENT0;
     gl->DrawBuffers(1, &buffer);
@@ -255,7 +254,7 @@ macs_status macs_texture_clear(macs_texture *t, const float rgba[4])
         gl->Clear(GL_COLOR_BUFFER_BIT);
     }
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    macsi_bind_framebuffer(ctx, 0);
     if (st != MACS_OK)
         return st;
     return macsi_gl_check(ctx, "macs_texture_clear");

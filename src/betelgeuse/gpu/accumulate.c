@@ -30,6 +30,8 @@ struct bg_accumulation {
     macs_pass *add;
     macs_pass *resolve;     /* into a texture of resolve_format */
     macs_format resolve_format;
+    gpu_exact_bytes *exact; /* the RGBA8 resolve, bit for bit the host's (exact_bytes.c) */
+    macs_texture *bytes;    /* its target when the bytes go to a host image */
 };
 
 bool bgi_gpu_accumulation_fits(const bg_accumulation *a, int width, int height)
@@ -59,6 +61,8 @@ void bg_accumulation_destroy(bg_accumulation *a)
     macs_texture_destroy(a->sample);
     macs_pass_destroy(a->add);
     macs_pass_destroy(a->resolve);
+    macs_texture_destroy(a->bytes);
+    bgi_gpu_exact_bytes_destroy(a->exact, &a->allocator);
     bg_allocator allocator = a->allocator;
     bgi_free(&allocator, a);
 }
@@ -173,8 +177,8 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
     return BG_OK;
 }
 
-bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
-                                   bg_accumulation *accumulation, int first, int count)
+static bg_status accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                            bg_accumulation *accumulation, int first, int count)
 {
     bg_renderer *r = renderer;
     bg_accumulation *a = accumulation;
@@ -217,6 +221,37 @@ bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const
     return st;
 }
 
+bg_status bgi_gpu_accumulation_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
+                                     macs_texture *target)
+{
+    return bgi_gpu_exact_bytes_run(r, &a->exact, a->sum[a->current], a->samples, encoding, target);
+}
+
+bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
+                                          unsigned char *pixels, size_t stride)
+{
+    bg_status st = bgi_gpu_texture_ensure(r, a->width, a->height, MACS_FORMAT_RGBA8, &a->bytes,
+                                          "accumulation bytes texture");
+    if (st == BG_OK)
+        st = bgi_gpu_accumulation_bytes(r, a, encoding, a->bytes);
+    if (st != BG_OK)
+        return st;
+    macs_status ms = macs_texture_read(a->bytes, pixels, stride);
+    if (ms)
+        return bgi_gpu_fail_macs(r, ms, "reading the resolved bytes back");
+    /* The texture's rows come bottom first: turn them over in place. */
+    size_t row = (size_t)a->width * 4;
+    for (int y = 0; y < a->height / 2; y++) {
+        unsigned char *p = pixels + (size_t)y * stride, *q = pixels + (size_t)(a->height - 1 - y) * stride;
+        for (size_t i = 0; i < row; i++) {
+            unsigned char t = p[i];
+            p[i] = q[i];
+            q[i] = t;
+        }
+    }
+    return BG_OK;
+}
+
 bg_status bgi_gpu_accumulation_read(bg_renderer *r, const bg_accumulation *a, float *top_down)
 {
     size_t row = (size_t)a->width * 4;
@@ -253,8 +288,8 @@ static bg_status resolve_check(bg_renderer *r, const bg_accumulation *a, const b
     return st != BG_OK ? bgi_gpu_fail_checked(r, st, message) : BG_OK;
 }
 
-bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
-                                  const bg_render_settings *settings, bg_image *image)
+static bg_status resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
+                         const bg_render_settings *settings, bg_image *image)
 {
     bg_renderer *r = renderer;
     const bg_accumulation *a = accumulation;
@@ -275,6 +310,8 @@ bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *
     if (stride < min_stride)
         return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "image->stride = %zu is below a row's %zu bytes", stride,
                             min_stride);
+    if (!as_float)
+        return bgi_gpu_accumulation_read_bytes(r, (bg_accumulation *)a, settings->encoding, image->pixels, stride);
     float *sum = bgi_alloc(&r->allocator, (size_t)a->width * a->height * 16);
     if (!sum)
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory reading the accumulation back");
@@ -286,8 +323,8 @@ bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *
     return st;
 }
 
-/* The resolve pass into a target of format: the mean, encoded as the settings say into RGBA8 (the
- * plans' own bg_encode), or linear into a float target. */
+/* The resolve pass into a float target (RGBA32F or RGBA16F): the mean, linear. An RGBA8 target takes
+ * the exact bytes instead (exact_bytes.c). */
 static bg_status resolve_prepare(bg_renderer *r, bg_accumulation *a, macs_texture *target)
 {
     macs_format format = macs_texture_format(target);
@@ -298,22 +335,19 @@ static bg_status resolve_prepare(bg_renderer *r, bg_accumulation *a, macs_textur
     macs_pass_destroy(a->resolve);
     a->resolve = NULL;
     macs_input_desc in[1] = {{"bg_sum"}};
-    macs_uniform_desc u[2] = {{"bg_count", MACS_UNIFORM_FLOAT, 0}, {"bg_srgb", MACS_UNIFORM_BOOL, 0}};
-    macs_output_desc o[1] = {{"resolved", format == MACS_FORMAT_RGBA8
-                                              ? "vec4(bg_encode(texture2D(bg_sum, macs_uv).rgb / bg_count, bg_srgb), 1.0)"
-                                              : "vec4(texture2D(bg_sum, macs_uv).rgb / bg_count, 1.0)"}};
+    macs_uniform_desc u[1] = {{"bg_count", MACS_UNIFORM_FLOAT, 0}};
+    macs_output_desc o[1] = {{"resolved", "vec4(texture2D(bg_sum, macs_uv).rgb / bg_count, 1.0)"}};
     macs_texture *outs[1] = {target};
     macs_pass_desc d;
-    bgi_gpu_pass_desc_init(&d, NULL, in, NULL, 1, u, 2, o, outs, 1);
-    const char *files[] = {"bg_stage_resolve.glsl", NULL};
-    bg_status st = bgi_gpu_pass_create(r, "accumulation resolve pass", files, NULL, &d, &a->resolve);
+    bgi_gpu_pass_desc_init(&d, NULL, in, NULL, 1, u, 1, o, outs, 1);
+    bg_status st = bgi_gpu_pass_create(r, "accumulation resolve pass", NULL, NULL, &d, &a->resolve);
     if (st == BG_OK)
         a->resolve_format = format;
     return st;
 }
 
-bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
-                                             const bg_render_settings *settings, macs_texture *target)
+static bg_status resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                    const bg_render_settings *settings, macs_texture *target)
 {
     bg_renderer *r = renderer;
     if (!r)
@@ -331,17 +365,53 @@ bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_acc
         return st;
     /* The resolve pass is the accumulation's own GPU object, not part of its value. */
     bg_accumulation *a = (bg_accumulation *)accumulation;
+    if (macs_texture_format(target) == MACS_FORMAT_RGBA8)
+        return bgi_gpu_accumulation_bytes(r, a, settings->encoding, target);
     st = resolve_prepare(r, a, target);
     if (st != BG_OK)
         return st;
     float count = (float)a->samples;
-    int srgb = settings->encoding == BG_ENCODING_SRGB;
     macs_status ms = macs_pass_set_input(a->resolve, 0, a->sum[a->current]);
     if (!ms)
         ms = macs_pass_set_uniform(a->resolve, "bg_count", &count);
     if (!ms)
-        ms = macs_pass_set_uniform(a->resolve, "bg_srgb", &srgb);
-    if (!ms)
         ms = macs_pass_run(a->resolve, NULL);
     return ms ? bgi_gpu_fail_macs(r, ms, "the accumulation's resolve pass") : BG_OK;
+}
+
+/* The entry points: each is its body above with the GL work it issued in stats.gl_work. */
+bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                                   bg_accumulation *accumulation, int first, int count)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = accumulate(renderer, scene, settings, accumulation, first, count);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
+}
+
+bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                  const bg_render_settings *settings, bg_image *image)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = resolve(renderer, accumulation, settings, image);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
+}
+
+bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
+                                             const bg_render_settings *settings, macs_texture *target)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = resolve_to_texture(renderer, accumulation, settings, target);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
 }

@@ -12,6 +12,10 @@
 /* Frees every GPU object (both plans' and the shared ones) so the next render starts afresh. */
 void bgi_gpu_release_all(bg_renderer *r);
 
+/* The GL work of one entry call: before is macs_context_get_work's copy at its start; stats.gl_work
+ * becomes the work since, whatever the call did to the other statistics. */
+void bgi_gpu_work_end(bg_renderer *r, const macs_work *before);
+
 /* ---- frame.c ---- */
 /* One frame of the committed scene into out (whose arguments the entry point checked, view their
  * window and samples): progress at 0, the one pass of a single sample, or samples.c's passes,
@@ -39,8 +43,27 @@ bool bgi_gpu_accumulation_fits(const bg_accumulation *a, int width, int height);
 bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
                                      const bg_render_settings *settings, const bgi_render_view *view,
                                      bg_accumulation *a, int first, int count, const char *untouched);
+/* The mean of a's samples (samples > 0) as the host's RGBA8 bytes of the encoding (exact_bytes.c),
+ * on the GPU: into target (RGBA8, a's size), or into a host image's pixels (rows top first, stride)
+ * through a's own RGBA8 texture, one read-back of 4 bytes a pixel. */
+bg_status bgi_gpu_accumulation_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
+                                     macs_texture *target);
+bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
+                                          unsigned char *pixels, size_t stride);
 /* The sum of a (samples > 0) read back as float RGBA, rows top first. */
 bg_status bgi_gpu_accumulation_read(bg_renderer *r, const bg_accumulation *a, float *top_down);
+
+/* ---- exact_bytes.c ---- */
+/* The state of the exact RGBA8 resolve: its thresholds texture and pass, made at the first run. */
+typedef struct gpu_exact_bytes gpu_exact_bytes;
+/* The host's bytes (bgi_encode_channel of sum / samples in float) of the float sum into target, an
+ * RGBA8 texture of sum's size, by a GPU pass; *state is made on the first call. */
+bg_status bgi_gpu_exact_bytes_run(bg_renderer *r, gpu_exact_bytes **state, macs_texture *sum, int samples,
+                                  bg_output_encoding encoding, macs_texture *target);
+void bgi_gpu_exact_bytes_destroy(gpu_exact_bytes *e, const bg_allocator *allocator);
+/* T_k as float bits: the least non-negative float sum of n samples whose host byte is at least k
+ * (1 .. 255); +inf's byte is 255. */
+uint32_t bgi_gpu_exact_threshold(int k, int n, bg_output_encoding encoding);
 
 /* ---- samples.c ---- */
 /* The gpu_view of the sample view takes k-th (sample bgi_sample_order(samples, k)): that one sample,

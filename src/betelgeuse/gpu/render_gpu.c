@@ -3,7 +3,7 @@
 #include "../common/render_args.h"
 #include "driver.h"
 
-bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image)
+static bg_status render(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image)
 {
     bg_renderer *r = renderer;
     if (!r)
@@ -20,4 +20,15 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
     /* Beyond the GL texture size limit (or the memory budget) the image is rendered in tiles. */
     gpu_frame_out out = {image, stride, NULL, image->width, image->height, image->format == BG_PIXEL_RGBA32F};
     return bgi_gpu_tiles_render(r, scene, settings, &out, &view);
+}
+
+bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings, bg_image *image)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = render(renderer, scene, settings, image);
+    bgi_gpu_work_end(renderer, &before);
+    return st;
 }

@@ -107,6 +107,13 @@ void bg_renderer_clear_error(bg_renderer *renderer)
     macs_first_error_clear(&renderer->error);
 }
 
+void bgi_gpu_work_end(bg_renderer *r, const macs_work *before)
+{
+    macs_work after;
+    macs_context_get_work(r->ctx, &after);
+    r->stats.gl_work = macs_work_since(&after, before);
+}
+
 void bg_renderer_get_stats(const bg_renderer *renderer, bg_render_stats *stats)
 {
     if (!stats)

@@ -81,17 +81,22 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg
     if (!r->frame_sum)
         r->frame_sum = bgi_gpu_accumulation_new(r, w, h);
     bg_accumulation *a = r->frame_sum;
-    float *sum = bgi_alloc(&r->allocator, (size_t)w * (size_t)h * 16);
-    if (!a || !sum) {
+    /* RGBA8 takes the exact bytes on the GPU: no float sum comes back. */
+    float *sum = out->as_float ? bgi_alloc(&r->allocator, (size_t)w * (size_t)h * 16) : NULL;
+    if (!a || (out->as_float && !sum)) {
         bg_accumulation_destroy(old);
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for %d samples (%zu bytes of host buffer)", n,
                             (size_t)w * (size_t)h * 16);
     }
     bg_status st = bgi_gpu_accumulate_samples(r, scene, state, settings, view, a, 0, n,
                                               out->image ? "image" : "texture");
-    if (st == BG_OK)
+    if (st == BG_OK && !out->as_float && out->image)
+        st = bgi_gpu_accumulation_read_bytes(r, a, settings->encoding, out->image->pixels, out->stride);
+    else if (st == BG_OK && !out->as_float)
+        st = bgi_gpu_accumulation_bytes(r, a, settings->encoding, out->texture);
+    else if (st == BG_OK)
         st = bgi_gpu_accumulation_read(r, a, sum);
-    if (st == BG_OK)
+    if (st == BG_OK && out->as_float)
         st = bgi_gpu_samples_write(r, settings, out, sum, n);
     if (st == BG_OK)
         bgi_render_progress(settings, 1.0);

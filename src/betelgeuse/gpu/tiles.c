@@ -12,10 +12,10 @@
 /* Bytes of render targets per pixel, by the largest plan (the multipass): the G-buffer's slots, the
  * accumulation, visibility, encoded and depth-stencil targets, and a ray set (origin, direction,
  * weight) per level plus one pending; a fused plan needs far less. Several samples add the frame's
- * sum (accumulate.c): two RGBA32F sums and a sample. */
+ * sum (accumulate.c): two RGBA32F sums, a sample and the RGBA8 target of the exact resolve. */
 static double bytes_per_pixel(const bg_render_settings *settings)
 {
-    double sum = settings->samples > 1 ? 3 * 16.0 : 0.0;
+    double sum = settings->samples > 1 ? 3 * 16.0 + 4.0 : 0.0;
     return GPU_SLOT_COUNT * 16.0 + 16.0 + 4.0 + 4.0 + 4.0 + (settings->max_depth + 2) * 48.0 + sum;
 }
 

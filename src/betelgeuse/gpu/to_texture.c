@@ -9,8 +9,8 @@
 
 #define FN "bg_render_gpu_to_texture"
 
-bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
-                                   macs_texture *target)
+static bg_status render(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                        macs_texture *target)
 {
     bg_renderer *r = renderer;
     if (!r)
@@ -47,5 +47,17 @@ bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const
     gpu_frame_out out = {NULL, 0, target, width, height, format != MACS_FORMAT_RGBA8};
     st = bgi_gpu_frame_render(r, scene, settings, &out, &view);
     r->stats.tiles = 1;
+    return st;
+}
+
+bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
+                                   macs_texture *target)
+{
+    if (!renderer)
+        return BG_ERR_INVALID_ARGUMENT;
+    macs_work before;
+    macs_context_get_work(renderer->ctx, &before);
+    bg_status st = render(renderer, scene, settings, target);
+    bgi_gpu_work_end(renderer, &before);
     return st;
 }
