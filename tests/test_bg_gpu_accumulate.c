@@ -24,21 +24,6 @@ static const bg_gpu_plan plans[] = {BG_PLAN_FUSED_TREE, BG_PLAN_FUSED, BG_PLAN_M
 static const char *const plan_name[] = {"tree", "fused", "multipass"};
 #define PLANS ((int)(sizeof plans / sizeof plans[0]))
 
-static bg_render_settings settings_of(bg_gpu_plan plan, int samples)
-{
-    bg_render_settings s = bg_render_settings_init();
-    s.gpu_plan = plan;
-    s.samples = samples;
-    s.threads = 2;
-    return s;
-}
-
-static void expect_ok(bg_renderer *r, bg_status st, const char *what)
-{
-    if (st != BG_OK)
-        fail_msg("%s: %s (%s)", what, bg_status_string(st), bg_renderer_error_message(r));
-}
-
 /* The accumulation's resolve into a fresh image of format (RGBA8 or RGBA32F), malloc'd. */
 static void *resolved(bg_renderer *r, const bg_accumulation *a, const bg_render_settings *set, bg_pixel_format f)
 {
@@ -46,7 +31,7 @@ static void *resolved(bg_renderer *r, const bg_accumulation *a, const bg_render_
     void *px = calloc(W * H, texel);
     assert_non_null(px);
     bg_image img = {W, H, f, 0, px};
-    expect_ok(r, bg_accumulation_resolve(r, a, set, &img), "bg_accumulation_resolve");
+    util_expect_render_ok(r, bg_accumulation_resolve(r, a, set, &img), "bg_accumulation_resolve");
     return px;
 }
 
@@ -56,7 +41,7 @@ static void *rendered(bg_renderer *r, bg_scene *s, const bg_render_settings *set
     void *px = calloc(W * H, texel);
     assert_non_null(px);
     bg_image img = {W, H, f, 0, px};
-    expect_ok(r, bg_render_gpu(r, s, set, &img), "bg_render_gpu");
+    util_expect_render_ok(r, bg_render_gpu(r, s, set, &img), "bg_render_gpu");
     return px;
 }
 
@@ -65,13 +50,13 @@ static void *rendered(bg_renderer *r, bg_scene *s, const bg_render_settings *set
 static void same_as_render(bg_scene *s, int k, const char *label)
 {
     bg_renderer *r = util_renderer(util_fx.ctx);
-    bg_render_settings set = settings_of(plans[k], N);
+    bg_render_settings set = util_plan_settings(plans[k], N);
     unsigned char *want8 = rendered(r, s, &set, BG_PIXEL_RGBA8);
     float *want32 = rendered(r, s, &set, BG_PIXEL_RGBA32F);
     bg_accumulation *a = NULL;
-    expect_ok(r, bg_accumulation_create(r, W, H, &a), "bg_accumulation_create");
+    util_expect_render_ok(r, bg_accumulation_create(r, W, H, &a), "bg_accumulation_create");
     for (int i = 0; i < N; i++)
-        expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, i, 1), "one sample");
+        util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, i, 1), "one sample");
     assert_int_equal(bg_accumulation_samples(a), N);
     unsigned char *got8 = resolved(r, a, &set, BG_PIXEL_RGBA8);
     float *got32 = resolved(r, a, &set, BG_PIXEL_RGBA32F);
@@ -83,9 +68,9 @@ static void same_as_render(bg_scene *s, int k, const char *label)
     free(got8);
     free(got32);
 
-    expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 1), "start over");
+    util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 1), "start over");
     assert_int_equal(bg_accumulation_samples(a), 1);
-    expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 1, N - 1), "the rest");
+    util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 1, N - 1), "the rest");
     got8 = resolved(r, a, &set, BG_PIXEL_RGBA8);
     assert_memory_equal(got8, want8, W * H * 4);
 
@@ -97,7 +82,7 @@ static void same_as_render(bg_scene *s, int k, const char *label)
     td.format = MACS_FORMAT_RGBA8;
     macs_texture *t = NULL;
     assert_int_equal(macs_texture_create(util_fx.ctx, &td, &t), MACS_OK);
-    expect_ok(r, bg_accumulation_resolve_to_texture(r, a, &set, t), "bg_accumulation_resolve_to_texture");
+    util_expect_render_ok(r, bg_accumulation_resolve_to_texture(r, a, &set, t), "bg_accumulation_resolve_to_texture");
     unsigned char *tex = malloc(W * H * 4);
     assert_non_null(tex);
     assert_int_equal(macs_texture_read(t, tex, 0), MACS_OK);
@@ -139,10 +124,10 @@ static void cpu_pixels_join_the_sum(void **state)
     bg_scene *s = util_triangle_stack_scene();
     same_as_render(s, 0, "triangle stack");
     bg_renderer *r = util_renderer(util_fx.ctx);
-    bg_render_settings set = settings_of(BG_PLAN_FUSED_TREE, N);
+    bg_render_settings set = util_plan_settings(BG_PLAN_FUSED_TREE, N);
     bg_accumulation *a = NULL;
-    expect_ok(r, bg_accumulation_create(r, W, H, &a), "bg_accumulation_create");
-    expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, N), "N samples");
+    util_expect_render_ok(r, bg_accumulation_create(r, W, H, &a), "bg_accumulation_create");
+    util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, N), "N samples");
     bg_render_stats st;
     bg_renderer_get_stats(r, &st);
     print_message("triangle stack: %llu CPU pixels over the %d samples\n", (unsigned long long)st.fallback_pixels, N);
@@ -165,14 +150,14 @@ static void refusals_and_cancels_change_nothing(void **state)
     (void)state;
     bg_scene *s = util_scene(SCENE_PAPER_EARTH_SHADOW);
     bg_renderer *r = util_renderer(util_fx.ctx), *other = util_renderer(util_fx.ctx);
-    bg_render_settings set = settings_of(BG_PLAN_AUTO, N);
+    bg_render_settings set = util_plan_settings(BG_PLAN_AUTO, N);
     bg_accumulation *a = NULL, *b = NULL;
-    expect_ok(r, bg_accumulation_create(r, W, H, &a), "create");
+    util_expect_render_ok(r, bg_accumulation_create(r, W, H, &a), "create");
     unsigned char px[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
     assert_int_equal(bg_accumulation_resolve(r, a, &set, &img), BG_ERR_INVALID_ARGUMENT);
     assert_non_null(strstr(bg_renderer_error_message(r), "no samples"));
-    expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 2), "two samples");
+    util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 2), "two samples");
     unsigned char *before = resolved(r, a, &set, BG_PIXEL_RGBA8);
 
     bg_renderer_clear_error(r);
@@ -188,7 +173,7 @@ static void refusals_and_cancels_change_nothing(void **state)
     assert_memory_equal(after, before, W * H * 4);
     free(after);
 
-    bg_render_settings eight = settings_of(BG_PLAN_AUTO, 8);
+    bg_render_settings eight = util_plan_settings(BG_PLAN_AUTO, 8);
     struct {
         bg_status st;
         const char *words;
@@ -213,7 +198,7 @@ static void refusals_and_cancels_change_nothing(void **state)
     REFUSE(bg_render_gpu_accumulate(r, s, &set, a, 1, INT_MAX), "[1, 2147483648) are not within");
     REFUSE(bg_render_gpu_accumulate(r, s, &set, a, INT_MAX, 1), "[2147483647, 2147483648) are not within");
     REFUSE(bg_render_gpu_accumulate(r, s, &eight, a, 2, 1), "of the pattern of 4");
-    expect_ok(other, bg_accumulation_create(other, W, H, &b), "another renderer's");
+    util_expect_render_ok(other, bg_accumulation_create(other, W, H, &b), "another renderer's");
     REFUSE(bg_render_gpu_accumulate(r, s, &set, b, 0, 1), "made by another renderer");
     bg_image small = {W - 1, H, BG_PIXEL_RGBA8, 0, px};
     REFUSE(bg_accumulation_resolve(r, a, &set, &small), "image is 47x36, the accumulation 48x36");
@@ -244,18 +229,18 @@ static void a_camera_move_compiles_nothing(void **state)
     bg_scene *s = util_scene(SCENE_GLASS);
     for (int k = 0; k < PLANS; k++) {
         bg_renderer *r = util_renderer(util_fx.ctx);
-        bg_render_settings set = settings_of(plans[k], N);
+        bg_render_settings set = util_plan_settings(plans[k], N);
         bg_accumulation *a = NULL;
-        expect_ok(r, bg_accumulation_create(r, W, H, &a), "create");
-        expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 2), "first frame");
+        util_expect_render_ok(r, bg_accumulation_create(r, W, H, &a), "create");
+        util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 2), "first frame");
         bg_camera c = bg_camera_init();
         c.position = bg_vec3_make(1.0 + k, 2.0, 9.0);
         c.look_at = bg_vec3_make(0.0, 0.5, 0.0);
         assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
         assert_int_equal(bg_scene_commit(s), BG_OK);
         uint64_t compiled = macs_context_programs_compiled(util_fx.ctx);
-        expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 1), "moved");
-        expect_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 1, 1), "at rest");
+        util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, 1), "moved");
+        util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 1, 1), "at rest");
         bg_render_stats st;
         bg_renderer_get_stats(r, &st);
         assert_int_equal(st.programs_compiled, 0);

@@ -24,21 +24,6 @@ static const bg_gpu_plan plans[] = {BG_PLAN_FUSED, BG_PLAN_FUSED_TREE, BG_PLAN_M
 static const char *const plan_name[] = {"fused", "tree", "multipass"};
 #define PLANS ((int)(sizeof plans / sizeof plans[0]))
 
-static bg_render_settings settings_of(bg_gpu_plan plan, int samples)
-{
-    bg_render_settings s = bg_render_settings_init();
-    s.gpu_plan = plan;
-    s.samples = samples;
-    s.threads = 2;
-    return s;
-}
-
-static void expect_ok(bg_renderer *r, bg_status st, const char *what)
-{
-    if (st != BG_OK)
-        fail_msg("%s: %s (%s)", what, bg_status_string(st), bg_renderer_error_message(r));
-}
-
 static void print_work(const char *label, const macs_work *w)
 {
     print_message("%s: draws %llu, program binds %llu, framebuffer binds %llu, uniform calls %llu, uploaded %llu B, "
@@ -54,8 +39,8 @@ static macs_work cached_frame(bg_renderer *r, bg_scene *s, const bg_render_setti
                               void *pixels)
 {
     bg_image img = {W, H, f, 0, pixels};
-    expect_ok(r, bg_render_gpu(r, s, set, &img), "first frame");
-    expect_ok(r, bg_render_gpu(r, s, set, &img), "cached frame");
+    util_expect_render_ok(r, bg_render_gpu(r, s, set, &img), "first frame");
+    util_expect_render_ok(r, bg_render_gpu(r, s, set, &img), "cached frame");
     bg_render_stats st;
     bg_renderer_get_stats(r, &st);
     return st.gl_work;
@@ -67,12 +52,12 @@ static void stats_are_the_context_difference(void **state)
     (void)state;
     bg_scene *s = util_scene(SCENE_PAPER_EARTH);
     bg_renderer *r = util_renderer(util_fx.ctx);
-    bg_render_settings set = settings_of(BG_PLAN_AUTO, 1);
+    bg_render_settings set = util_plan_settings(BG_PLAN_AUTO, 1);
     unsigned char px[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
     macs_work before, after;
     macs_context_get_work(util_fx.ctx, &before);
-    expect_ok(r, bg_render_gpu(r, s, &set, &img), "frame");
+    util_expect_render_ok(r, bg_render_gpu(r, s, &set, &img), "frame");
     macs_context_get_work(util_fx.ctx, &after);
     bg_render_stats st;
     bg_renderer_get_stats(r, &st);
@@ -102,7 +87,7 @@ static void one_sample_rgba8(void **state)
     (void)state;
     bg_scene *s = util_scene(SCENE_PAPER_EARTH);
     bg_renderer *r = util_renderer(util_fx.ctx);
-    bg_render_settings set = settings_of(BG_PLAN_AUTO, 1);
+    bg_render_settings set = util_plan_settings(BG_PLAN_AUTO, 1);
     unsigned char px[W * H * 4];
     macs_work w = cached_frame(r, s, &set, BG_PIXEL_RGBA8, px);
     print_work("paper_earth, 1 sample, RGBA8, cached", &w);
@@ -123,7 +108,7 @@ static void float_image(void **state)
     float *px = malloc((size_t)W * H * 16);
     assert_non_null(px);
     for (int samples = 1; samples <= N; samples += N - 1) {
-        bg_render_settings set = settings_of(BG_PLAN_AUTO, samples);
+        bg_render_settings set = util_plan_settings(BG_PLAN_AUTO, samples);
         macs_work w = cached_frame(r, s, &set, BG_PIXEL_RGBA32F, px);
         char label[64];
         snprintf(label, sizeof label, "paper_earth, %d sample(s), RGBA32F, cached", samples);
@@ -145,16 +130,16 @@ static void camera_move(void **state)
     bg_scene *s = util_scene(SCENE_PAPER_EARTH_SHADOW);
     for (int k = 0; k < PLANS; k++) {
         bg_renderer *r = util_renderer(util_fx.ctx);
-        bg_render_settings set = settings_of(plans[k], 1);
+        bg_render_settings set = util_plan_settings(plans[k], 1);
         unsigned char px[W * H * 4];
         bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-        expect_ok(r, bg_render_gpu(r, s, &set, &img), "first frame");
+        util_expect_render_ok(r, bg_render_gpu(r, s, &set, &img), "first frame");
         bg_camera c = bg_camera_init();
         c.position = bg_vec3_make(1.0 + k, 2.0, 9.0);
         c.look_at = bg_vec3_make(0.0, 0.5, 0.0);
         assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
         assert_int_equal(bg_scene_commit(s), BG_OK);
-        expect_ok(r, bg_render_gpu(r, s, &set, &img), "moved");
+        util_expect_render_ok(r, bg_render_gpu(r, s, &set, &img), "moved");
         bg_render_stats st;
         bg_renderer_get_stats(r, &st);
         char label[64];
@@ -239,11 +224,11 @@ static void n_samples_rgba8(void **state)
         bg_scene *s = util_scene(scenes[i]);
         bg_renderer *r = util_renderer(util_fx.ctx);
         for (int e = 0; e < 2; e++) {
-            bg_render_settings set = settings_of(BG_PLAN_AUTO, N);
+            bg_render_settings set = util_plan_settings(BG_PLAN_AUTO, N);
             set.encoding = e ? BG_ENCODING_LINEAR : BG_ENCODING_SRGB;
             macs_work w = cached_frame(r, s, &set, BG_PIXEL_RGBA8, got);
             bg_image fimg = {W, H, BG_PIXEL_RGBA32F, 0, want};
-            expect_ok(r, bg_render_gpu(r, s, &set, &fimg), "float frame");
+            util_expect_render_ok(r, bg_render_gpu(r, s, &set, &fimg), "float frame");
             int differ = 0;
             for (int p = 0; p < W * H; p++)
                 for (int c = 0; c < 4; c++) {
@@ -284,9 +269,9 @@ static void to_texture(void **state)
     for (int k = 0; k < 2; k++) {
         bg_renderer *r = util_renderer(util_fx.ctx);
         for (int samples = 1; samples <= N; samples += N - 1) {
-            bg_render_settings set = settings_of(unmarked[k], samples);
-            expect_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "first frame");
-            expect_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "cached frame");
+            bg_render_settings set = util_plan_settings(unmarked[k], samples);
+            util_expect_render_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "first frame");
+            util_expect_render_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "cached frame");
             bg_render_stats st;
             bg_renderer_get_stats(r, &st);
             char label[96];
@@ -317,7 +302,7 @@ static void plan_budgets(void **state)
         for (int k = 0; k < PLANS; k++) {
             bg_renderer *r = util_renderer(util_fx.ctx);
             for (int samples = 1; samples <= 16; samples += 15) {
-                bg_render_settings set = settings_of(plans[k], samples);
+                bg_render_settings set = util_plan_settings(plans[k], samples);
                 macs_work w = cached_frame(r, s, &set, BG_PIXEL_RGBA8, px);
                 char label[96];
                 snprintf(label, sizeof label, "%s, %s, %d sample(s), RGBA8, cached", scenes_name(scenes[i]),

@@ -268,3 +268,18 @@ void util_expect_multipass_refuses_environment(bg_scene *s, const bg_render_sett
     assert_non_null(strstr(bg_renderer_error_message(r), "environment"));
     bg_renderer_destroy(r);
 }
+
+bg_render_settings util_plan_settings(bg_gpu_plan plan, int samples)
+{
+    bg_render_settings s = bg_render_settings_init();
+    s.gpu_plan = plan;
+    s.samples = samples;
+    s.threads = 2;
+    return s;
+}
+
+void util_expect_render_ok(bg_renderer *r, bg_status st, const char *what)
+{
+    if (st != BG_OK)
+        fail_msg("%s: %s (%s)", what, bg_status_string(st), bg_renderer_error_message(r));
+}

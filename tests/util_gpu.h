@@ -60,6 +60,11 @@ bg_status util_profiled_render_gpu_accumulate(bg_renderer *r, bg_scene *s, const
     util_profiled_render_gpu_accumulate(r, s, set, acc, first, count)
 #endif
 
+/* The default settings with the given plan and samples, and 2 CPU threads for the reference. */
+bg_render_settings util_plan_settings(bg_gpu_plan plan, int samples);
+/* Fails the test with what, the status and r's message unless st is BG_OK. */
+void util_expect_render_ok(bg_renderer *r, bg_status st, const char *what);
+
 /* Renders s with bg_render_gpu (skipping as util_skip_if_profile_refuses says); on failure fails the
  * test with label, the status, the renderer's
  * message and the message of ctx (the MACS context r renders with). */
