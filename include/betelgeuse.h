@@ -597,8 +597,10 @@ typedef struct bg_render_settings {
     double dmax;        /* GPU renderer only: the distance up to which depth is linear and finest
                            (t / (2 dmax)); farther hits are kept on a compressed scale
                            (docs/gpu_pipeline.md); 0 = per level from the scene's bounds */
-    bool gpu_timing;    /* GPU renderer only: measure wall time per phase and count shaded fragments
-                           (waits for the GPU between phases, so it slows the frame down) */
+    bool gpu_timing;    /* GPU renderer only: measure the time of each phase (bg_render_stats.timing):
+                           with GPU timer queries where GL has them, which wait for nothing until the
+                           call's end, else with the wall clock between glFinish calls, which slows
+                           the frame; and count shaded fragments (occlusion queries) */
     unsigned gpu_disable_skips; /* GPU renderer only: BG_SKIP_* bits to switch off (testing) */
     bg_gpu_plan gpu_plan; /* GPU renderer only: the frame's plan; 0 = BG_PLAN_AUTO */
     int samples;        /* camera rays per pixel, 0 .. BG_MAX_SAMPLES; 0 and 1 = one ray at the pixel
@@ -767,6 +769,13 @@ typedef enum bg_phase {
     BG_PHASE_COUNT_
 } bg_phase;
 
+/* How bg_render_settings.gpu_timing measured the phases. */
+typedef enum bg_timing {
+    BG_TIMING_NONE = 0,   /* not timed */
+    BG_TIMING_GPU_TIMERS, /* GL_ARB_timer_query or GL_EXT_timer_query: nothing waits between phases */
+    BG_TIMING_WALL_CLOCK  /* no timer queries: glFinish around each phase, which slows the frame */
+} bg_timing;
+
 #define BG_STATS_MAX_LEVELS 65
 
 /* What the last bg_render_gpu call did. */
@@ -784,9 +793,16 @@ typedef struct bg_render_stats {
     int gbuffer_half_targets;        /* how many of those were RGBA16F (bg_renderer_desc.half_gbuffer) */
     int depth_bits;                  /* 24, or 32 for a float depth buffer */
     bool timed;                      /* the fields below were measured (gpu_timing) */
-    double phase_ms[BG_PHASE_COUNT_];
-    double total_ms;
-    uint64_t shaded_fragments;       /* fragments kept by shadow and light passes (gpu_timing) */
+    bg_timing timing;                /* how: GPU timers, or the wall clock where GL has none */
+    double phase_ms[BG_PHASE_COUNT_]; /* per phase, summed over the call's sample passes and tiles.
+                                        GPU timers: the GPU's time on the phase's GL commands (host
+                                        work in a phase, such as flipping the rows read back or the
+                                        CPU's fallback pixels, is not in it). Wall clock: the time
+                                        between glFinish calls around the phase, host work included */
+    double total_ms;                 /* wall time of the whole call, from its start until its last
+                                        command was done and the timers read */
+    uint64_t shaded_fragments;       /* fragments kept by shadow and light passes (gpu_timing; the
+                                        multipass plan's last sample pass) */
     int intersect_objects;           /* objects tested by intersection passes, summed over the passes
                                         (over passes[BG_PASS_INTERSECT]: objects per pass) */
     int shadow_objects;              /* the same for shadow passes */

@@ -255,6 +255,7 @@ typedef struct macs_features {
     bool depth_buffer_float;     /* ARB_depth_buffer_float */
     bool color_buffer_float;     /* ARB_color_buffer_float */
     bool half_float_pixel;       /* ARB_half_float_pixel */
+    bool timer_query;            /* ARB_timer_query or EXT_timer_query: macs_timer measures GPU time */
     bool float32_filter;         /* RGBA32F inputs filter linearly (macs_float_feature) */
     bool float16_filter;         /* RGBA16F inputs filter linearly */
     bool float32_blend;          /* RGBA32F outputs blend */
@@ -320,8 +321,10 @@ typedef struct macs_work {
                                    without data counts 0) */
     uint64_t readback_bytes;    /* texel bytes glGetTexImage wrote into host memory, counted the same way */
     uint64_t syncs;             /* calls that wait for the GPU: glFinish, glGetTexImage, and a query's
-                                   GL_QUERY_RESULT read (macs_pass_occlusion_result) */
+                                   GL_QUERY_RESULT read (macs_pass_occlusion_result, macs_timer_result) */
     uint64_t programs_compiled; /* programs compiled and linked (macs_context_programs_compiled) */
+    uint64_t timer_results;     /* macs_timer_result reads (each one of the syncs above; a read after
+                                   the work is done, such as after a read-back, finds the time ready) */
 } macs_work;
 
 /* Copies the context's work counters (all zero for a NULL context; work may not be NULL). */
@@ -338,6 +341,35 @@ MACS_API void macs_context_get_features(const macs_context *ctx, macs_features *
 
 /* Waits until GL has finished every command issued so far (glFinish): for timing, not correctness. */
 MACS_API void macs_context_finish(macs_context *ctx);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* GPU timers                                                                                      */
+
+/* A GPU timer: the time the GPU spent on the GL commands issued between macs_timer_begin and
+ * macs_timer_end, from a GL_TIME_ELAPSED query (GL_ARB_timer_query, else GL_EXT_timer_query;
+ * macs_features.timer_query says whether either is there). Neither begin nor end waits, and nothing
+ * is drained between commands, so timing does not change the work it times. macs_timer_result waits
+ * until the commands are done: read it after the work has finished anyway (after a read-back), and
+ * it costs no stall. GL times one stretch at a time, so one timer of a context runs at once. A timer
+ * may be begun again once ended; its result is then of the latest stretch. Destroyed with its
+ * context at the latest. */
+typedef struct macs_timer macs_timer;
+
+/* MACS_ERR_GL_UNSUPPORTED, naming both extensions, where the context has neither (or its desc or
+ * profile hides them). */
+MACS_API macs_status macs_timer_create(macs_context *ctx, macs_timer **timer);
+/* MACS_ERR_INVALID_ARGUMENT when this or another timer of the context is running. */
+MACS_API macs_status macs_timer_begin(macs_timer *timer);
+/* MACS_ERR_INVALID_ARGUMENT when the timer is not running. */
+MACS_API macs_status macs_timer_end(macs_timer *timer);
+/* The GPU time of the timer's last stretch, in nanoseconds, as the driver reports it; waits for it.
+ * MACS_ERR_NO_RESULT when the timer was never ended, or is running. A driver's value may be wrong:
+ * Mesa's llvmpipe (22.3) reports its absolute clock for a stretch begun before the GL context's first
+ * draw, so a caller should hold a time to the host's clock (no stretch outlasts the wall time from its
+ * begin to its result). */
+MACS_API macs_status macs_timer_result(macs_timer *timer, uint64_t *nanoseconds);
+/* Ends a running timer first. NULL is ignored. */
+MACS_API void macs_timer_destroy(macs_timer *timer);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Textures                                                                                        */

@@ -237,6 +237,8 @@ static macs_status read_extensions(macs_context *ctx, int major, const macs_cont
     ctx->features.depth_buffer_float = has(ctx, ext, hidden, "GL_ARB_depth_buffer_float");
     ctx->features.color_buffer_float = has(ctx, ext, hidden, "GL_ARB_color_buffer_float");
     ctx->features.half_float_pixel = has(ctx, ext, hidden, "GL_ARB_half_float_pixel");
+    ctx->timer_arb = has(ctx, ext, hidden, "GL_ARB_timer_query");
+    ctx->features.timer_query = ctx->timer_arb || has(ctx, ext, hidden, "GL_EXT_timer_query");
     unsigned lacking = desc->lacking_float_features | (ctx->profile ? ctx->profile->lacking_float_features : 0u);
     ctx->features.float32_filter = !(lacking & MACS_FLOAT32_FILTER);
     ctx->features.float16_filter = !(lacking & MACS_FLOAT16_FILTER);
@@ -252,6 +254,7 @@ static macs_status load_gl_table(macs_context *ctx, const macs_context_desc *des
     if (macsi_gl_load(&ctx->gl, desc->get_proc_address, desc->get_proc_address_user,
                      !ctx->features.arb_framebuffer_object, missing_fns, sizeof missing_fns) != MACS_OK)
         return macsi_fail(ctx, MACS_ERR_GL_UNSUPPORTED, "missing GL function(s): %s", missing_fns);
+    macsi_timer_probe(ctx);
     macsi_gl_drain(ctx);
     return MACS_OK;
 }
@@ -351,6 +354,8 @@ void macs_context_destroy(macs_context *ctx)
         macs_texture_destroy(ctx->textures);
     while (ctx->depth_stencils)
         macs_depth_stencil_destroy(ctx->depth_stencils);
+    while (ctx->timers)
+        macs_timer_destroy(ctx->timers);
     /* Table entries are NULL when creation failed before loading; then no GL object exists either. */
     if (ctx->gl.DeleteShader) {
         macsi_program_cache_destroy(ctx);

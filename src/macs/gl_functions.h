@@ -93,6 +93,8 @@
     X(void, RenderbufferStorage, (GLenum target, GLenum internalformat, GLsizei width, GLsizei height))
 
 #define MACS_GL_OPTIONAL(X) \
-    X(void, ClampColorARB, (GLenum target, GLenum clamp))
+    X(void, ClampColorARB, (GLenum target, GLenum clamp)) \
+    X(void, GetQueryObjectui64v, (GLuint id, GLenum pname, GLuint64 *params)) \
+    X(void, GetQueryObjectui64vEXT, (GLuint id, GLenum pname, GLuint64 *params))
 
 #endif

@@ -113,6 +113,11 @@ struct macs_context {
     macs_texture *textures;
     macs_depth_stencil *depth_stencils;
     macs_pass *passes;
+    macs_timer *timers;
+    macs_timer *running_timer; /* the one timer between begin and end: GL times one stretch at a time */
+    bool timer_arb; /* GL_ARB_timer_query is there (else features.timer_query means the EXT one) */
+    /* glGetQueryObjectui64v of the timer extension found (ARB or EXT), NULL without one */
+    void (GLAPIENTRY *query_result64)(GLuint id, GLenum pname, GLuint64 *params);
 };
 
 /* alloc.c: allocation through the caller's hooks; every result must be checked. */
@@ -188,6 +193,9 @@ macs_status macsi_fbo_check(macs_context *ctx, const char *what);
 macs_status macsi_split_check_state(macs_context *ctx, const macs_stencil_state *stencil, int chunk_count);
 void macsi_split_apply_state(const macs_pass *pass, int chunk, bool caller_ds, bool any_ds);
 
+/* timer.c: picks the loaded result function of the timer extension found; none loaded, no timers. */
+void macsi_timer_probe(macs_context *ctx);
+
 /* query.c */
 macs_status macsi_query_begin(macs_pass *pass);
 void macsi_query_end(macs_pass *pass);
@@ -215,6 +223,7 @@ void macsi_tex_sub_image(macs_context *ctx, const int region[4], GLenum format, 
 void macsi_get_tex_image(macs_context *ctx, GLsizei width, GLsizei height, GLenum format, GLenum type, void *pixels);
 void macsi_finish(macs_context *ctx);
 void macsi_query_result(macs_context *ctx, GLuint query, GLuint *value);
+void macsi_timer_result(macs_context *ctx, GLuint query, GLuint64 *nanoseconds);
 
 /* GL enum of a comparison, with the default given. */
 GLenum macsi_gl_compare(macs_compare c, GLenum fallback);

@@ -23,8 +23,10 @@ static const macsi_profile profiles[] = {
                      reports more; 896 is the harder) */
             32,   /* varying floats: nv30 fragment PIPE_SHADER_CAP_MAX_INPUTS 8 vec4 */
         },
-        /* ARB_depth_buffer_float came with GeForce 8 (G80). */
-        "GL_ARB_depth_buffer_float",
+        /* ARB_depth_buffer_float came with GeForce 8 (G80). EXT_timer_query (2006) was NVIDIA's for
+         * the NV4x generation on; the ARB one (2010) is taken away as an estimate, the harder choice,
+         * which also keeps MACS's EXT timer path in use. */
+        "GL_ARB_depth_buffer_float GL_ARB_timer_query",
         /* GPU Gems 2, ch. 30 (NVIDIA, "The GeForce 6 Series GPU Architecture"): HDR through fp16
          * surfaces, texture filtering and blending; fp32 textures neither filter nor blend before
          * GeForce 8 (NVIDIA's GPU Programming Guide says the same); nouveau filters no float at all. */
@@ -43,8 +45,8 @@ static const macsi_profile profiles[] = {
         },
         /* No float depth on R5xx; ATI's last driver for the X1000 (Catalyst 9.3) offered only
          * EXT_framebuffer_object (an estimate from its extension lists; Mesa's r300 has the ARB one),
-         * so the profile takes MACS down the EXT path. */
-        "GL_ARB_depth_buffer_float GL_ARB_framebuffer_object",
+         * so the profile takes MACS down the EXT path. r300 answers no time-elapsed query: no timers. */
+        "GL_ARB_depth_buffer_float GL_ARB_framebuffer_object GL_ARB_timer_query GL_EXT_timer_query",
         /* r300 r300_is_blending_supported: RGBA16F blends on r500 only, no 32-bit float blends; r300
          * exposes no float texture filtering, and R5xx hardware filters no float format. */
         MACS_FLOAT32_FILTER | MACS_FLOAT16_FILTER | MACS_FLOAT32_BLEND,
@@ -61,7 +63,8 @@ static const macsi_profile profiles[] = {
                      no Gen4 could push; 1024 is Intel's Windows driver's order and the harder */
             64,   /* varying floats: an estimate, Mesa's 16 vec4 default for pre-Gen6 (Gen6 has 32) */
         },
-        "GL_ARB_depth_buffer_float",
+        /* Timer queries: an estimate, none (the harder choice; Gen4's timestamps were unreliable). */
+        "GL_ARB_depth_buffer_float GL_ARB_timer_query GL_EXT_timer_query",
         /* i965 brw_surface_formats.c: R32G32B32A32_FLOAT filters from Gen5 only ("50"); it renders
          * and alpha-blends on Gen4; R16G16B16A16_FLOAT samples, filters, renders and blends. */
         MACS_FLOAT32_FILTER,
@@ -78,7 +81,8 @@ static const macsi_profile profiles[] = {
             32, /* varying floats: GL 2.1 table 6.37, MAX_VARYING_FLOATS at least 32 */
         },
         /* Everything optional MACS uses is gone. */
-        "GL_ARB_depth_buffer_float GL_ARB_color_buffer_float GL_ARB_half_float_pixel",
+        "GL_ARB_depth_buffer_float GL_ARB_color_buffer_float GL_ARB_half_float_pixel GL_ARB_timer_query "
+        "GL_EXT_timer_query",
         /* GL 2.1 cannot be asked, so nothing may be assumed. */
         MACS_FLOAT32_FILTER | MACS_FLOAT16_FILTER | MACS_FLOAT32_BLEND | MACS_FLOAT16_BLEND,
         21,

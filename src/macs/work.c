@@ -1,7 +1,8 @@
 /* The work counters (macs_work): every GL call they count goes through one function here, which
  * counts it and issues it, so a count cannot drift from the calls. The rest of libmacs calls these
  * instead of the table's entries for glDrawArrays, glUseProgram, glBindFramebuffer, glUniform*,
- * glTexImage2D, glTexSubImage2D, glGetTexImage, glFinish and glGetQueryObjectuiv(GL_QUERY_RESULT).
+ * glTexImage2D, glTexSubImage2D, glGetTexImage, glFinish and the GL_QUERY_RESULT reads of glGetQueryObjectuiv
+ * and glGetQueryObjectui64v.
  * Bytes are the texel data a call hands over or takes: width x height x bytes per texel of the
  * format and type given, whatever the row stride in host memory. */
 #include "internal.h"
@@ -9,7 +10,7 @@
 /* The fields of macs_work, once, for the difference. */
 #define MACS_WORK_FIELDS(X) \
     X(draws) X(program_binds) X(framebuffer_binds) X(uniform_calls) X(upload_bytes) X(readback_bytes) \
-    X(syncs) X(programs_compiled)
+    X(syncs) X(programs_compiled) X(timer_results)
 
 /* Bytes per texel of the GL_RGBA data MACS exchanges (it never uses another client format). */
 static uint64_t texel_bytes(GLenum format, GLenum type)
@@ -94,6 +95,14 @@ void macsi_query_result(macs_context *ctx, GLuint query, GLuint *value)
     /* GL_QUERY_RESULT (not GL_QUERY_RESULT_AVAILABLE) waits until the query's commands are done. */
     ctx->work.syncs++;
     ctx->gl.GetQueryObjectuiv(query, GL_QUERY_RESULT, value);
+}
+
+void macsi_timer_result(macs_context *ctx, GLuint query, GLuint64 *nanoseconds)
+{
+    /* The same wait as above; a timer read after the frame's read-back finds its result ready. */
+    ctx->work.syncs++;
+    ctx->work.timer_results++;
+    ctx->query_result64(query, GL_QUERY_RESULT, nanoseconds);
 }
 
 void macs_context_get_work(const macs_context *ctx, macs_work *work)

@@ -379,17 +379,16 @@ static bg_status resolve_to_texture(bg_renderer *renderer, const bg_accumulation
     return ms ? bgi_gpu_fail_macs(r, ms, "the accumulation's resolve pass") : BG_OK;
 }
 
-/* The entry points: each is its body above with the GL work it issued in stats.gl_work. */
+/* The entry points: each is its body above with the GL work it issued in stats.gl_work (and, adding
+ * samples, its phases timed); a resolve has no phases. */
 bg_status bg_render_gpu_accumulate(bg_renderer *renderer, bg_scene *scene, const bg_render_settings *settings,
                                    bg_accumulation *accumulation, int first, int count)
 {
     if (!renderer)
         return BG_ERR_INVALID_ARGUMENT;
-    macs_work before;
-    macs_context_get_work(renderer->ctx, &before);
-    bg_status st = accumulate(renderer, scene, settings, accumulation, first, count);
-    bgi_gpu_work_end(renderer, &before);
-    return st;
+    gpu_entry e;
+    bgi_gpu_entry_begin(renderer, settings, &e);
+    return bgi_gpu_entry_end(renderer, &e, accumulate(renderer, scene, settings, accumulation, first, count));
 }
 
 bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *accumulation,
@@ -397,11 +396,9 @@ bg_status bg_accumulation_resolve(bg_renderer *renderer, const bg_accumulation *
 {
     if (!renderer)
         return BG_ERR_INVALID_ARGUMENT;
-    macs_work before;
-    macs_context_get_work(renderer->ctx, &before);
-    bg_status st = resolve(renderer, accumulation, settings, image);
-    bgi_gpu_work_end(renderer, &before);
-    return st;
+    gpu_entry e;
+    bgi_gpu_entry_begin(renderer, NULL, &e);
+    return bgi_gpu_entry_end(renderer, &e, resolve(renderer, accumulation, settings, image));
 }
 
 bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_accumulation *accumulation,
@@ -409,9 +406,7 @@ bg_status bg_accumulation_resolve_to_texture(bg_renderer *renderer, const bg_acc
 {
     if (!renderer)
         return BG_ERR_INVALID_ARGUMENT;
-    macs_work before;
-    macs_context_get_work(renderer->ctx, &before);
-    bg_status st = resolve_to_texture(renderer, accumulation, settings, target);
-    bgi_gpu_work_end(renderer, &before);
-    return st;
+    gpu_entry e;
+    bgi_gpu_entry_begin(renderer, NULL, &e);
+    return bgi_gpu_entry_end(renderer, &e, resolve_to_texture(renderer, accumulation, settings, target));
 }

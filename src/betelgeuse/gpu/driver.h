@@ -12,9 +12,14 @@
 /* Frees every GPU object (both plans' and the shared ones) so the next render starts afresh. */
 void bgi_gpu_release_all(bg_renderer *r);
 
-/* The GL work of one entry call: before is macs_context_get_work's copy at its start; stats.gl_work
- * becomes the work since, whatever the call did to the other statistics. */
-void bgi_gpu_work_end(bg_renderer *r, const macs_work *before);
+/* What an entry call measures of itself: its GL work (stats.gl_work, the work since begin, whatever
+ * the call did to the other statistics) and, with settings.gpu_timing, its phases (phase_clock.c).
+ * settings may be NULL (not timed). end returns st, or the timers' failure. */
+typedef struct gpu_entry {
+    macs_work before;
+} gpu_entry;
+void bgi_gpu_entry_begin(bg_renderer *r, const bg_render_settings *settings, gpu_entry *e);
+bg_status bgi_gpu_entry_end(bg_renderer *r, const gpu_entry *e, bg_status st);
 
 /* ---- frame.c ---- */
 /* One frame of the committed scene into out (whose arguments the entry point checked, view their

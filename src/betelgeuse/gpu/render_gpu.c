@@ -26,9 +26,7 @@ bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_render_
 {
     if (!renderer)
         return BG_ERR_INVALID_ARGUMENT;
-    macs_work before;
-    macs_context_get_work(renderer->ctx, &before);
-    bg_status st = render(renderer, scene, settings, image);
-    bgi_gpu_work_end(renderer, &before);
-    return st;
+    gpu_entry e;
+    bgi_gpu_entry_begin(renderer, settings, &e);
+    return bgi_gpu_entry_end(renderer, &e, render(renderer, scene, settings, image));
 }

@@ -79,6 +79,7 @@ void bgi_gpu_release_all(bg_renderer *r)
     bgi_free(&r->allocator, r->readback);
     r->readback = NULL;
     r->readback_size = 0;
+    bgi_gpu_timing_release(r);
 }
 
 void bg_renderer_destroy(bg_renderer *renderer)
@@ -107,11 +108,20 @@ void bg_renderer_clear_error(bg_renderer *renderer)
     macs_first_error_clear(&renderer->error);
 }
 
-void bgi_gpu_work_end(bg_renderer *r, const macs_work *before)
+void bgi_gpu_entry_begin(bg_renderer *r, const bg_render_settings *settings, gpu_entry *e)
 {
+    macs_context_get_work(r->ctx, &e->before);
+    bgi_gpu_timing_begin(r, settings && settings->gpu_timing);
+}
+
+bg_status bgi_gpu_entry_end(bg_renderer *r, const gpu_entry *e, bg_status st)
+{
+    /* The timers' reads are the call's work too. */
+    st = bgi_gpu_timing_end(r, st);
     macs_work after;
     macs_context_get_work(r->ctx, &after);
-    r->stats.gl_work = macs_work_since(&after, before);
+    r->stats.gl_work = macs_work_since(&after, &e->before);
+    return st;
 }
 
 void bg_renderer_get_stats(const bg_renderer *renderer, bg_render_stats *stats)

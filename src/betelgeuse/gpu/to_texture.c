@@ -55,9 +55,7 @@ bg_status bg_render_gpu_to_texture(bg_renderer *renderer, bg_scene *scene, const
 {
     if (!renderer)
         return BG_ERR_INVALID_ARGUMENT;
-    macs_work before;
-    macs_context_get_work(renderer->ctx, &before);
-    bg_status st = render(renderer, scene, settings, target);
-    bgi_gpu_work_end(renderer, &before);
-    return st;
+    gpu_entry e;
+    bgi_gpu_entry_begin(renderer, settings, &e);
+    return bgi_gpu_entry_end(renderer, &e, render(renderer, scene, settings, target));
 }

@@ -354,10 +354,7 @@ static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_re
 static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                         const gpu_frame_out *o, gpu_fused_layout *l, bool forced, char *why, size_t why_size)
 {
-    bool timing = settings->gpu_timing;
-    double clock = 0.0;
-    bgi_gpu_phase_start(r, timing, &clock);
-    double start = clock;
+    bgi_gpu_phase_start(r);
     program_text p;
     bg_status st = program_text_make(r, l, &p);
     if (st == BG_OK)
@@ -367,23 +364,19 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
         return st;
     macs_texture *out = NULL;
     st = bind_frame(r, state, settings, o, &out);
-    bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_SETUP);
+    bgi_gpu_phase_end(r, BG_PHASE_SETUP);
     if (st == BG_OK) {
         macs_status ms = macs_pass_run(r->fused->pass, NULL);
         if (ms)
             st = bgi_gpu_fail_macs(r, ms, "running the fused pass");
     }
-    bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_INTERSECT);
+    bgi_gpu_phase_end(r, BG_PHASE_INTERSECT);
     if (st == BG_OK)
         st = finish(r, state, settings, o, out);
-    bgi_gpu_phase_end(r, timing, &clock, BG_PHASE_RESOLVE);
+    bgi_gpu_phase_end(r, BG_PHASE_RESOLVE);
     if (st != BG_OK)
         return st;
     frame_stats(r, state, o);
-    if (timing) {
-        r->stats.timed = true;
-        r->stats.total_ms = bgi_gpu_now_ms() - start;
-    }
     return BG_OK;
 }
 

@@ -9,13 +9,20 @@
 #include "../../common/alloc.h"
 #include "multipass.h"
 
+/* Counts pending at once; one more reads the oldest first. A frame has a light pass per light group
+ * and a shadow pass per batch of each, so this is rarely reached. */
+#define COUNTED_MAX 32
+
 typedef struct frame {
     bg_renderer *r;
     const bg_scene_state *state;
     const bg_render_settings *settings;
     double dmax[BG_MAX_DEPTH + 1];
     bool timing;
-    double clock;
+    /* Shadow and light passes whose kept fragments are counted but not yet read (timing): read when
+     * the pass runs again or after the frame's end, so that counting waits as little as it can. */
+    macs_pass *counted[COUNTED_MAX];
+    int counted_count;
     /* Secondary rays only live on pixels whose camera ray met an object that can bounce: the union
      * of those objects' screen rectangles bounds every secondary set (a pixel's rays stay its own). */
     bool bounce_scissor;
@@ -24,12 +31,12 @@ typedef struct frame {
 
 static void phase_start(frame *f)
 {
-    bgi_gpu_phase_start(f->r, f->timing, &f->clock);
+    bgi_gpu_phase_start(f->r);
 }
 
 static void phase_end(frame *f, bg_phase phase)
 {
-    bgi_gpu_phase_end(f->r, f->timing, &f->clock, phase);
+    bgi_gpu_phase_end(f->r, phase);
 }
 
 static bg_status run(frame *f, macs_pass *pass, bg_pass_kind kind, const macs_run_desc *desc)
@@ -76,19 +83,43 @@ static void bounce_scissor(frame *f)
     }
 }
 
-/* Runs a shadow or light pass, counting its kept fragments when timing (a query waits for them). */
+/* Adds the kept fragments of counted pass i to the statistics (a query read: waits for that run). */
+static bg_status count_read(frame *f, int i)
+{
+    uint64_t n = 0;
+    macs_status ms = macs_pass_occlusion_result(f->counted[i], &n);
+    if (ms)
+        return bgi_gpu_fail_macs(f->r, ms, "fragment count");
+    f->r->stats.shaded_fragments += n;
+    f->counted[i] = f->counted[--f->counted_count];
+    return BG_OK;
+}
+
+/* Reads every count still pending: after the frame's end, whose read-back has waited for them. */
+static bg_status count_read_all(frame *f)
+{
+    bg_status st = BG_OK;
+    while (f->counted_count > 0 && st == BG_OK)
+        st = count_read(f, f->counted_count - 1);
+    return st;
+}
+
+/* Runs a shadow or light pass, counting its kept fragments when timing. A pass's count is read
+ * before its next run (a query holds one run's); the last ones after the frame. */
 static bg_status run_counted(frame *f, macs_pass *pass, bg_pass_kind kind, int level)
 {
     macs_run_desc d = set_run(f, level);
     d.occlusion_query = f->timing;
-    bg_status st = run(f, pass, kind, &d);
-    if (st == BG_OK && f->timing) {
-        uint64_t n = 0;
-        macs_status ms = macs_pass_occlusion_result(pass, &n);
-        if (ms)
-            return bgi_gpu_fail_macs(f->r, ms, "fragment count");
-        f->r->stats.shaded_fragments += n;
-    }
+    bg_status st = BG_OK;
+    for (int i = 0; i < f->counted_count && st == BG_OK && f->timing; i++)
+        if (f->counted[i] == pass)
+            st = count_read(f, i);
+    if (st == BG_OK && f->timing && f->counted_count == COUNTED_MAX)
+        st = count_read(f, 0);
+    if (st == BG_OK)
+        st = run(f, pass, kind, &d);
+    if (st == BG_OK && f->timing)
+        f->counted[f->counted_count++] = pass;
     return st;
 }
 
@@ -492,9 +523,6 @@ static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, siz
     f.state = state;
     f.settings = settings;
     f.timing = settings->gpu_timing;
-    double start = f.timing ? bgi_gpu_now_ms() : 0.0;
-    if (f.timing)
-        macs_context_finish(r->ctx);
     bgi_gpu_dmax_levels(state, settings, &r->view, f.dmax);
 
     phase_start(&f);
@@ -524,6 +552,8 @@ static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, siz
         st = finish(&f, out);
         phase_end(&f, BG_PHASE_RESOLVE);
     }
+    if (st == BG_OK)
+        st = count_read_all(&f);
     if (st != BG_OK) {
         /* Start the next render from nothing: a failure may have left any object half made. */
         bgi_gpu_multipass_release(r);
@@ -534,10 +564,6 @@ static bg_status render(bg_renderer *r, const gpu_plan_frame *pf, char *why, siz
         if (r->multipass->features.slot[s] && macs_texture_format(r->multipass->gbuffer[s]) == MACS_FORMAT_RGBA16F)
             r->stats.gbuffer_half_targets++;
     r->stats.depth_bits = macs_depth_stencil_format(r->multipass->depth) == MACS_DEPTH32F_STENCIL8 ? 32 : 24;
-    if (f.timing) {
-        r->stats.timed = true;
-        r->stats.total_ms = bgi_gpu_now_ms() - start;
-    }
     return BG_OK;
 }
 

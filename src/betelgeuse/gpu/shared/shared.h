@@ -85,6 +85,25 @@ typedef struct gpu_env_tables {
     uint64_t id; /* bg_environment_data.tables_id of what they hold; 0 none */
 } gpu_env_tables;
 
+/* phase_clock.c: a stretch of GL commands timed for a phase (or between phases: -1, not kept). */
+typedef struct gpu_phase_span {
+    macs_timer *timer; /* made the first time the pool reaches it, kept for the next calls */
+    int phase;
+} gpu_phase_span;
+
+/* The phase timing of the entry call running (settings.gpu_timing). */
+typedef struct gpu_phase_timing {
+    bool on;     /* the call asked for timing */
+    bool timers; /* GPU timers; else the wall clock between glFinish calls */
+    gpu_phase_span *spans;
+    int used, capacity;
+    bool running;            /* spans[used] is begun */
+    macs_status failed;      /* the first timer failure, reported at the call's end */
+    bool out_of_memory;      /* ... which was the span pool's allocation */
+    double start, clock;     /* wall clock: the call's start, the running phase's start */
+    double wall_ms[BG_PHASE_COUNT_];
+} gpu_phase_timing;
+
 struct bg_renderer {
     bg_allocator allocator;
     bg_logger logger;
@@ -100,6 +119,7 @@ struct bg_renderer {
     float *readback; /* read_back.c's buffer */
     size_t readback_size;
     gpu_view view; /* of the pass being rendered (the driver sets it) */
+    gpu_phase_timing timing;
 
     gpu_meshes meshes;                 /* meshes.c: both plans read it; the driver frees it */
     struct bg_accumulation *frame_sum; /* the sum of bg_render_gpu's multi-sample frames (samples.c),
@@ -350,10 +370,17 @@ bg_status bgi_gpu_pass_from_texts(bg_renderer *r, const char *what, gpu_text *ma
 /* ---- phase_clock.c ---- */
 /* Milliseconds of a monotonic clock. */
 double bgi_gpu_now_ms(void);
-/* With timing, drains the GPU and starts *clock; without, does nothing. */
-void bgi_gpu_phase_start(bg_renderer *r, bool timing, double *clock);
-/* With timing, drains the GPU, adds the time since *clock to the phase and restarts *clock. */
-void bgi_gpu_phase_end(bg_renderer *r, bool timing, double *clock, bg_phase phase);
+/* An entry call's start: on is settings.gpu_timing; picks GPU timers where the context has them. */
+void bgi_gpu_timing_begin(bg_renderer *r, bool on);
+/* With timing, a phase starts: the time since the last phase's end is nobody's. */
+void bgi_gpu_phase_start(bg_renderer *r);
+/* With timing, the running phase ends as phase, and the next starts at once. */
+void bgi_gpu_phase_end(bg_renderer *r, bg_phase phase);
+/* An entry call's end, after its last GL command: with timing and st BG_OK, reads the timers and
+ * fills stats.phase_ms, timed, timing and total_ms; returns st, or the timers' own failure. */
+bg_status bgi_gpu_timing_end(bg_renderer *r, bg_status st);
+/* Destroys the timers. */
+void bgi_gpu_timing_release(bg_renderer *r);
 
 /* ---- read_back.c ---- */
 /* Copies a finished RGBA8 or RGBA32F texture of the image's size into the caller's image, rows
