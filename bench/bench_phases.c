@@ -18,6 +18,14 @@ static const char *const phase_names[BG_PHASE_COUNT_] = {"setup", "rays", "inter
 static const char *const phase_heads[BG_PHASE_COUNT_] = {"setup", "rays", "isect", "shadow",
                                                          "light", "bounce", "resolve"};
 
+/* The renderers' warnings (a timed call whose timers cannot be right says so) on stderr. */
+static void log_warning(bg_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level >= BG_LOG_WARNING)
+        fprintf(stderr, "%s\n", message);
+}
+
 /* The three contestants of a scene: untimed, timed with GPU timers, timed with the wall clock. */
 enum { UNTIMED, TIMERS, WALL, WAYS };
 static const char *const way_names[WAYS] = {"untimed", "timers", "wall"};
@@ -61,7 +69,10 @@ static bool run_scene(bg_renderer *const renderers[WAYS], scene_id id, int size,
     for (int r = 0; r < runs && ok; r++)
         for (int w = 0; w < WAYS && ok; w++) {
             ok = frame(renderers[w], scene, &settings[w], &img, &call[w][r], &stats[w]);
-            ok = ok && (w == UNTIMED || stats[w].timed);
+            if (ok && w != UNTIMED && !stats[w].timed) {
+                fprintf(stderr, "%s: a %s frame was not timed\n", scenes_name(id), way_names[w]);
+                ok = false;
+            }
             for (int p = 0; p < BG_PHASE_COUNT_ && ok; p++)
                 phase[w][p][r] = stats[w].phase_ms[p];
         }
@@ -114,6 +125,7 @@ static bool open_wall_clock(bench_gpu *gpu, macs_context **ctx, bg_renderer **r)
     bg_renderer_desc rd;
     memset(&rd, 0, sizeof rd);
     rd.context = *ctx;
+    rd.logger.func = log_warning;
     if (bg_renderer_create(&rd, r, message, sizeof message) != BG_OK) {
         fprintf(stderr, "renderer: %s\n", message);
         macs_context_destroy(*ctx);
@@ -139,7 +151,9 @@ int main(int argc, char **argv)
     }
     macs_context *wall_ctx = NULL;
     bg_renderer *wall = NULL;
-    bg_renderer *timers = bench_gpu_renderer(&gpu, (bg_renderer_desc){0});
+    bg_renderer_desc logged = {0};
+    logged.logger.func = log_warning;
+    bg_renderer *timers = bench_gpu_renderer(&gpu, logged);
     FILE *csv = NULL;
     int status = 1;
     if (timers && open_wall_clock(&gpu, &wall_ctx, &wall))

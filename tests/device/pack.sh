@@ -2,8 +2,8 @@
 # Packs what the device check needs on a GPU machine (make device-pack; docs/device_check.md) into
 # one folder: run.sh (the one command there), payload.tar.xz and debs/ (glvnd's EGL packages).
 # The payload holds, under one root that the runner unpacks anywhere:
-#   bin/      every suite, the runner's crash suite, device_info, probe_headless, bench_paper,
-#             bench_distribution and the betelgeuse command, without their debug info (PACK_DEBUG=1
+#   bin/      every suite, the runner's crash suite, device_info, probe_headless, bench_frame_cost,
+#             bench_paper, bench_distribution and the betelgeuse command, without their debug info (PACK_DEBUG=1
 #             keeps it, for line numbers in backtraces; their symbols stay either way)
 #   lib/      every shared library they load that is not the C library itself (ldd): cmocka, cJSON,
 #             assimp and its own, libpng, TurboJPEG, stb, zlib, GLFW and X11's client libraries;
@@ -23,7 +23,7 @@ x86_64) ;;
 *) echo "device-pack: this machine is $(uname -m); the GPU machines are x86-64: build the pack on x86-64"; exit 1 ;;
 esac
 for f in "$build/betelgeuse" "$build/tests/device/crash_suite" "$build/tests/device/device_info" \
-	"$build/bench/bench_paper" "$build/bench/bench_distribution"; do
+	"$build/bench/bench_frame_cost" "$build/bench/bench_paper" "$build/bench/bench_distribution"; do
 	[ -x "$f" ] || { echo "device-pack: $f is missing (make device-pack builds it)"; exit 1; }
 done
 mkdir -p "$dest" || exit 1
@@ -43,6 +43,7 @@ done
 put "$build/tests/probe_headless" "$root/bin/tests/probe_headless"
 put "$build/tests/device/crash_suite" "$root/bin/tests/device/crash_suite"
 put "$build/tests/device/device_info" "$root/bin/tests/device/device_info"
+put "$build/bench/bench_frame_cost" "$root/bin/bench/bench_frame_cost"
 put "$build/bench/bench_paper" "$root/bin/bench/bench_paper"
 put "$build/bench/bench_distribution" "$root/bin/bench/bench_distribution"
 put "$build/betelgeuse" "$root/bin/betelgeuse"

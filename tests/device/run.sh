@@ -12,7 +12,7 @@
 #     CHECK_JOBS at a time, each stopped after SUITE_TIMEOUT s, each log kept as it ends, the tests
 #     after a crash run again in fresh processes and each crashed test run once more under the
 #     debugger for its backtrace;
-#  6. runs bench_paper and bench_distribution (QUICK=1);
+#  6. runs bench_frame_cost, bench_paper and bench_distribution (QUICK=1);
 #  7. writes summary.txt (suite, passed, failed, skipped, seconds) and packs everything into one
 #     archive in $OUT (default ./device-check-out), with summary.txt beside it.
 # Every step has its time limit inside DEVICE_CHECK_SECONDS (default 450), and the archive is made
@@ -128,7 +128,7 @@ main() {
 
 	echo
 	bench_reserve=0
-	[ "${BENCH:-yes}" = no ] || bench_reserve=130
+	[ "${BENCH:-yes}" = no ] || bench_reserve=170
 	suite_secs=$(($(left) - bench_reserve - 15))
 	if [ -n "${SUITES:-}" ]; then
 		suites=$(for s in $SUITES; do printf '%s ' "bin/tests/$s"; done)
@@ -160,9 +160,11 @@ main() {
 
 	if [ "${BENCH:-yes}" != no ]; then
 		mkdir -p "$res/bench"
-		for b in bench_paper bench_distribution; do
-			# bench_paper gets half of what is left, bench_distribution the rest.
+		for b in bench_frame_cost bench_paper bench_distribution; do
+			# bench_frame_cost gets a third of what is left, bench_paper half the rest, bench_distribution
+			# the rest.
 			secs=$(($(left) - 15))
+			[ "$b" = bench_frame_cost ] && secs=$((secs / 3))
 			[ "$b" = bench_paper ] && secs=$((secs / 2))
 			echo
 			echo "== $b (QUICK=1, within $secs s)"
@@ -197,7 +199,7 @@ main 2>&1 | tee "$res/device-check.log"
 	fi
 	tail -n1 "$res/suites.txt" 2>/dev/null | grep 'passed, .* failed' | sed 's/^/run_suites.sh: /'
 	cat "$res/suites-stopped.txt" 2>/dev/null
-	cat "$res/bench/bench_paper.status" "$res/bench/bench_distribution.status" 2>/dev/null
+	cat "$res/bench/bench_frame_cost.status" "$res/bench/bench_paper.status" "$res/bench/bench_distribution.status" 2>/dev/null
 } >"$res/summary.txt"
 echo
 echo "== summary"
