@@ -3,7 +3,7 @@
 // The bytes the host's encoding gives a mean of samples (gpu/exact_bytes.c): the host's byte of
 // sum / n is a step function of the float sum, so the byte is how many of its 255 steps the sum has
 // reached. thresholds is 256 x 1, texel k holding in .r the least float sum whose byte is k (texel 0
-// unused); eight comparisons find the byte. A comparison of floats is exact on every GL, so the bytes
+// holds n - 0.5, for alpha); eight comparisons find the byte. A comparison of floats is exact on every GL, so the bytes
 // are the host's without any GPU division, pow or rounding taking part.
 
 float bg_exact_step(sampler2D thresholds, float b, float step, float s)
@@ -27,9 +27,12 @@ float bg_exact_byte(sampler2D thresholds, float s)
     return b;
 }
 
-// Written as b / 255, which an RGBA8 target stores as b (as bg_encode's output).
+// Written as b / 255, which an RGBA8 target stores as b (as bg_encode's output). Alpha is 255, or 0
+// where a sample's walk ran out of steps: the sum's alpha counts the samples that finished, and
+// texel 0 holds n - 0.5 (gpu/shared/fallback.c renders the marked pixels again).
 vec4 bg_exact_bytes(sampler2D thresholds, vec4 sum)
 {
+    float whole = texture2D(thresholds, vec2(0.5 / 256.0, 0.5)).r;
     return vec4(bg_exact_byte(thresholds, sum.r), bg_exact_byte(thresholds, sum.g), bg_exact_byte(thresholds, sum.b),
-                255.0) / 255.0;
+                sum.a >= whole ? 255.0 : 0.0) / 255.0;
 }

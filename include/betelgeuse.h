@@ -689,7 +689,7 @@ BG_API bg_status bg_render_gpu(bg_renderer *renderer, bg_scene *scene, const bg_
  * per pixel, ceil(width / 32) x height x 4 bytes are read back (the call waits for the GPU there, as
  * bg_render_gpu's read-back does), and the CPU reference's pixels go up with one glTexSubImage2D per
  * run of marked pixels in a row; the frame is then what bg_render_gpu gives. With settings.samples > 1
- * the samples are summed on the GPU and written into target once all are done (docs/gpu_pipeline.md,
+ * the marks are read once, after the last sample. The samples are summed on the GPU and written into target once all are done (docs/gpu_pipeline.md,
  * "Samples, windows and progress"): an RGBA8 target gets bg_render_gpu's bytes by a GPU pass with
  * nothing read back, a float target the mean read back and uploaded; a cancelled render leaves target
  * untouched; a window (settings.frame_*, window_*) is honoured as by bg_render_gpu, but target is
@@ -815,8 +815,10 @@ typedef struct bg_render_stats {
                                         program it needed was cached: a re-commit that changes only
                                         camera, lights, transforms or material values compiles none) */
     uint64_t fallback_pixels;        /* pixels whose walks (of the object tree, or of a mesh's tree in
-                                        any plan) would have run past the shader's loop limit,
-                                        rendered by the CPU reference instead */
+                                        any plan) would have run past the shader's loop limit in any
+                                        of their samples, rendered by the CPU reference instead (for
+                                        every sample; with bg_render_gpu_accumulate, every pixel the
+                                        accumulation's CPU reference holds) */
     int tiles;                       /* tiles the image was rendered in (1: one piece); the other
                                         fields describe the last tile's last sample pass, but
                                         fallback_pixels and programs_compiled count every pass */

@@ -117,7 +117,7 @@ static void every_plan_equals_render(void **state)
     }
 }
 
-/* Pixels whose walks run out come from the CPU reference, sample by sample, in the sum too. */
+/* Pixels whose walks run out come from the CPU reference, for all their samples, in the sum too. */
 static void cpu_pixels_join_the_sum(void **state)
 {
     (void)state;
@@ -130,7 +130,7 @@ static void cpu_pixels_join_the_sum(void **state)
     util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, N), "N samples");
     bg_render_stats st;
     bg_renderer_get_stats(r, &st);
-    print_message("triangle stack: %llu CPU pixels over the %d samples\n", (unsigned long long)st.fallback_pixels, N);
+    print_message("triangle stack: %llu CPU pixels, each for its %d samples\n", (unsigned long long)st.fallback_pixels, N);
     assert_true(st.fallback_pixels > 0);
     bg_accumulation_destroy(a);
     bg_renderer_destroy(r);

@@ -253,7 +253,8 @@ static void n_samples_rgba8(void **state)
 }
 
 /* Into an RGBA8 texture nothing comes back and nothing waits, at one sample and at N (the exact
- * resolve writes the target), on the plans without run-out marks to read. */
+ * resolve writes the target), on the plans without run-out marks to read; the tree plan reads its
+ * packed marks once, at one sample or N: one pass more, one sync, ceil(W / 32) x H x 4 bytes. */
 static void to_texture(void **state)
 {
     (void)state;
@@ -285,6 +286,25 @@ static void to_texture(void **state)
         }
         bg_renderer_destroy(r);
     }
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    for (int samples = 1; samples <= N; samples += N - 1) {
+        bg_render_settings set = util_plan_settings(BG_PLAN_FUSED_TREE, samples);
+        util_expect_render_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "first frame");
+        util_expect_render_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "cached frame");
+        bg_render_stats st;
+        bg_renderer_get_stats(r, &st);
+        char label[96];
+        snprintf(label, sizeof label, "paper_earth_shadow, tree, %d sample(s), to an RGBA8 texture, cached", samples);
+        print_work(label, &st.gl_work);
+        uint64_t n = (uint64_t)samples, multi = samples > 1;
+        assert_int_equal(st.gl_work.readback_bytes, (uint64_t)((W + 31) / 32) * H * 4);
+        assert_int_equal(st.gl_work.syncs, 1);
+        assert_int_equal(st.gl_work.upload_bytes, 0);
+        assert_int_equal(st.gl_work.programs_compiled, 0);
+        assert_int_equal(st.gl_work.draws, multi ? 2 * n + 2 : 2);
+        assert_int_equal(st.fallback_pixels, 0);
+    }
+    bg_renderer_destroy(r);
     macs_texture_destroy(t);
     bg_scene_destroy(s);
 }
@@ -311,19 +331,17 @@ static void plan_budgets(void **state)
                 bg_render_stats st;
                 bg_renderer_get_stats(r, &st);
                 uint64_t n = (uint64_t)samples, multi = samples > 1;
-                /* The tree plan's every pass into a float texture packs its run-out marks and reads
-                 * them back (shared/fallback.c): one more draw, 2 framebuffer binds, a sync and
-                 * ceil(W / 32) x H x 4 bytes a sample. */
-                uint64_t marks = plans[k] == BG_PLAN_FUSED_TREE && multi ? n : 0;
+                /* The tree plan's run-out marks cost nothing of their own, at one sample or n: the
+                 * sum's alpha counts them and the one read-back carries them (samples.c). */
                 assert_int_equal(w.upload_bytes, 0);
                 assert_int_equal(w.programs_compiled, 0);
                 assert_int_equal(w.program_binds, 2 * w.draws); /* each run binds, and unbinds at its end */
-                assert_int_equal(w.syncs, 1 + marks);
-                assert_int_equal(w.readback_bytes, (uint64_t)W * H * 4 + marks * ((W + 31) / 32) * H * 4);
+                assert_int_equal(w.syncs, 1);
+                assert_int_equal(w.readback_bytes, (uint64_t)W * H * 4);
                 if (plans[k] != BG_PLAN_MULTIPASS) {
                     /* One pass a sample, and with samples the add pass each and the exact resolve. */
-                    assert_int_equal(w.draws, multi ? 2 * n + marks + 1 : 1);
-                    assert_int_equal(w.framebuffer_binds, multi ? 6 * n + 2 * marks + 2 : 2);
+                    assert_int_equal(w.draws, multi ? 2 * n + 1 : 1);
+                    assert_int_equal(w.framebuffer_binds, multi ? 6 * n + 2 : 2);
                 } else {
                     /* Its passes are the scene's (stats.passes, and MACS may split them into chunks). */
                     assert_true(w.draws >= (uint64_t)st.chunks * n + (multi ? n + 1 : 0));

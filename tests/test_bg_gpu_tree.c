@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
+#include "betelgeuse/common/encoding.h"
 #include "betelgeuse/scene/scene_internal.h"
 #include "scenes/scenes.h"
 #include "util_gl.h"
@@ -176,6 +177,109 @@ static void walks_that_run_out_go_to_the_cpu(void **state)
     bg_renderer_destroy(r);
 }
 
+/* The frame's RGBA8 bytes from what a texture read returns (rows bottom first). */
+static void flip_rows(const unsigned char *bottom_first, unsigned char *top_first, int w, int h)
+{
+    for (int y = 0; y < h; y++)
+        memcpy(top_first + (size_t)y * w * 4, bottom_first + (size_t)(h - 1 - y) * w * 4, (size_t)w * 4);
+}
+
+/* The tube at several samples, the tree plan forced: a pixel whose walk runs out in any sample is the
+ * CPU reference's for all of them (shared/fallback.c), found from the sum's alpha at the frame's end,
+ * with one sync and the image's 4 bytes a pixel read back. The image is within the thresholds of the
+ * CPU reference at the same samples and keeps no mark; every way to the frame agrees with it bit for
+ * bit and counts the same CPU pixels: the float image (encoded on the host), the RGBA8 texture, the
+ * accumulation in one call and one sample a call, whose CPU pixels only grow, call by call, to the
+ * frame's (a pixel joins them when a sample of it first runs out). */
+static void walks_that_run_out_at_several_samples(void **state)
+{
+    (void)state;
+    enum { TW = 48, TH = 36 };
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    bg_scene *s = util_tube_scene();
+    unsigned char px[TW * TH * 4], got[TW * TH * 4], raw[TW * TH * 4];
+    float fpx[TW * TH * 4];
+    bg_image img = {TW, TH, BG_PIXEL_RGBA8, 0, px}, fimg = {TW, TH, BG_PIXEL_RGBA32F, 0, fpx};
+    bg_image gimg = {TW, TH, BG_PIXEL_RGBA8, 0, got};
+    macs_texture_desc td;
+    memset(&td, 0, sizeof td);
+    td.width = TW;
+    td.height = TH;
+    td.format = MACS_FORMAT_RGBA8;
+    macs_texture *t = NULL;
+    assert_int_equal(macs_texture_create(util_fx.ctx, &td, &t), MACS_OK);
+    for (int samples = 4; samples <= 16; samples *= 4) {
+        char label[64];
+        snprintf(label, sizeof label, "tube, %d samples", samples);
+        bg_render_settings set = util_plan_settings(BG_PLAN_FUSED_TREE, samples);
+        render(r, s, &set, &img, label);
+        bg_render_stats st = render(r, s, &set, &img, label); /* cached: the frame's own GL work */
+        uint64_t cpu = st.fallback_pixels;
+        print_message("%s: %llu of %d pixels from the CPU reference; read back %llu B, %llu sync(s)\n", label,
+                      (unsigned long long)cpu, TW * TH, (unsigned long long)st.gl_work.readback_bytes,
+                      (unsigned long long)st.gl_work.syncs);
+        if (cpu == 0 || cpu == (uint64_t)TW * TH)
+            fail_msg("%s: %llu pixels went to the CPU reference; some (not all) should", label,
+                     (unsigned long long)cpu);
+        assert_int_equal(st.gl_work.syncs, 1);
+        assert_int_equal(st.gl_work.readback_bytes, (uint64_t)TW * TH * 4);
+        for (int i = 0; i < TW * TH; i++)
+            if (px[4 * i + 3] != 255)
+                fail_msg("%s: pixel %d kept the mark (alpha %d)", label, i, px[4 * i + 3]);
+        expect_within(s, &set, &img, label);
+
+        /* The float image: the same CPU pixels, and each byte the host's encoding of its value. */
+        bg_render_stats fst = render(r, s, &set, &fimg, label);
+        assert_int_equal(fst.fallback_pixels, cpu);
+        int differ = 0;
+        for (int i = 0; i < TW * TH; i++) {
+            for (int c = 0; c < 3; c++)
+                differ += px[4 * i + c] != bgi_encode_channel(fpx[4 * i + c], set.encoding);
+            differ += fpx[4 * i + 3] != 1.0f;
+        }
+        assert_int_equal(differ, 0);
+
+        /* Into an RGBA8 texture: one read of the packed marks. */
+        util_expect_render_ok(r, bg_render_gpu_to_texture(r, s, &set, t), "to a texture");
+        bg_renderer_get_stats(r, &st);
+        assert_int_equal(st.fallback_pixels, cpu);
+        assert_int_equal(st.gl_work.syncs, 1);
+        assert_int_equal(macs_texture_read(t, raw, 0), MACS_OK);
+        flip_rows(raw, got, TW, TH);
+        assert_memory_equal(got, px, sizeof px);
+
+        /* The accumulation, in one call and one sample a call. */
+        bg_accumulation *a = NULL;
+        util_expect_render_ok(r, bg_accumulation_create(r, TW, TH, &a), "bg_accumulation_create");
+        util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, 0, samples), "every sample");
+        bg_renderer_get_stats(r, &st);
+        assert_int_equal(st.fallback_pixels, cpu);
+        assert_int_equal(st.gl_work.syncs, 1);
+        util_expect_render_ok(r, bg_accumulation_resolve(r, a, &set, &gimg), "bg_accumulation_resolve");
+        assert_memory_equal(got, px, sizeof px);
+        uint64_t before = 0;
+        for (int i = 0; i < samples; i++) {
+            util_expect_render_ok(r, bg_render_gpu_accumulate(r, s, &set, a, i, 1), "one sample");
+            bg_renderer_get_stats(r, &st);
+            if (st.fallback_pixels < before)
+                fail_msg("%s: sample %d: %llu CPU pixels after %llu", label, i, (unsigned long long)st.fallback_pixels,
+                         (unsigned long long)before);
+            before = st.fallback_pixels;
+        }
+        assert_int_equal(before, cpu);
+        util_expect_render_ok(r, bg_accumulation_resolve(r, a, &set, &gimg), "bg_accumulation_resolve");
+        assert_memory_equal(got, px, sizeof px);
+        util_expect_render_ok(r, bg_accumulation_resolve_to_texture(r, a, &set, t), "resolve to a texture");
+        assert_int_equal(macs_texture_read(t, raw, 0), MACS_OK);
+        flip_rows(raw, got, TW, TH);
+        assert_memory_equal(got, px, sizeof px);
+        bg_accumulation_destroy(a);
+    }
+    macs_texture_destroy(t);
+    bg_scene_destroy(s);
+    bg_renderer_destroy(r);
+}
+
 /* A scene of unbounded objects only: the variant has no tree to walk and renders like the rest. */
 static void no_bounded_objects(void **state)
 {
@@ -236,6 +340,7 @@ int main(void)
         cmocka_unit_test(auto_walks_a_tree),
         cmocka_unit_test(recommits_keep_the_program),
         cmocka_unit_test(walks_that_run_out_go_to_the_cpu),
+        cmocka_unit_test(walks_that_run_out_at_several_samples),
         cmocka_unit_test(no_bounded_objects),
         cmocka_unit_test(tree_beyond_the_texture_size),
     };

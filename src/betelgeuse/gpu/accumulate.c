@@ -9,7 +9,18 @@
  *
  * A call that fails or is cancelled leaves the sum and its count as they were: the samples of a call
  * go into the two textures that do not hold the sum, and only a finished call makes its last one the
- * sum. */
+ * sum.
+ *
+ * Pixels whose walks run out of steps (shared/fallback.c): a sample pass leaves them marked (alpha 0)
+ * in its float output, so the sum's alpha counts the samples that finished, and nothing is read back
+ * per sample. Such a pixel is the CPU reference's for every sample of the sum, whichever ran out: its
+ * sum is the float sum of the CPU's samples in the order taken (bgi_gpu_fallback_sum), what the add
+ * pass would have summed, so the image does not depend on how the samples were split among calls.
+ * bg_render_gpu's frame (samples.c) finds those pixels once at its end, in the resolve it reads back.
+ * An accumulation is resolved later, without the scene, so each call of bg_render_gpu_accumulate ends
+ * by reading the marks once and writing the CPU's sums into the sum; the accumulation keeps the CPU's
+ * pixels and their sums (owned), so that a later call adds its samples to them (and renders the
+ * earlier samples of a pixel that runs out first in it). */
 #include <string.h>
 
 #include "../common/alloc.h"
@@ -32,6 +43,11 @@ struct bg_accumulation {
     macs_format resolve_format;
     gpu_exact_bytes *exact; /* the RGBA8 resolve, bit for bit the host's (exact_bytes.c) */
     macs_texture *bytes;    /* its target when the bytes go to a host image */
+    gpu_marks marks;        /* of the sum's run-out pixels (shared/fallback.c) */
+    size_t owned;           /* pixels the CPU reference renders, in texel order (y * width + x,
+                             * rows bottom first), with their sums */
+    uint32_t *owned_index;
+    float *owned_sum;
 };
 
 bool bgi_gpu_accumulation_fits(const bg_accumulation *a, int width, int height)
@@ -63,6 +79,9 @@ void bg_accumulation_destroy(bg_accumulation *a)
     macs_pass_destroy(a->resolve);
     macs_texture_destroy(a->bytes);
     bgi_gpu_exact_bytes_destroy(a->exact, &a->allocator);
+    bgi_gpu_marks_release(&a->marks);
+    bgi_free(&a->allocator, a->owned_index);
+    bgi_free(&a->allocator, a->owned_sum);
     bg_allocator allocator = a->allocator;
     bgi_free(&allocator, a);
 }
@@ -125,9 +144,76 @@ static bg_status add_run(bg_renderer *r, bg_accumulation *a, int from, int to)
     return ms ? bgi_gpu_fail_macs(r, ms, "the accumulation's add pass") : BG_OK;
 }
 
+/* The end of a call of bg_render_gpu_accumulate that added samples [first, first + count) into sum:
+ * the pixels the CPU reference renders are those the accumulation owned already and those whose
+ * sample ran out in this call (alpha below first + count); each gets the CPU's sum, uploaded into
+ * sum with one upload per run of a row. The new list replaces the old one only when all went up. */
+static bg_status own_cpu_pixels(bg_renderer *r, bg_accumulation *a, const bg_scene_state *state,
+                                const bg_render_settings *settings, const bgi_render_view *view, int first, int count,
+                                macs_texture *sum, uint64_t *pixels)
+{
+    int w = a->width, h = a->height, total = first + count;
+    size_t old = first > 0 ? a->owned : 0;
+    const unsigned char *marks = NULL;
+    unsigned char *room = NULL;
+    bg_status st = bgi_gpu_marks_read(r, &a->marks, sum, (float)total, 0, &marks, &room);
+    if (st != BG_OK)
+        return st;
+    size_t n = old, row_bytes = bgi_gpu_marks_row_bytes(w);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            n += bgi_gpu_marked(marks + (size_t)y * row_bytes, x);
+    uint32_t *index = bgi_alloc(&r->allocator, (n ? n : 1) * sizeof *index);
+    float *sums = bgi_alloc(&r->allocator, (n ? n : 1) * 16);
+    if (!index || !sums) {
+        bgi_free(&r->allocator, index);
+        bgi_free(&r->allocator, sums);
+        return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the CPU reference's pixels (%zu)", n);
+    }
+    /* Merge the old list with this call's marks, both in texel order; a pixel in both counts once. */
+    size_t k = 0, j = 0;
+    for (int y = 0; y < h; y++) {
+        const unsigned char *mark_row = marks + (size_t)y * row_bytes;
+        for (int x = 0; x < w; x++) {
+            uint32_t i = (uint32_t)y * (uint32_t)w + (uint32_t)x;
+            bool had = j < old && a->owned_index[j] == i;
+            if (!had && !bgi_gpu_marked(mark_row, x))
+                continue;
+            float *s = sums + k * 4;
+            if (had)
+                memcpy(s, a->owned_sum + j++ * 4, 16);
+            /* An owned pixel adds this call's samples; a new one takes all of its samples. */
+            bgi_gpu_fallback_sum(state, settings, view, x, h - 1 - y, had ? first : 0, had ? count : total, s);
+            index[k++] = i;
+        }
+    }
+    macs_status ms = MACS_OK;
+    for (size_t b = 0; b < k && !ms;) {
+        size_t e = b + 1;
+        while (e < k && index[e] == index[e - 1] + 1 && index[e] % (uint32_t)w != 0)
+            e++;
+        ms = macs_texture_upload_region(sum, (int)(index[b] % (uint32_t)w), (int)(index[b] / (uint32_t)w), (int)(e - b),
+                                        1, sums + b * 4, 0);
+        b = e;
+    }
+    if (ms) {
+        bgi_free(&r->allocator, index);
+        bgi_free(&r->allocator, sums);
+        return bgi_gpu_fail_macs(r, ms, "uploading the CPU reference's sums");
+    }
+    bgi_free(&r->allocator, a->owned_index);
+    bgi_free(&r->allocator, a->owned_sum);
+    a->owned_index = index;
+    a->owned_sum = sums;
+    a->owned = k;
+    *pixels = k;
+    return BG_OK;
+}
+
 bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
                                      const bg_render_settings *settings, const bgi_render_view *view,
-                                     bg_accumulation *a, int first, int count, const char *untouched)
+                                     bg_accumulation *a, int first, int count, const char *untouched,
+                                     bool keep_marks)
 {
     int n = view->samples;
     /* The call's samples go into the textures that do not hold the sum, so that a failure or a cancel
@@ -148,6 +234,8 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
     gpu_frame_out one = {NULL, 0, a->sample, a->width, a->height, true};
     uint64_t fallback = 0;
     int compiled = 0, from = keep, to = -1;
+    r->marks_deferred = true;
+    r->marks_left = false;
     for (int i = 0; i < count && st == BG_OK; i++) {
         int s = first + i;
         bgi_gpu_view_for_sample(view, s, &r->view);
@@ -167,8 +255,21 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
                                           "samples of this call; the accumulation keeps its %d samples", i + 1,
                                           count, a->samples);
     }
+    r->marks_deferred = false;
+    /* The owned pixels of the accumulation entry (the marks of bg_render_gpu's frame stay in the sum
+     * for samples.c); none where no pass could mark one and none were owned before. */
+    bool own = !keep_marks && (r->marks_left || (first > 0 && a->owned > 0));
+    if (st == BG_OK && own)
+        st = own_cpu_pixels(r, a, state, settings, view, first, count, a->sum[to], &fallback);
     if (st != BG_OK)
         return st;
+    if (!keep_marks && !own) {
+        bgi_free(&r->allocator, a->owned_index);
+        bgi_free(&r->allocator, a->owned_sum);
+        a->owned_index = NULL;
+        a->owned_sum = NULL;
+        a->owned = 0;
+    }
     r->stats.fallback_pixels = fallback;
     r->stats.programs_compiled = compiled;
     a->current = to;
@@ -215,7 +316,7 @@ static bg_status accumulate(bg_renderer *renderer, bg_scene *scene, const bg_ren
     if (!bgi_render_progress(settings, (double)first / n))
         return bgi_gpu_fail(r, BG_ERR_CANCELLED, "cancelled by settings.progress before the first pass; the "
                             "accumulation keeps its %d samples", a->samples);
-    st = bgi_gpu_accumulate_samples(r, scene, state, settings, &view, a, first, count, NULL);
+    st = bgi_gpu_accumulate_samples(r, scene, state, settings, &view, a, first, count, NULL, false);
     if (st == BG_OK)
         bgi_render_progress(settings, (double)(first + count) / n);
     return st;
@@ -318,7 +419,7 @@ static bg_status resolve(bg_renderer *renderer, const bg_accumulation *accumulat
     st = bgi_gpu_accumulation_read(r, a, sum);
     gpu_frame_out out = {image, stride, NULL, image->width, image->height, as_float};
     if (st == BG_OK)
-        st = bgi_gpu_samples_write(r, settings, &out, sum, a->samples);
+        st = bgi_gpu_samples_write(r, settings, &out, sum, a->samples, NULL, NULL, NULL);
     bgi_free(&r->allocator, sum);
     return st;
 }

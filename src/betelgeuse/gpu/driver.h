@@ -44,13 +44,17 @@ bool bgi_gpu_accumulation_fits(const bg_accumulation *a, int width, int height);
 /* Adds samples [first, first + count) of view's pattern (checked by the caller) to a: each one pass
  * of the plan choice into a float texture, added on the GPU; progress after each but the pattern's
  * last. A failure or a cancel leaves a as it was; untouched names the caller's output in the cancel
- * message (NULL: the accumulation's own). Sums the statistics of the passes. */
+ * message (NULL: the accumulation's own). Sums the statistics of the passes. The pixels whose walks
+ * ran out: with keep_marks the sum's alpha marks them (below first + count) and r->marks_left says
+ * whether any pass could; else the CPU reference's sums replace them in the sum, alpha included. */
 bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, const bg_scene_state *state,
                                      const bg_render_settings *settings, const bgi_render_view *view,
-                                     bg_accumulation *a, int first, int count, const char *untouched);
+                                     bg_accumulation *a, int first, int count, const char *untouched,
+                                     bool keep_marks);
 /* The mean of a's samples (samples > 0) as the host's RGBA8 bytes of the encoding (exact_bytes.c),
  * on the GPU: into target (RGBA8, a's size), or into a host image's pixels (rows top first, stride)
- * through a's own RGBA8 texture, one read-back of 4 bytes a pixel. */
+ * through a's own RGBA8 texture, one read-back of 4 bytes a pixel. Alpha is 255, or 0 where the
+ * sum's alpha marks a pixel whose walks ran out. */
 bg_status bgi_gpu_accumulation_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
                                      macs_texture *target);
 bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
@@ -81,9 +85,12 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg
                                  const bg_render_settings *settings, const gpu_frame_out *out,
                                  const bgi_render_view *view);
 /* The mean of samples summed into sum (float RGBA, rows top first), encoded into out's image or
- * uploaded into its texture as bg_render_gpu's single pass would give it. */
+ * uploaded into its texture as bg_render_gpu's single pass would give it. With state, a pixel whose
+ * alpha marks a run-out walk (below samples - 0.5) is the CPU reference's (bgi_gpu_fallback_sum over
+ * view's samples), counted in *fallback. */
 bg_status bgi_gpu_samples_write(bg_renderer *r, const bg_render_settings *settings, const gpu_frame_out *out,
-                                const float *sum, int samples);
+                                const float *sum, int samples, const bg_scene_state *state,
+                                const bgi_render_view *view, uint64_t *fallback);
 
 /* ---- plan.c ---- */
 /* One pass of the frame for r->view (one sample) by the plan the settings ask for, or under

@@ -8,7 +8,8 @@
  * float comparisons on the GPU (glsl110/bg_stage_exact_bytes.glsl). No GPU division, pow or rounding
  * takes part, so the bytes are the host's on any GL whose RGBA32F textures hold floats as they are.
  * A sum below T_1 (a negative one included) is 0 and +inf is 255, as on the host; a NaN sum, which
- * no plan writes, would read 0.
+ * no plan writes, would read 0. Alpha is 255, or 0 where the sum's alpha says a sample's walk ran out
+ * of steps (the mark the CPU reference's pixels replace, shared/fallback.c).
  *
  * The thresholds go up once per (n, encoding), 4 KB; a frame of the same n and encoding uploads
  * nothing. */
@@ -19,7 +20,7 @@
 #include "driver.h"
 
 struct gpu_exact_bytes {
-    macs_texture *thresholds; /* 256 x 1 RGBA32F, texel k = T_k in every channel */
+    macs_texture *thresholds; /* 256 x 1 RGBA32F, texel k = T_k in every channel (texel 0: n - 0.5) */
     int samples;              /* the n and encoding the thresholds are of (samples 0: none yet) */
     bg_output_encoding encoding;
     macs_pass *pass;
@@ -56,6 +57,11 @@ static bg_status thresholds_ensure(bg_renderer *r, gpu_exact_bytes *e, int n, bg
         uint32_t bits = k == 0 ? 0u : bgi_gpu_exact_threshold(k, n, encoding);
         float t;
         memcpy(&t, &bits, sizeof t);
+        /* Texel 0 is no byte's threshold: it holds n - 0.5, which the sum's alpha (the count of
+         * samples whose walks finished) reaches unless some sample's walk ran out; that pixel's alpha
+         * is then 0, its mark (shared/fallback.c). */
+        if (k == 0)
+            t = (float)n - 0.5f;
         for (int c = 0; c < 4; c++)
             texels[k * 4 + c] = t;
     }

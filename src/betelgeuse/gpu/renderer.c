@@ -73,6 +73,7 @@ void bgi_gpu_release_all(bg_renderer *r)
     bgi_gpu_plans_release(r);
     bg_accumulation_destroy(r->frame_sum);
     r->frame_sum = NULL;
+    bgi_gpu_marks_release(&r->frame_marks);
     bgi_gpu_meshes_release(r);
     bgi_gpu_scene_textures_release(r);
     bgi_gpu_env_tables_release(r);

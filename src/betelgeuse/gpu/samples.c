@@ -2,9 +2,11 @@
  * whichever plan runs, its camera rays shifted by the sample's offset from the pixel centre, into a
  * float texture, summed on the GPU in the order the samples are taken (bgi_sample_order,
  * accumulate.c), so the sum is deterministic and the plans need no accumulation of their own, and
- * read back once. The tree plan's CPU pixels of a pass
- * are that sample's (bgi_cpu_render_texel renders r->view's one sample). The caller's image or texture
- * is written only after the last pass, so a cancelled or failed frame leaves it untouched. */
+ * read back once. A pixel whose walks ran out of steps in any sample is the CPU reference's for all
+ * of them (shared/fallback.c): the sum's alpha marks it, the resolve writes that mark into what it
+ * reads back (alpha 0), and the host renders it there, so the marks cost no read-back of their own;
+ * into an RGBA8 texture one read of the packed marks finds them. The caller's image or texture is
+ * written only after the last pass, so a cancelled or failed frame leaves it untouched. */
 #include <string.h>
 
 #include "../common/alloc.h"
@@ -28,7 +30,8 @@ void bgi_gpu_view_for_sample(const bgi_render_view *view, int k, gpu_view *out)
 }
 
 bg_status bgi_gpu_samples_write(bg_renderer *r, const bg_render_settings *settings, const gpu_frame_out *out,
-                                const float *sum, int samples)
+                                const float *sum, int samples, const bg_scene_state *state,
+                                const bgi_render_view *view, uint64_t *fallback)
 {
     int w = out->width, h = out->height;
     bool as_float = out->as_float;
@@ -40,23 +43,21 @@ bg_status bgi_gpu_samples_write(bg_renderer *r, const bg_render_settings *settin
             return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the averaged samples (%zu bytes)",
                                 (size_t)w * (size_t)h * texel);
     }
+    float whole = (float)samples - 0.5f;
     for (int y = 0; y < h; y++) {
         /* sum holds the frame's rows top-down, as the image read back has them. */
         const float *src = sum + (size_t)y * (size_t)w * 4;
         unsigned char *dst = out->image ? (unsigned char *)out->image->pixels + (size_t)y * out->stride
                                         : (unsigned char *)scratch + (size_t)(h - 1 - y) * (size_t)w * texel;
         for (int x = 0; x < w; x++) {
-            float rgb[3];
-            for (int i = 0; i < 3; i++)
-                rgb[i] = src[(size_t)x * 4 + (size_t)i] / (float)samples;
-            if (as_float) {
-                float px[4] = {rgb[0], rgb[1], rgb[2], 1.0f};
-                memcpy(dst + (size_t)x * 16, px, sizeof px);
-            } else {
-                for (int i = 0; i < 3; i++)
-                    dst[(size_t)x * 4 + (size_t)i] = bgi_encode_channel(rgb[i], settings->encoding);
-                dst[(size_t)x * 4 + 3] = 255;
+            const float *px = src + (size_t)x * 4;
+            float cpu[4];
+            if (state && px[3] < whole) {
+                bgi_gpu_fallback_sum(state, settings, view, x, y, view->sample_first, view->sample_count, cpu);
+                px = cpu;
+                ++*fallback;
             }
+            bgi_gpu_mean_texel(px, samples, as_float, settings->encoding, dst + (size_t)x * texel);
         }
     }
     if (out->image)
@@ -89,15 +90,25 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg
                             (size_t)w * (size_t)h * 16);
     }
     bg_status st = bgi_gpu_accumulate_samples(r, scene, state, settings, view, a, 0, n,
-                                              out->image ? "image" : "texture");
-    if (st == BG_OK && !out->as_float && out->image)
+                                              out->image ? "image" : "texture", true);
+    /* Whether a pass could leave marks in the sum: only then are they looked for. */
+    bool marks = r->marks_left;
+    uint64_t fallback = 0;
+    if (st == BG_OK && !out->as_float && out->image) {
         st = bgi_gpu_accumulation_read_bytes(r, a, settings->encoding, out->image->pixels, out->stride);
-    else if (st == BG_OK && !out->as_float)
+        if (st == BG_OK && marks)
+            fallback = bgi_gpu_fallback_image(state, settings, view, out->image, out->stride);
+    } else if (st == BG_OK && !out->as_float) {
         st = bgi_gpu_accumulation_bytes(r, a, settings->encoding, out->texture);
-    else if (st == BG_OK)
+        if (st == BG_OK && marks)
+            st = bgi_gpu_fallback_texture(r, &r->frame_marks, state, settings, view, out->texture, &fallback);
+    } else if (st == BG_OK) {
         st = bgi_gpu_accumulation_read(r, a, sum);
+    }
     if (st == BG_OK && out->as_float)
-        st = bgi_gpu_samples_write(r, settings, out, sum, n);
+        st = bgi_gpu_samples_write(r, settings, out, sum, n, marks ? state : NULL, view, &fallback);
+    if (st == BG_OK)
+        r->stats.fallback_pixels = fallback;
     if (st == BG_OK)
         bgi_render_progress(settings, 1.0);
     bg_accumulation_destroy(old);

@@ -41,7 +41,7 @@ struct gpu_fused {
     int width, height;       /* of the pass and its outputs */
     macs_texture *out_bytes, *out_float;
     gpu_tree_textures tree;  /* the tree variant's textures (tree_textures.c) */
-    gpu_marks marks;         /* the marks of a texture frame's short walks (shared/fallback.c) */
+    gpu_marks marks;         /* the marks of a one-sample texture frame's short walks (shared/fallback.c) */
 };
 
 /* ---- what the fused plan can render ---- */
@@ -334,14 +334,20 @@ static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_f
 }
 
 /* The frame's end: the image read back, or the texture as the pass left it. Either way the pixels
- * the tree walks marked are then rendered by the CPU reference (tree_textures.c, shared/fallback.c). */
+ * the tree walks marked are then rendered by the CPU reference (tree_textures.c, shared/fallback.c),
+ * but for a pass of several samples, whose marks the sum keeps (accumulate.c). */
 static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_render_settings *settings,
                         const gpu_frame_out *o, macs_texture *out)
 {
     bool walks = bgi_gpu_fused_layout_budgeted(&r->fused->layout);
+    if (o->texture && walks && r->marks_deferred) {
+        /* One of several samples: the sum's alpha keeps the marks for the sum's end (accumulate.c). */
+        r->marks_left = true;
+        return BG_OK;
+    }
     if (o->texture)
-        return walks ? bgi_gpu_fallback_texture(r, &r->fused->marks, state, settings, o->texture,
-                                                     &r->stats.fallback_pixels)
+        return walks ? bgi_gpu_fallback_texture(r, &r->fused->marks, state, settings, &r->view.pixels, o->texture,
+                                                &r->stats.fallback_pixels)
                      : BG_OK;
     bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
     if (st == BG_OK && walks)

@@ -410,15 +410,21 @@ static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
 /* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the
  * encoding first. Into a texture: a resolve pass writes it, encoded or (a float target) as it is.
  * With meshes, the pixels a walk could not finish (alpha 0) are then rendered by the CPU reference,
- * as in the fused plans (shared/fallback.c). */
+ * as in the fused plans (shared/fallback.c), but for a pass of several samples, whose marks the sum
+ * keeps (accumulate.c). */
 static bg_status finish(frame *f, const gpu_frame_out *o)
 {
     bg_status st = finish_gpu(f, o);
     if (st != BG_OK || !f->r->multipass->features.mesh)
         return st;
+    if (o->texture && f->r->marks_deferred) {
+        /* One of several samples: the sum's alpha keeps the marks for the sum's end (accumulate.c). */
+        f->r->marks_left = true;
+        return BG_OK;
+    }
     if (o->texture)
-        return bgi_gpu_fallback_texture(f->r, &f->r->multipass->marks, f->state, f->settings, o->texture,
-                                                   &f->r->stats.fallback_pixels);
+        return bgi_gpu_fallback_texture(f->r, &f->r->multipass->marks, f->state, f->settings, &f->r->view.pixels,
+                                        o->texture, &f->r->stats.fallback_pixels);
     if (o->as_float)
         float_marks(o->image, o->stride);
     f->r->stats.fallback_pixels = bgi_gpu_fallback_image(f->state, f->settings, &f->r->view.pixels, o->image, o->stride);

@@ -120,11 +120,17 @@ struct bg_renderer {
     size_t readback_size;
     gpu_view view; /* of the pass being rendered (the driver sets it) */
     gpu_phase_timing timing;
+    /* Set by the driver while a pass renders one of several samples summed on the GPU (accumulate.c):
+     * a plan then leaves its run-out marks (alpha 0) in its float output for the sum's alpha to count,
+     * instead of reading them back each pass, and sets marks_left; the sum's end renders them. */
+    bool marks_deferred;
+    bool marks_left;
 
     gpu_meshes meshes;                 /* meshes.c: both plans read it; the driver frees it */
     struct bg_accumulation *frame_sum; /* the sum of bg_render_gpu's multi-sample frames (samples.c),
                                           kept between frames with its add pass, so that the pass's
                                           program stays in MACS's cache; NULL until one */
+    gpu_marks frame_marks;             /* the marks of such a frame into an RGBA8 texture (samples.c) */
     gpu_scene_textures scene_textures; /* scene_textures.c: likewise */
     gpu_env_tables env_tables;         /* environment_tables.c: likewise */
 
@@ -406,17 +412,36 @@ void bgi_gpu_meshes_release(bg_renderer *r);
 enum { GPU_MESH_FRONT_ONLY = 1, GPU_MESH_CUT_OUT = 2, GPU_MESH_OPEN = 4 };
 int bgi_gpu_meshes_filters(const bg_scene_state *state);
 
-/* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference;
+/* Renders every pixel the shader marked (alpha 0: its walks ran out of steps) with the CPU reference
+ * for the view's samples (several: bgi_gpu_fallback_sum's sum, averaged as samples.c averages);
  * returns how many there were. */
 uint64_t bgi_gpu_fallback_image(const bg_scene_state *state, const bg_render_settings *settings,
                                  const bgi_render_view *view, const bg_image *image, size_t stride);
 
 /* ---- fallback.c ---- */
-/* The same for a frame that ended in the caller's texture: finds the marked pixels from a one-bit-a-
- * pixel read-back, renders them with the CPU reference and uploads them into target; *count gets
- * how many there were. */
+/* The same for a frame that ended in a texture: finds the marked pixels (alpha below 0.5) from a
+ * one-bit-a-pixel read-back, renders them with the CPU reference for the view's samples and uploads
+ * them into target; *count gets how many there were. */
 bg_status bgi_gpu_fallback_texture(bg_renderer *r, gpu_marks *m, const bg_scene_state *state,
-                                          const bg_render_settings *settings, macs_texture *target, uint64_t *count);
+                                   const bg_render_settings *settings, const bgi_render_view *view,
+                                   macs_texture *target, uint64_t *count);
+/* Runs m's pass over target (a pixel is marked where its alpha is below whole - 0.5) and reads the
+ * marks into the read-back buffer, followed by spare bytes: *marks points at its rows (the
+ * texture's, bottom first, bgi_gpu_marks_row_bytes apart), *room at the spare bytes. One wait. */
+bg_status bgi_gpu_marks_read(bg_renderer *r, gpu_marks *m, macs_texture *target, float whole, size_t spare,
+                             const unsigned char **marks, unsigned char **room);
+size_t bgi_gpu_marks_row_bytes(int width);
+/* Whether pixel x of a marks row is marked. */
+bool bgi_gpu_marked(const unsigned char *mark_row, int x);
+/* Adds samples [first, first + count) of pixel (x, y) (image rows, top first) of the view's frame,
+ * each the CPU reference's one-sample RGBA32F texel (alpha 1), onto sum in the order taken, with the
+ * accumulation's float additions (sample 0 starts the sum): the sum the GPU would hold had every
+ * sample of the pixel been the CPU's. */
+void bgi_gpu_fallback_sum(const bg_scene_state *state, const bg_render_settings *settings,
+                          const bgi_render_view *view, int x, int y, int first, int count, float sum[4]);
+/* The texel of a sum of samples as bg_render_gpu writes it: the mean in float, RGBA32F (alpha 1) or
+ * the host's RGBA8 bytes of the encoding (alpha 255). */
+void bgi_gpu_mean_texel(const float sum[4], int samples, bool as_float, bg_output_encoding encoding, void *texel);
 /* Frees the marks texture and its pass. */
 void bgi_gpu_marks_release(gpu_marks *m);
 
