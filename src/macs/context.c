@@ -351,6 +351,8 @@ void macs_context_destroy(macs_context *ctx)
         macs_texture_destroy(ctx->textures);
     while (ctx->depth_stencils)
         macs_depth_stencil_destroy(ctx->depth_stencils);
+    while (ctx->readbacks)
+        macs_readback_destroy(ctx->readbacks);
     /* Table entries are NULL when creation failed before loading; then no GL object exists either. */
     if (ctx->gl.DeleteShader) {
         macsi_program_cache_destroy(ctx);
