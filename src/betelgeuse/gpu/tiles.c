@@ -201,18 +201,21 @@ bg_status bgi_gpu_tiles_render(bg_renderer *r, bg_scene *scene, const bg_render_
     split(out->width, max_side, &t.nx, &t.tw);
     int rows = max_pixels / t.tw < 1.0 ? 1 : (max_pixels / t.tw > max_side ? max_side : (int)(max_pixels / t.tw));
     split(out->height, rows, &t.ny, &t.th);
-    if (t.nx == 1 && t.ny == 1) {
-        bg_status st = bgi_gpu_frame_render(r, scene, settings, out, view);
-        r->stats.tiles = 1;
-        if (st == BG_OK)
-            bgi_render_rows_done(settings, 0, out->height);
-        return st;
-    }
+    /* One piece is one tile of progress: its 1 also waits for the rows. */
     tile_progress tp = {settings, 0, t.nx * t.ny, false};
     bg_render_settings inner = *settings;
     inner.progress = settings->progress ? tile_progress_fn : NULL;
     inner.progress_user = &tp;
     inner.rows_done = NULL;
+    if (t.nx == 1 && t.ny == 1) {
+        bg_status st = bgi_gpu_frame_render(r, scene, &inner, out, view);
+        r->stats.tiles = 1;
+        if (st != BG_OK)
+            return st;
+        bgi_render_rows_done(settings, 0, out->height);
+        bgi_render_progress(settings, 1.0);
+        return BG_OK;
+    }
     uint64_t fallback = 0;
     int compiled = 0;
     macs_readback *rb = NULL;
