@@ -675,9 +675,10 @@ BG_API void bg_renderer_clear_error(bg_renderer *renderer);
  * and output encoding as bg_render_cpu. A failure (image larger than the GL limits, GPU out of
  * memory) leaves the renderer usable for the next call. Images larger than the GL texture size limit or
  * settings.gpu_memory_budget are rendered tile by tile (bg_render_stats.tiles), each tile a window of
- * the frame, so the image is the same bit for bit. Cancelled (BG_ERR_CANCELLED), it leaves the image
- * untouched but for the tiles already finished: a tile reaches the image only once its every sample
- * pass is done. A scene with a length beyond what float resolves (an object's scale outside
+ * the frame, so the image is the same bit for bit; a tile's read-back is queued while the next tile
+ * renders, and settings.rows_done is told each band of tiles as it is final. Cancelled
+ * (BG_ERR_CANCELLED), it leaves the image untouched but for the tiles already finished: a tile
+ * reaches the image only once its every sample pass is done. A scene with a length beyond what float resolves (an object's scale outside
  * [1e-15, 1e15], anything farther than 1e15 from the camera, a lens wider than 1000 times its focus
  * distance: docs/gpu_pipeline.md, "Float range") is refused with BG_ERR_LIMIT naming the item; the CPU
  * renderer takes it. */
