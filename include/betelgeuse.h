@@ -577,6 +577,17 @@ typedef enum bg_gpu_plan {
  * (docs/shading.md 1.2). */
 typedef bool (*bg_progress_fn)(double fraction, void *user);
 
+/* Told that rows [y0, y1) of the caller's image (row 0 at the top) hold their final bytes, so that
+ * a caller can encode, write or show them while the renderer works on the rows below (the command
+ * streams its PNG this way). bg_render_gpu calls it once per band of tiles, after the band's last
+ * tile, while the next tile renders on the GPU; one call for [0, height) when the image is one piece.
+ * bg_render_cpu calls it once for [0, height) when the image is complete. The calls come in order
+ * from the thread that called the render, before the render returns, and the bands they name cover
+ * the image exactly once. Read the rows only: until the render returns, a later tile may write the
+ * same bytes there again. A render that fails or is cancelled makes no more calls; the bands already
+ * told are written. */
+typedef void (*bg_rows_fn)(int y0, int y1, void *user);
+
 #define BG_MAX_SAMPLES 256
 /* The largest side of any image, texture or frame, in pixels: keeps width * height * 16 bytes well
  * inside size_t and within what GL 2.1 hardware can hold. */
@@ -587,7 +598,7 @@ typedef bool (*bg_progress_fn)(double fraction, void *user);
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
  * min_weight 1/512, sRGB encoding, threads 0 (the online cores), dmax 0 (automatic), no phase
  * timing, every skip on, GPU plan automatic, one sample at each pixel centre, the frame is the
- * image, no progress callback. */
+ * image, no progress callback, no rows callback. */
 typedef struct bg_render_settings {
     double background[3];
     int max_depth;      /* bounce levels after the primary hit, 0 .. BG_MAX_DEPTH */
@@ -616,6 +627,9 @@ typedef struct bg_render_settings {
                            hold, by the renderer's estimate of the worst plan (docs/gpu_pipeline.md,
                            "Tiles"); an image beyond it or beyond GL's texture size limit is rendered
                            in tiles, bit-identical to one pass; 0 = 1 GiB, else at least 1 MiB */
+    bg_rows_fn rows_done;    /* bg_render_gpu and bg_render_cpu: told as rows of the image become
+                                final; NULL: no calls */
+    void *rows_user;         /* passed to rows_done */
 } bg_render_settings;
 
 /* The default settings described above. */
@@ -663,9 +677,10 @@ BG_API void bg_renderer_clear_error(bg_renderer *renderer);
  * and output encoding as bg_render_cpu. A failure (image larger than the GL limits, GPU out of
  * memory) leaves the renderer usable for the next call. Images larger than the GL texture size limit or
  * settings.gpu_memory_budget are rendered tile by tile (bg_render_stats.tiles), each tile a window of
- * the frame, so the image is the same bit for bit. Cancelled (BG_ERR_CANCELLED), it leaves the image
- * untouched but for the tiles already finished: a tile reaches the image only once its every sample
- * pass is done. A scene with a length beyond what float resolves (an object's scale outside
+ * the frame, so the image is the same bit for bit; a tile's read-back is queued while the next tile
+ * renders, and settings.rows_done is told each band of tiles as it is final. Cancelled
+ * (BG_ERR_CANCELLED), it leaves the image untouched but for the tiles already finished: a tile
+ * reaches the image only once its every sample pass is done. A scene with a length beyond what float resolves (an object's scale outside
  * [1e-15, 1e15], anything farther than 1e15 from the camera, a lens wider than 1000 times its focus
  * distance: docs/gpu_pipeline.md, "Float range") is refused with BG_ERR_LIMIT naming the item; the CPU
  * renderer takes it. */

@@ -319,9 +319,12 @@ typedef struct macs_work {
     uint64_t upload_bytes;      /* texel bytes handed to glTexImage2D and glTexSubImage2D (width x height
                                    x bytes per texel of the format and type given; a texture created
                                    without data counts 0) */
-    uint64_t readback_bytes;    /* texel bytes glGetTexImage wrote into host memory, counted the same way */
-    uint64_t syncs;             /* calls that wait for the GPU: glFinish, glGetTexImage, and a query's
-                                   GL_QUERY_RESULT read (macs_pass_occlusion_result, macs_timer_result) */
+    uint64_t readback_bytes;    /* texel bytes glGetTexImage wrote into host memory or queued into a
+                                   read-back buffer (macs_texture_read_begin), counted the same way */
+    uint64_t syncs;             /* calls that wait for the GPU: glFinish, glGetTexImage into host memory,
+                                   glMapBuffer of a read-back buffer (macs_readback_map), and a query's
+                                   GL_QUERY_RESULT read (macs_pass_occlusion_result, macs_timer_result);
+                                   a queued read (macs_texture_read_begin) is none */
     uint64_t programs_compiled; /* programs compiled and linked (macs_context_programs_compiled) */
     uint64_t timer_results;     /* macs_timer_result reads (each one of the syncs above; a read after
                                    the work is done, such as after a read-back, finds the time ready) */
@@ -341,6 +344,10 @@ MACS_API void macs_context_get_features(const macs_context *ctx, macs_features *
 
 /* Waits until GL has finished every command issued so far (glFinish): for timing, not correctness. */
 MACS_API void macs_context_finish(macs_context *ctx);
+
+/* Submits every command issued so far without waiting for it (glFlush), so the GPU works on it while
+ * the caller does host work (NULL ok). */
+MACS_API void macs_context_flush(macs_context *ctx);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* GPU timers                                                                                      */
@@ -423,6 +430,45 @@ MACS_API macs_status macs_texture_upload_region(macs_texture *texture, int x, in
 
 /* Reads the whole contents back into caller memory; RGBA32F returns exactly the bits written. */
 MACS_API macs_status macs_texture_read(macs_texture *texture, void *data, size_t stride);
+
+/* A read-back buffer (a GL pixel pack buffer, core in GL 2.1) for reading a texture without waiting:
+ * macs_texture_read_begin queues the copy of the texture into it behind the GL work already issued
+ * and returns at once; the caller issues more work (the next tile of an image) or does host work,
+ * then takes the texels with macs_readback_map (which waits for the copy, if it is not done) and
+ * macs_readback_unmap, or with macs_readback_read. One read at a time: begin, map, unmap, begin...
+ * The texture may change or be destroyed once the read is begun: the buffer holds its copy. The
+ * buffer's store is made at the first begin and kept while the texture size stays the same.
+ * Work counted (macs_work): a begin counts the texel bytes and no sync, a map one sync; so a read
+ * through a readback counts what macs_texture_read does. */
+typedef struct macs_readback macs_readback;
+
+/* Creates an empty readback of ctx; macs_context_destroy destroys those still alive. */
+MACS_API macs_status macs_readback_create(macs_context *ctx, macs_readback **out);
+
+/* Destroys a readback, unmapping it first if mapped (NULL ok). */
+MACS_API void macs_readback_destroy(macs_readback *readback);
+
+/* Queues the read of the whole texture into readback and submits it (glFlush) without waiting; a read
+ * begun earlier and not taken is replaced. Errors: MACS_ERR_INVALID_ARGUMENT for a NULL argument, a
+ * readback of another context or one still mapped; MACS_ERR_GPU_OUT_OF_MEMORY when GL cannot make the
+ * buffer's store. After an error readback holds no read. */
+MACS_API macs_status macs_texture_read_begin(macs_texture *texture, macs_readback *readback);
+
+/* Waits for the read begun into readback and maps it: *texels points at the texture's rows, bottom
+ * row first, *stride bytes apart (width x texel size; stride may be NULL), valid until
+ * macs_readback_unmap or macs_readback_destroy. Errors: MACS_ERR_NO_RESULT when no read was begun
+ * (or it was taken already); MACS_ERR_INVALID_ARGUMENT when mapped already or texels is NULL;
+ * MACS_ERR_GL when the driver returns no mapping (glMapBuffer NULL): the read is then lost, never
+ * half given, and *texels is NULL. */
+MACS_API macs_status macs_readback_map(macs_readback *readback, const void **texels, size_t *stride);
+
+/* Unmaps a mapped readback, which then holds no read. MACS_ERR_GL when GL says the buffer's contents
+ * were lost while mapped (glUnmapBuffer GL_FALSE): the texels read from the map may be wrong. */
+MACS_API macs_status macs_readback_unmap(macs_readback *readback);
+
+/* Map, copy into caller memory as macs_texture_read lays it out (stride 0 = tight rows, else a
+ * multiple of the texel size of at least a row), unmap. */
+MACS_API macs_status macs_readback_read(macs_readback *readback, void *data, size_t stride);
 
 /* Sets every texel to one value (for RGBA8 the value is scaled from 0..1). */
 MACS_API macs_status macs_texture_clear(macs_texture *texture, const float rgba[4]);

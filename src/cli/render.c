@@ -31,11 +31,34 @@ static void on_interrupt(int signal)
     interrupted = 1;
 }
 
-/* What the render's progress calls reach: the bar, and the interrupt flag. */
+/* The PNG as the render tells its final rows (settings.rows_done): encoded while the GPU renders
+ * the next tiles, and timed for --timings. */
+typedef struct png_rows {
+    cli_png_stream *stream;
+    const bg_image *image;
+    double seconds; /* spent encoding inside the render */
+} png_rows;
+
+static void on_rows(int y0, int y1, void *user)
+{
+    png_rows *p = user;
+    double t0 = cli_now();
+    cli_png_stream_rows(p->stream, p->image, y0, y1);
+    p->seconds += cli_now() - t0;
+}
+
+/* What the render's progress calls reach: the bar, the interrupt flag, and the PNG's state (a write
+ * that failed stops the render: its file cannot be finished). */
+typedef struct progress_user {
+    cli_progress *bar;
+    const png_rows *png;
+} progress_user;
+
 static bool on_progress(double fraction, void *user)
 {
-    cli_progress_update(user, fraction);
-    return !interrupted;
+    progress_user *p = user;
+    cli_progress_update(p->bar, fraction);
+    return !interrupted && !cli_png_stream_failed(p->png->stream);
 }
 
 /* The GPU's pieces, made and freed together. */
@@ -150,7 +173,7 @@ static bool plan_render(const cli_options *o, const bg_scenefile_result *file, b
 /* Wall times of the command's phases for --timings (seconds). The render's first frame holds the
  * programs' compilation; a second frame, rendered only for --timings, shows the frame alone. */
 typedef struct phase_times {
-    double load, context, render, again, png, write;
+    double load, context, render, again, png, png_in_render, write;
     int compiled;
 } phase_times;
 
@@ -158,36 +181,46 @@ static void print_times(const phase_times *t)
 {
     fprintf(stderr,
             "betelgeuse: timings: scene load %.1f ms, context %.1f ms, render %.1f ms (%d programs compiled), "
-            "render again %.1f ms, PNG encode and write %.1f ms, put in place %.1f ms\n",
-            1e3 * t->load, 1e3 * t->context, 1e3 * t->render, t->compiled, 1e3 * t->again, 1e3 * t->png,
-            1e3 * t->write);
+            "render again %.1f ms, PNG encode and write %.1f ms (%.1f ms of it inside the render, as rows came), "
+            "put in place %.1f ms\n",
+            1e3 * t->load, 1e3 * t->context, 1e3 * t->render, t->compiled, 1e3 * t->again,
+            1e3 * (t->png + t->png_in_render), 1e3 * t->png_in_render, 1e3 * t->write);
 }
 
-/* The float frame (when asked for) and the PNG's; BG_OK or the failure, with the reason in why.
- * Ctrl-C cancels through the progress callback. */
+/* The float frame (when asked for) and the PNG's, whose rows go into png as they become final;
+ * BG_OK or the failure, with the reason in why. Ctrl-C cancels through the progress callback. */
 static bg_status render_images(const cli_options *o, gpu *g, bg_scene *scene, bg_render_settings *settings,
-                               bg_image *image, bg_image *radiance, cli_progress *bar, char *why, size_t size)
+                               bg_image *image, bg_image *radiance, cli_progress *bar, png_rows *png, char *why,
+                               size_t size)
 {
     cli_progress_start(bar, !o->quiet);
-    settings->progress = on_progress;
-    settings->progress_user = bar;
+    progress_user user = {bar, png};
+    bg_render_settings set = *settings;
+    set.progress = on_progress;
+    set.progress_user = &user;
     /* The float frame renders first when asked for: it is the one progress runs over twice. */
-    bg_status st = o->float_output ? render_once(o, g, scene, settings, radiance, why, size) : BG_OK;
+    bg_status st = o->float_output ? render_once(o, g, scene, &set, radiance, why, size) : BG_OK;
+    set.rows_done = on_rows;
+    set.rows_user = png;
     if (st == BG_OK)
-        st = render_once(o, g, scene, settings, image, why, size);
+        st = render_once(o, g, scene, &set, image, why, size);
     cli_progress_finish(bar, st == BG_OK);
     if (st == BG_ERR_CANCELLED)
-        snprintf(why, size, "cancelled; nothing was written");
+        snprintf(why, size, cli_png_stream_failed(png->stream) ? "the PNG could not be written; nothing was written"
+                                                               : "cancelled; nothing was written");
     return st;
 }
 
 /* Both images into their temporaries, then both put in place: a failure anywhere before the
  * renames leaves every existing file as it was. */
-static bool write_outputs(const cli_options *o, cli_output outs[2], const bg_image *image, const bg_image *radiance,
-                          const cli_placement *where, char *why, size_t size, phase_times *times)
+static bool write_outputs(const cli_options *o, cli_output outs[2], png_rows *png, const bg_image *radiance,
+                          char *why, size_t size, phase_times *times)
 {
     double t0 = cli_now();
-    if (!cli_png_write(outs[0].file, o->output, image, where, why, size) || !cli_output_finish(&outs[0], why, size))
+    /* The PNG's rows not yet written (all of them when the render told none), then its end. */
+    cli_png_stream *stream = png->stream;
+    png->stream = NULL;
+    if (!cli_png_stream_end(stream, png->image, why, size) || !cli_output_finish(&outs[0], why, size))
         return false;
     double t1 = cli_now();
     times->png = t1 - t0;
@@ -216,6 +249,7 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
     memset(&g, 0, sizeof g);
     bg_image image = {w, h, BG_PIXEL_RGBA8, 0, NULL};
     bg_image radiance = {w, h, BG_PIXEL_RGBA32F, 0, NULL};
+    png_rows png = {NULL, &image, 0.0};
     int status = CLI_EXIT_FAILED;
     double t0 = cli_now();
     if (!cli_output_open(&outs[0], o->output, why, sizeof why) ||
@@ -226,6 +260,8 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
     } else if (!(image.pixels = malloc((size_t)w * (size_t)h * 4)) ||
                (o->float_output && !(radiance.pixels = malloc((size_t)w * (size_t)h * 16)))) {
         fprintf(stderr, "betelgeuse: out of memory for a %dx%d image\n", w, h);
+    } else if (!cli_png_stream_begin(&png.stream, outs[0].file, o->output, w, h, where, why, sizeof why)) {
+        fprintf(stderr, "betelgeuse: %s\n", why);
     } else {
         /* Ctrl-C is caught until the outputs are in place, so that it never leaves a temporary. */
         struct sigaction action, previous;
@@ -235,9 +271,10 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
         cli_progress bar;
         double t1 = cli_now();
         times->context = t1 - t0;
-        bg_status st = render_images(o, &g, scene, settings, &image, &radiance, &bar, why, sizeof why);
+        bg_status st = render_images(o, &g, scene, settings, &image, &radiance, &bar, &png, why, sizeof why);
         double t2 = cli_now();
         times->render = t2 - t1;
+        times->png_in_render = png.seconds;
         if (st == BG_OK && o->timings) {
             bg_render_stats stats;
             if (g.renderer) {
@@ -250,7 +287,7 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
         }
         double t3 = cli_now();
         times->again = t3 - t2;
-        if (st != BG_OK || !write_outputs(o, outs, &image, &radiance, where, why, sizeof why, times))
+        if (st != BG_OK || !write_outputs(o, outs, &png, &radiance, why, sizeof why, times))
             fprintf(stderr, "betelgeuse: %s\n", why);
         else
             status = CLI_EXIT_OK;
@@ -260,6 +297,7 @@ static int render_and_write(const cli_options *o, bg_scene *scene, bg_render_set
                     w != where->frame_width || h != where->frame_height ? " window" : "", o->output,
                     cli_now() - bar.start);
     }
+    cli_png_stream_abort(png.stream);
     cli_output_discard(&outs[0]);
     cli_output_discard(&outs[1]);
     free(image.pixels);

@@ -49,23 +49,50 @@ static void flush_data(png_structp png)
     (void)png; /* cli_output_finish flushes and checks the stream once at the end */
 }
 
-bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_placement *where, char *why,
-                   size_t why_size)
+/* A PNG being written row by row. libpng reports errors by longjmp to the last setjmp: each call
+ * below that enters libpng sets its own, and after an error the stream only remembers it. */
+struct cli_png_stream {
+    png_structp png;
+    png_infop info;
+    const char *name;
+    int width, height;
+    int next;          /* the first row not yet written */
+    bool failed;
+    char message[256]; /* libpng's error, or the rule broken */
+};
+
+static bool stream_fail(cli_png_stream *s, const char *message)
 {
-    char message[256] = "";
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
-    png_infop info = png ? png_create_info_struct(png) : NULL;
-    if (!png || !info) {
-        png_destroy_write_struct(&png, NULL);
+    /* libpng's own errors are in s->message already (on_png_error). */
+    if (!s->failed && message != s->message)
+        snprintf(s->message, sizeof s->message, "%s", message);
+    s->failed = true;
+    return false;
+}
+
+bool cli_png_stream_begin(cli_png_stream **out, FILE *f, const char *name, int width, int height,
+                          const cli_placement *where, char *why, size_t why_size)
+{
+    *out = NULL;
+    cli_png_stream *s = calloc(1, sizeof *s);
+    if (!s)
+        return fail(why, why_size, "%s: %s", name, "out of memory");
+    s->name = name;
+    s->width = width;
+    s->height = height;
+    s->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, s->message, on_png_error, on_png_warning);
+    s->info = s->png ? png_create_info_struct(s->png) : NULL;
+    if (!s->png || !s->info) {
+        cli_png_stream_abort(s);
         return fail(why, why_size, "%s: %s", name, "out of memory");
     }
-    size_t stride = image->stride ? image->stride : (size_t)image->width * 4;
-    if (setjmp(png_jmpbuf(png))) {
-        png_destroy_write_struct(&png, &info);
-        return fail(why, why_size, "%s: cannot write: %s", name, message);
+    if (setjmp(png_jmpbuf(s->png))) {
+        fail(why, why_size, "%s: cannot write: %s", name, s->message);
+        cli_png_stream_abort(s);
+        return false;
     }
-    png_set_write_fn(png, f, write_data, flush_data);
-    png_set_IHDR(png, info, (png_uint_32)image->width, (png_uint_32)image->height, 8, PNG_COLOR_TYPE_RGB_ALPHA,
+    png_set_write_fn(s->png, f, write_data, flush_data);
+    png_set_IHDR(s->png, s->info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB_ALPHA,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     char text[96];
     snprintf(text, sizeof text, "%d %d %d %d", where->x, where->y, where->frame_width, where->frame_height);
@@ -74,17 +101,66 @@ bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_p
     t.compression = PNG_TEXT_COMPRESSION_NONE;
     t.key = (png_charp)TILE_KEY;
     t.text = text;
-    png_set_text(png, info, &t, 1);
+    png_set_text(s->png, s->info, &t, 1);
     /* zlib's fastest level: at 1024x1024 (llvmpipe, 2 busy cores) level 6, libpng's default, took
      * 185-465 ms to encode, longer than the frame (150-210 ms for paper_earth_shadow), and level 1
      * 36-140 ms, for files 8 to 52 % larger (docs/benchmarks.md, "The command's own cost"). */
-    png_set_compression_level(png, 1);
-    png_write_info(png, info);
-    for (int y = 0; y < image->height; y++)
-        png_write_row(png, (png_const_bytep)image->pixels + (size_t)y * stride);
-    png_write_end(png, NULL);
-    png_destroy_write_struct(&png, &info);
+    png_set_compression_level(s->png, 1);
+    png_write_info(s->png, s->info);
+    *out = s;
     return true;
+}
+
+bool cli_png_stream_rows(cli_png_stream *s, const bg_image *image, int y0, int y1)
+{
+    if (s->failed)
+        return false;
+    /* Rows go into a PNG once, in order: a gap or an overlap is a bug in who tells them. */
+    if (y0 != s->next || y1 < y0 || y1 > s->height || image->width != s->width || image->height != s->height)
+        return stream_fail(s, "rows told out of order");
+    size_t stride = image->stride ? image->stride : (size_t)image->width * 4;
+    if (setjmp(png_jmpbuf(s->png)))
+        return stream_fail(s, s->message);
+    for (int y = y0; y < y1; y++)
+        png_write_row(s->png, (png_const_bytep)image->pixels + (size_t)y * stride);
+    s->next = y1;
+    return true;
+}
+
+bool cli_png_stream_failed(const cli_png_stream *s)
+{
+    return s && s->failed;
+}
+
+bool cli_png_stream_end(cli_png_stream *s, const bg_image *image, char *why, size_t why_size)
+{
+    bool ok = cli_png_stream_rows(s, image, s->next, s->height);
+    if (ok) {
+        if (setjmp(png_jmpbuf(s->png)))
+            ok = stream_fail(s, s->message);
+        else
+            png_write_end(s->png, NULL);
+    }
+    if (!ok)
+        fail(why, why_size, "%s: cannot write: %s", s->name, s->message);
+    cli_png_stream_abort(s);
+    return ok;
+}
+
+void cli_png_stream_abort(cli_png_stream *s)
+{
+    if (!s)
+        return;
+    png_destroy_write_struct(&s->png, &s->info);
+    free(s);
+}
+
+bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_placement *where, char *why,
+                   size_t why_size)
+{
+    cli_png_stream *s = NULL;
+    return cli_png_stream_begin(&s, f, name, image->width, image->height, where, why, why_size) &&
+           cli_png_stream_end(s, image, why, why_size);
 }
 
 /* The placement in the text chunks, if any; false when the chunk is there but malformed. */

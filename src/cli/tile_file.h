@@ -23,6 +23,20 @@ typedef struct cli_placement {
 bool cli_png_write(FILE *f, const char *name, const bg_image *image, const cli_placement *where, char *why,
                    size_t why_size);
 
+/* The same PNG written as its rows become final (a render's settings.rows_done), so that encoding
+ * overlaps the render: begin (the header), rows [y0, y1) of image in order as they come, end (the
+ * rows not yet written, then the end; the stream is freed either way), or abort (freed, the file
+ * left for the caller to discard). A failed write or rows out of order make rows return false and
+ * end report the reason, naming the file as name. */
+typedef struct cli_png_stream cli_png_stream;
+bool cli_png_stream_begin(cli_png_stream **out, FILE *f, const char *name, int width, int height,
+                          const cli_placement *where, char *why, size_t why_size);
+bool cli_png_stream_rows(cli_png_stream *s, const bg_image *image, int y0, int y1);
+/* Whether a write failed already (NULL: no stream, false). */
+bool cli_png_stream_failed(const cli_png_stream *s);
+bool cli_png_stream_end(cli_png_stream *s, const bg_image *image, char *why, size_t why_size);
+void cli_png_stream_abort(cli_png_stream *s);
+
 /* Reads a PNG written by cli_png_write into *image (pixels allocated with malloc, RGBA8, rows
  * top-down) and its placement; a PNG without the chunk is a whole frame. False with the reason,
  * also for a path that is not a regular file (a directory, a FIFO) and for a placement outside

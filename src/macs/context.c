@@ -356,6 +356,8 @@ void macs_context_destroy(macs_context *ctx)
         macs_depth_stencil_destroy(ctx->depth_stencils);
     while (ctx->timers)
         macs_timer_destroy(ctx->timers);
+    while (ctx->readbacks)
+        macs_readback_destroy(ctx->readbacks);
     /* Table entries are NULL when creation failed before loading; then no GL object exists either. */
     if (ctx->gl.DeleteShader) {
         macsi_program_cache_destroy(ctx);

@@ -45,6 +45,8 @@
     X(void, DeleteBuffers, (GLsizei n, const GLuint *buffers)) \
     X(void, BindBuffer, (GLenum target, GLuint buffer)) \
     X(void, BufferData, (GLenum target, GLsizeiptr size, const void *data, GLenum usage)) \
+    X(void *, MapBuffer, (GLenum target, GLenum access)) \
+    X(GLboolean, UnmapBuffer, (GLenum target)) \
     X(void, VertexAttribPointer, (GLuint index, GLint size, GLenum type, GLboolean normalized, \
                                   GLsizei stride, const void *pointer)) \
     X(void, EnableVertexAttribArray, (GLuint index)) \
@@ -77,6 +79,7 @@
     X(void, BeginQuery, (GLenum target, GLuint id)) \
     X(void, EndQuery, (GLenum target)) \
     X(void, GetQueryObjectuiv, (GLuint id, GLenum pname, GLuint *params)) \
+    X(void, Flush, (void)) \
     X(void, Finish, (void))
 
 #define MACS_GL_FBO(X) \

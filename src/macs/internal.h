@@ -40,6 +40,19 @@ struct macs_texture {
     struct macs_texture *prev, *next;
 };
 
+/* A pixel pack buffer that one read at a time goes through (readback.c). */
+typedef enum macsi_readback_state { MACSI_READBACK_EMPTY = 0, MACSI_READBACK_PENDING, MACSI_READBACK_MAPPED } macsi_readback_state;
+struct macs_readback {
+    macs_context *ctx;
+    GLuint buffer;
+    size_t capacity;       /* bytes of the buffer's store (0: none yet) */
+    macsi_readback_state state;
+    int width, height;     /* of the texture the pending or mapped read is of */
+    macs_format format;
+    const void *mapped;
+    struct macs_readback *prev, *next;
+};
+
 struct macs_depth_stencil {
     macs_context *ctx;
     GLuint renderbuffer;
@@ -118,6 +131,7 @@ struct macs_context {
     bool timer_arb; /* GL_ARB_timer_query is there (else features.timer_query means the EXT one) */
     /* glGetQueryObjectui64v of the timer extension found (ARB or EXT), NULL without one */
     void (GLAPIENTRY *query_result64)(GLuint id, GLenum pname, GLuint64 *params);
+    macs_readback *readbacks;
 };
 
 /* alloc.c: allocation through the caller's hooks; every result must be checked. */
@@ -206,6 +220,10 @@ macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc);
 
 /* texture.c: the sampling parameters of the texture bound to GL_TEXTURE_2D (no mipmaps ever). */
 void macsi_texture_apply_sampling(macs_context *ctx, macs_filter filter, macs_wrap wrap);
+/* texture.c: bytes per texel, the GL type and the checked pixel-store row length of host transfers. */
+size_t macsi_texel_size(macs_format format);
+GLenum macsi_texel_type(macs_format format);
+void macsi_reset_pixel_store(macs_context *ctx);
 
 /* pass.c: detaching destroyed objects from passes */
 void macsi_pass_forget_texture(macs_context *ctx, const macs_texture *texture);
@@ -221,6 +239,10 @@ void macsi_tex_image(macs_context *ctx, GLint internal_format, GLsizei width, GL
                      GLenum type, const void *pixels);
 void macsi_tex_sub_image(macs_context *ctx, const int region[4], GLenum format, GLenum type, const void *pixels);
 void macsi_get_tex_image(macs_context *ctx, GLsizei width, GLsizei height, GLenum format, GLenum type, void *pixels);
+/* glGetTexImage into the bound GL_PIXEL_PACK_BUFFER (offset 0): bytes counted, no sync (GL queues it). */
+void macsi_get_tex_image_queued(macs_context *ctx, GLsizei width, GLsizei height, GLenum format, GLenum type);
+/* glMapBuffer(GL_PIXEL_PACK_BUFFER, GL_READ_ONLY) of the bound buffer: one sync (it waits for the copy). */
+void *macsi_map_pack_buffer(macs_context *ctx);
 void macsi_finish(macs_context *ctx);
 void macsi_query_result(macs_context *ctx, GLuint query, GLuint *value);
 void macsi_timer_result(macs_context *ctx, GLuint query, GLuint64 *nanoseconds);

@@ -5,12 +5,12 @@
 
 #include "internal.h"
 
-static size_t texel_size(macs_format f)
+size_t macsi_texel_size(macs_format f)
 {
     return f == MACS_FORMAT_RGBA8 ? 4 : 16;
 }
 
-static GLenum texel_type(macs_format f)
+GLenum macsi_texel_type(macs_format f)
 {
     return f == MACS_FORMAT_RGBA8 ? GL_UNSIGNED_BYTE : GL_FLOAT;
 }
@@ -28,7 +28,7 @@ static GLint internal_format(macs_format f)
  * of row_texels. */
 static macs_status set_row_length(macs_texture *t, GLenum pname, int row_texels, size_t stride, const char *what)
 {
-    size_t ts = texel_size(t->format);
+    size_t ts = macsi_texel_size(t->format);
     size_t tight = (size_t)row_texels * ts;
     if (stride == 0)
         stride = tight;
@@ -41,7 +41,7 @@ static macs_status set_row_length(macs_texture *t, GLenum pname, int row_texels,
     return MACS_OK;
 }
 
-static void reset_pixel_store(macs_context *ctx)
+void macsi_reset_pixel_store(macs_context *ctx)
 {
     /* Back to GL defaults so a caller sharing the context sees what it expects. */
     ctx->gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
@@ -66,7 +66,7 @@ static macs_status check_image(macs_texture *t)
     if (e == GL_NO_ERROR)
         return MACS_OK;
     macsi_gl_drain(ctx);
-    double mib = (double)t->width * (double)t->height * (double)texel_size(t->format) / (1024.0 * 1024.0);
+    double mib = (double)t->width * (double)t->height * (double)macsi_texel_size(t->format) / (1024.0 * 1024.0);
     int driver = ctx->real.max_texture_size;
     if (t->width > driver || t->height > driver)
         return macsi_fail(ctx, e == GL_OUT_OF_MEMORY ? MACS_ERR_GPU_OUT_OF_MEMORY : MACS_ERR_LIMIT,
@@ -131,9 +131,9 @@ macs_status macs_texture_create(macs_context *ctx, const macs_texture_desc *desc
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, t->id);
     macsi_texture_apply_sampling(ctx, desc->filter, desc->wrap);
-    macsi_tex_image(ctx, internal_format(t->format), t->width, t->height, GL_RGBA, texel_type(t->format),
+    macsi_tex_image(ctx, internal_format(t->format), t->width, t->height, GL_RGBA, macsi_texel_type(t->format),
                     desc->data);
-    reset_pixel_store(ctx);
+    macsi_reset_pixel_store(ctx);
     gl->BindTexture(GL_TEXTURE_2D, 0);
     macs_status st = check_image(t);
     if (st != MACS_OK) {
@@ -183,11 +183,11 @@ static macs_status transfer(macs_texture *t, bool upload, const int region[4], v
     ctx->gl.ActiveTexture(GL_TEXTURE0);
     ctx->gl.BindTexture(GL_TEXTURE_2D, t->id);
     if (upload)
-        macsi_tex_sub_image(ctx, region, GL_RGBA, texel_type(t->format), data);
+        macsi_tex_sub_image(ctx, region, GL_RGBA, macsi_texel_type(t->format), data);
     else
-        macsi_get_tex_image(ctx, t->width, t->height, GL_RGBA, texel_type(t->format), data);
+        macsi_get_tex_image(ctx, t->width, t->height, GL_RGBA, macsi_texel_type(t->format), data);
     ctx->gl.BindTexture(GL_TEXTURE_2D, 0);
-    reset_pixel_store(ctx);
+    macsi_reset_pixel_store(ctx);
     char what[64];
     snprintf(what, sizeof what, "%s: %s", fn, upload ? "glTexSubImage2D" : "glGetTexImage");
     return macsi_gl_check(ctx, what);

@@ -1,8 +1,9 @@
 /* The work counters (macs_work): every GL call they count goes through one function here, which
  * counts it and issues it, so a count cannot drift from the calls. The rest of libmacs calls these
  * instead of the table's entries for glDrawArrays, glUseProgram, glBindFramebuffer, glUniform*,
- * glTexImage2D, glTexSubImage2D, glGetTexImage, glFinish and the GL_QUERY_RESULT reads of glGetQueryObjectuiv
- * and glGetQueryObjectui64v.
+ * glTexImage2D, glTexSubImage2D, glGetTexImage (into host memory or a pixel pack buffer), glMapBuffer of
+ * a read-back buffer, glFinish and the GL_QUERY_RESULT reads of glGetQueryObjectuiv and
+ * glGetQueryObjectui64v.
  * Bytes are the texel data a call hands over or takes: width x height x bytes per texel of the
  * format and type given, whatever the row stride in host memory. */
 #include "internal.h"
@@ -82,6 +83,21 @@ void macsi_get_tex_image(macs_context *ctx, GLsizei width, GLsizei height, GLenu
     ctx->work.syncs++;
     ctx->work.readback_bytes += image_bytes(width, height, format, type);
     ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, format, type, pixels);
+}
+
+void macsi_get_tex_image_queued(macs_context *ctx, GLsizei width, GLsizei height, GLenum format, GLenum type)
+{
+    /* Into the bound pixel pack buffer: GL queues the copy behind the work that writes the texture and
+     * returns, so the bytes move but the host does not wait here; macsi_map_pack_buffer does. */
+    ctx->work.readback_bytes += image_bytes(width, height, format, type);
+    ctx->gl.GetTexImage(GL_TEXTURE_2D, 0, format, type, NULL);
+}
+
+void *macsi_map_pack_buffer(macs_context *ctx)
+{
+    /* The host sees the buffer only once the queued copy into it is done: a map may wait. */
+    ctx->work.syncs++;
+    return ctx->gl.MapBuffer(GL_PIXEL_PACK_BUFFER, GL_READ_ONLY);
 }
 
 void macsi_finish(macs_context *ctx)

@@ -155,3 +155,9 @@ bool bgi_render_progress(const bg_render_settings *settings, double fraction)
         return true;
     return settings->progress(fraction, settings->progress_user);
 }
+
+void bgi_render_rows_done(const bg_render_settings *settings, int y0, int y1)
+{
+    if (settings->rows_done)
+        settings->rows_done(y0, y1, settings->rows_user);
+}

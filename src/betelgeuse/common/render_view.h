@@ -42,5 +42,7 @@ int bgi_sample_rows(int n);
 
 /* Calls settings->progress (if any) with fraction; false when it asks to cancel. */
 bool bgi_render_progress(const bg_render_settings *settings, double fraction);
+/* Calls settings->rows_done (if any) with rows [y0, y1). */
+void bgi_render_rows_done(const bg_render_settings *settings, int y0, int y1);
 
 #endif

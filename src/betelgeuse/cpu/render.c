@@ -197,6 +197,7 @@ bg_status bg_render_cpu(bg_scene *scene, const bg_render_settings *settings, bg_
     if (jb.cancelled)
         return bgi_scene_fail(scene, BG_ERR_CANCELLED, "bg_render_cpu: cancelled by settings.progress after %d of "
                               "%d rows; each row is complete or untouched", jb.rows_done, image->height);
+    bgi_render_rows_done(settings, 0, image->height);
     bgi_render_progress(settings, 1.0);
     return BG_OK;
 }

@@ -337,6 +337,9 @@ bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg
         st = bgi_gpu_accumulation_bytes(r, a, encoding, a->bytes);
     if (st != BG_OK)
         return st;
+    /* Nothing writes the image after these bytes: a tile's read may wait for the next tile (tiles.c). */
+    if (bgi_gpu_read_park(r, a->bytes, true))
+        return BG_OK;
     macs_status ms = macs_texture_read(a->bytes, pixels, stride);
     if (ms)
         return bgi_gpu_fail_macs(r, ms, "reading the resolved bytes back");

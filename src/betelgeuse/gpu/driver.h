@@ -30,7 +30,8 @@ bg_status bgi_gpu_frame_render(bg_renderer *r, bg_scene *scene, const bg_render_
 
 /* ---- tiles.c ---- */
 /* bg_render_gpu's frame into out->image: in one piece through bgi_gpu_frame_render, or as tiles of
- * the frame when the image exceeds max_texture_size or the settings' GPU memory budget; sets
+ * the frame when the image exceeds max_texture_size or the settings' GPU memory budget, each tile's
+ * read queued while the next renders; tells settings.rows_done the bands of final rows; sets
  * stats.tiles. */
 bg_status bgi_gpu_tiles_render(bg_renderer *r, bg_scene *scene, const bg_render_settings *settings,
                                const gpu_frame_out *out, const bgi_render_view *view);
@@ -53,8 +54,9 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
                                      bool keep_marks);
 /* The mean of a's samples (samples > 0) as the host's RGBA8 bytes of the encoding (exact_bytes.c),
  * on the GPU: into target (RGBA8, a's size), or into a host image's pixels (rows top first, stride)
- * through a's own RGBA8 texture, one read-back of 4 bytes a pixel. Alpha is 255, or 0 where the
- * sum's alpha marks a pixel whose walks ran out. */
+ * through a's own RGBA8 texture, one read-back of 4 bytes a pixel (parked for tiles.c while it
+ * defers reads: shared/read_back.c). Alpha is 255, or 0 where the sum's alpha marks a pixel whose
+ * walks ran out. */
 bg_status bgi_gpu_accumulation_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
                                      macs_texture *target);
 bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,

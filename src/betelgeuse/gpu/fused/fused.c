@@ -349,8 +349,12 @@ static bg_status finish(bg_renderer *r, const bg_scene_state *state, const bg_re
         return walks ? bgi_gpu_fallback_texture(r, &r->fused->marks, state, settings, &r->view.pixels, o->texture,
                                                 &r->stats.fallback_pixels)
                      : BG_OK;
-    bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, !walks);
-    if (st == BG_OK && walks)
+    /* Without walks the read is the frame's last write (tiles.c may defer it); with them the CPU's
+     * pixels go in after it. */
+    if (!walks)
+        return bgi_gpu_read_back_last(r, out, o->image, o->stride, true);
+    bg_status st = bgi_gpu_read_back(r, out, o->image, o->stride, false);
+    if (st == BG_OK)
         r->stats.fallback_pixels = bgi_gpu_fallback_image(state, settings, &r->view.pixels, o->image, o->stride);
     return st;
 }

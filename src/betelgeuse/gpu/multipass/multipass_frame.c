@@ -383,8 +383,12 @@ static void float_marks(const bg_image *image, size_t stride)
 static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
 {
     bg_renderer *r = f->r;
+    /* Without meshes the read is the frame's last write (tiles.c may defer it); with them finish()
+     * goes on writing the image after it. */
+    bool mesh = r->multipass->features.mesh;
     if (o->image && o->as_float)
-        return bgi_gpu_read_back(r, r->multipass->accum, o->image, o->stride, !r->multipass->features.mesh);
+        return mesh ? bgi_gpu_read_back(r, r->multipass->accum, o->image, o->stride, false)
+                    : bgi_gpu_read_back_last(r, r->multipass->accum, o->image, o->stride, true);
     macs_pass *resolve = r->multipass->passes.resolve;
     macs_texture *target = o->texture ? o->texture : r->multipass->encoded;
     bg_status st = BG_OK;
@@ -404,7 +408,8 @@ static bg_status finish_gpu(frame *f, const gpu_frame_out *o)
     st = run(f, resolve, BG_PASS_RESOLVE, NULL);
     if (st != BG_OK || o->texture)
         return st;
-    return bgi_gpu_read_back(r, r->multipass->encoded, o->image, o->stride, true);
+    return mesh ? bgi_gpu_read_back(r, r->multipass->encoded, o->image, o->stride, true)
+                : bgi_gpu_read_back_last(r, r->multipass->encoded, o->image, o->stride, true);
 }
 
 /* The frame's end. Into an image: RGBA32F reads the accumulation back, RGBA8 resolves it to the

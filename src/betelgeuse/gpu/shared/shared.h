@@ -118,6 +118,11 @@ struct bg_renderer {
 
     float *readback; /* read_back.c's buffer */
     size_t readback_size;
+    /* tiles.c's deferred read: while defer_reads is set, a frame's last read into the image is not
+     * made but parked here (read_back.c), for the tile loop to queue once the next tile is under way. */
+    bool defer_reads;
+    macs_texture *parked;  /* the finished texture of the frame just rendered; NULL none */
+    bool parked_opaque;    /* bgi_gpu_read_back's opaque for it */
     gpu_view view; /* of the pass being rendered (the driver sets it) */
     gpu_phase_timing timing;
     /* Set by the driver while a pass renders one of several samples summed on the GPU (accumulate.c):
@@ -396,6 +401,17 @@ bg_status bgi_gpu_read_back(bg_renderer *r, macs_texture *texture, bg_image *ima
 /* The renderer's read-back buffer, grown to at least bytes; NULL (the failure reported) when out of
  * memory. */
 void *bgi_gpu_read_back_buffer(bg_renderer *r, size_t bytes);
+/* A frame's last write into the caller's image (nothing changes the image after it): while tiles.c
+ * defers reads (r->defer_reads), the texture is parked and true returned, for the tile loop to read
+ * later; else false, and the caller reads now. */
+bool bgi_gpu_read_park(bg_renderer *r, macs_texture *texture, bool opaque);
+/* bgi_gpu_read_back as a frame's last write: parked while reads are deferred, else read now. */
+bg_status bgi_gpu_read_back_last(bg_renderer *r, macs_texture *texture, bg_image *image, size_t stride, bool opaque);
+/* Copies rows [y0, y0 + count) and texels [x0, x0 + width) of texels (a texture's read, bottom row first,
+ * src_stride bytes apart, height rows) into dst (top row first, stride apart, starting at the first
+ * row and texel copied), as bgi_gpu_read_back writes them; texel is 4 or 16 bytes. */
+void bgi_gpu_copy_rows(const unsigned char *texels, size_t src_stride, int height, int x0, int width, int y0,
+                       int count, size_t texel, bool opaque, unsigned char *dst, size_t stride);
 
 
 /* ---- meshes.c: the meshes' textures ---- */
