@@ -222,37 +222,12 @@ static void tiled_work_is_per_tile(void **state)
 
 /* A driver whose glMapBuffer returns NULL: the tiled render fails naming it; one piece, which reads
  * without a buffer, still renders. */
-static struct {
-    macs_get_proc_address_fn real;
-    void *real_user;
-} loader;
-
-static void *null_map_buffer(unsigned target, unsigned access)
-{
-    (void)target;
-    (void)access;
-    return NULL;
-}
-
-static macs_gl_proc no_map_loader(const char *name, void *user)
-{
-    (void)user;
-    if (strcmp(name, "glMapBuffer") == 0)
-        return (macs_gl_proc)null_map_buffer;
-    return loader.real(name, loader.real_user);
-}
-
 static void a_null_map_fails_the_render(void **state)
 {
     (void)state;
-    loader.real = macs_headless_get_proc_address(util_fx.headless);
-    loader.real_user = macs_headless_proc_user(util_fx.headless);
-    macs_context_desc d = {0};
-    d.get_proc_address = no_map_loader;
-    d.profile = util_profile();
-    d.caps.max_texture_size = CAP;
-    macs_context *ctx = NULL;
-    assert_int_equal(macs_context_create(&d, &ctx, NULL, 0), MACS_OK);
+    macs_limits caps = {0};
+    caps.max_texture_size = CAP;
+    macs_context *ctx = util_context_null_map(util_fx.headless, &caps);
     bg_renderer *r = util_renderer(ctx);
     bg_scene *s = util_scene(SCENE_PAPER_EARTH);
     bg_image img;

@@ -144,27 +144,12 @@ static void phases_add_up_over_samples_and_tiles(void **state)
     bg_scene_destroy(s);
 }
 
-/* A MACS context on the suite's GL context with the timer extensions hidden, as a driver without them. */
-static macs_context *context_without_timers(void)
-{
-    macs_context_desc d = {0};
-    d.get_proc_address = macs_headless_get_proc_address(util_fx.headless);
-    d.get_proc_address_user = macs_headless_proc_user(util_fx.headless);
-    d.hidden_extensions = "GL_ARB_timer_query GL_EXT_timer_query";
-    d.profile = util_profile();
-    macs_context *ctx = NULL;
-    char message[1024];
-    if (macs_context_create(&d, &ctx, message, sizeof message) != MACS_OK)
-        fail_msg("macs_context_create: %s", message);
-    return ctx;
-}
-
 /* Without timer queries the wall clock times the phases, named in the stats, with glFinish around
  * each phase: more syncs, no timer reads, the same pixels. */
 static void wall_clock_without_timers(void **state)
 {
     (void)state;
-    macs_context *ctx = context_without_timers();
+    macs_context *ctx = util_context_hiding(util_fx.headless, "GL_ARB_timer_query GL_EXT_timer_query");
     bg_renderer *r = util_renderer(ctx);
     bg_scene *s = util_scene(SCENE_PAPER_EARTH_SHADOW);
     for (int i = 0; i < PLANS; i++) {

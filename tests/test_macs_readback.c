@@ -175,35 +175,9 @@ static void misuse_is_refused_by_name(void **state)
 }
 
 /* A driver whose glMapBuffer returns NULL (the loader hands MACS a stand-in). */
-static struct {
-    macs_get_proc_address_fn real;
-    void *real_user;
-} loader;
-
-static void *null_map_buffer(unsigned target, unsigned access)
-{
-    (void)target;
-    (void)access;
-    return NULL;
-}
-
-static macs_gl_proc no_map_loader(const char *name, void *user)
-{
-    (void)user;
-    if (strcmp(name, "glMapBuffer") == 0)
-        return (macs_gl_proc)null_map_buffer;
-    return loader.real(name, loader.real_user);
-}
-
 static void a_null_map_is_an_error(void **state)
 {
-    loader.real = macs_headless_get_proc_address(*state);
-    loader.real_user = macs_headless_proc_user(*state);
-    macs_context_desc d = {0};
-    d.get_proc_address = no_map_loader;
-    d.profile = util_profile();
-    macs_context *ctx = NULL;
-    assert_int_equal(macs_context_create(&d, &ctx, NULL, 0), MACS_OK);
+    macs_context *ctx = util_context_null_map(*state, NULL);
     macs_texture *t = util_texture(ctx, W, H, MACS_FORMAT_RGBA8);
     macs_readback *rb = NULL;
     assert_int_equal(macs_readback_create(ctx, &rb), MACS_OK);

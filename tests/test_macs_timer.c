@@ -14,22 +14,6 @@
 
 #include "util_gl.h"
 
-/* A context on the headless one with the given extensions hidden (and the environment's profile);
- * message gets the reason on failure. */
-static macs_context *context_hiding(void **state, const char *hidden)
-{
-    macs_context_desc d = {0};
-    d.get_proc_address = macs_headless_get_proc_address(*state);
-    d.get_proc_address_user = macs_headless_proc_user(*state);
-    d.hidden_extensions = hidden;
-    d.profile = util_profile();
-    macs_context *ctx = NULL;
-    char message[1024];
-    if (macs_context_create(&d, &ctx, message, sizeof message) != MACS_OK)
-        fail_msg("macs_context_create: %s", message);
-    return ctx;
-}
-
 /* Skips the calling test, naming what, unless ctx has timers. */
 static void require_timers(macs_context *ctx, const char *what)
 {
@@ -66,7 +50,7 @@ static void draw_something(macs_context *ctx, macs_texture **out, macs_pass **pa
 /* Times a pass: the result is the GPU's time, more than nothing, and reading it is one counted sync. */
 static void time_a_pass(void **state, const char *hidden, const char *what)
 {
-    macs_context *ctx = context_hiding(state, hidden);
+    macs_context *ctx = util_context_hiding(*state, hidden);
     require_timers(ctx, what);
     macs_texture *t;
     macs_pass *pass;
@@ -125,7 +109,7 @@ static void ext_timer_times_a_pass(void **state)
 /* Without either extension no timer is made, and the message names both. */
 static void no_extension_no_timer(void **state)
 {
-    macs_context *ctx = context_hiding(state, "GL_ARB_timer_query GL_EXT_timer_query");
+    macs_context *ctx = util_context_hiding(*state, "GL_ARB_timer_query GL_EXT_timer_query");
     macs_features f;
     macs_context_get_features(ctx, &f);
     assert_false(f.timer_query);
@@ -141,7 +125,7 @@ static void no_extension_no_timer(void **state)
 /* Misuse is refused, naming the argument or the state, and leaves the timers usable. */
 static void misuse_is_named(void **state)
 {
-    macs_context *ctx = context_hiding(state, NULL);
+    macs_context *ctx = util_context_hiding(*state, NULL);
     require_timers(ctx, "timer query extension");
     assert_int_equal(macs_timer_create(NULL, NULL), MACS_ERR_INVALID_ARGUMENT);
     assert_int_equal(macs_timer_create(ctx, NULL), MACS_ERR_INVALID_ARGUMENT);

@@ -101,13 +101,44 @@ bool util_half_accumulation(void)
     return half_accumulation;
 }
 
-macs_context *util_context(macs_headless *headless, const macs_limits *caps)
+/* A driver whose glMapBuffer returns NULL: the loader of util_context_null_map hands MACS this
+ * stand-in and the headless context's own function for every other name. */
+static struct {
+    macs_get_proc_address_fn real;
+    void *real_user;
+} null_map_loader_state;
+
+static void *null_map_buffer(unsigned target, unsigned access)
+{
+    (void)target;
+    (void)access;
+    return NULL;
+}
+
+static macs_gl_proc null_map_loader(const char *name, void *user)
+{
+    (void)user;
+    if (strcmp(name, "glMapBuffer") == 0)
+        return (macs_gl_proc)null_map_buffer;
+    return null_map_loader_state.real(name, null_map_loader_state.real_user);
+}
+
+/* util_context's body, with extensions hidden and glMapBuffer's stand-in on request. */
+static macs_context *context_made(macs_headless *headless, const macs_limits *caps, const char *hidden,
+                                  bool null_map)
 {
     macs_context_desc desc = {0};
     desc.get_proc_address = macs_headless_get_proc_address(headless);
     desc.get_proc_address_user = macs_headless_proc_user(headless);
+    if (null_map) {
+        null_map_loader_state.real = desc.get_proc_address;
+        null_map_loader_state.real_user = desc.get_proc_address_user;
+        desc.get_proc_address = null_map_loader;
+        desc.get_proc_address_user = NULL;
+    }
     if (caps)
         desc.caps = *caps;
+    desc.hidden_extensions = hidden;
     /* MACS combines the profile with the test's caps, the smaller limit winning. */
     desc.profile = util_profile();
     macs_context *ctx = NULL;
@@ -120,6 +151,21 @@ macs_context *util_context(macs_headless *headless, const macs_limits *caps)
     macs_context_get_features(ctx, &f);
     half_accumulation = !f.float32_blend;
     return ctx;
+}
+
+macs_context *util_context(macs_headless *headless, const macs_limits *caps)
+{
+    return context_made(headless, caps, NULL, false);
+}
+
+macs_context *util_context_hiding(macs_headless *headless, const char *hidden)
+{
+    return context_made(headless, NULL, hidden, false);
+}
+
+macs_context *util_context_null_map(macs_headless *headless, const macs_limits *caps)
+{
+    return context_made(headless, caps, NULL, true);
 }
 
 int util_group_setup(void **state)

@@ -33,6 +33,11 @@ bool util_half_accumulation(void);
 /* Creates a MACS context on the current headless context with optional caps, under util_profile()
  * (its limits and the caps combine, the smaller winning); fails the test on error. */
 macs_context *util_context(macs_headless *headless, const macs_limits *caps);
+/* The same with the extensions hidden names (desc.hidden_extensions), as a driver without them. */
+macs_context *util_context_hiding(macs_headless *headless, const char *hidden);
+/* The same (with caps) on a driver whose glMapBuffer returns NULL: the context's loader hands MACS a
+ * stand-in for that one function. One such context at a time. */
+macs_context *util_context_null_map(macs_headless *headless, const macs_limits *caps);
 
 /* Leaves the calling thread with no current GL context (EGL or OSMesa, whichever is current), as a
  * caller who forgot to make one current would; macs_headless_make_current restores it. */
