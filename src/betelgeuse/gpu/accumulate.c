@@ -329,7 +329,7 @@ bg_status bgi_gpu_accumulation_bytes(bg_renderer *r, bg_accumulation *a, bg_outp
 }
 
 bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
-                                          unsigned char *pixels, size_t stride)
+                                          unsigned char *pixels, size_t stride, bool may_park)
 {
     bg_status st = bgi_gpu_texture_ensure(r, a->width, a->height, MACS_FORMAT_RGBA8, &a->bytes,
                                           "accumulation bytes texture");
@@ -337,8 +337,9 @@ bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg
         st = bgi_gpu_accumulation_bytes(r, a, encoding, a->bytes);
     if (st != BG_OK)
         return st;
-    /* Nothing writes the image after these bytes: a tile's read may wait for the next tile (tiles.c). */
-    if (bgi_gpu_read_park(r, a->bytes, true))
+    /* Where nothing writes the image after these bytes, a tile's read may wait for the next tile
+     * (tiles.c); where the CPU's pixels follow (marks), they need the bytes now. */
+    if (may_park && bgi_gpu_read_park(r, a->bytes, true))
         return BG_OK;
     macs_status ms = macs_texture_read(a->bytes, pixels, stride);
     if (ms)
@@ -415,7 +416,8 @@ static bg_status resolve(bg_renderer *renderer, const bg_accumulation *accumulat
         return bgi_gpu_fail(r, BG_ERR_INVALID_ARGUMENT, "image->stride = %zu is below a row's %zu bytes", stride,
                             min_stride);
     if (!as_float)
-        return bgi_gpu_accumulation_read_bytes(r, (bg_accumulation *)a, settings->encoding, image->pixels, stride);
+        return bgi_gpu_accumulation_read_bytes(r, (bg_accumulation *)a, settings->encoding, image->pixels, stride,
+                                                false);
     float *sum = bgi_alloc(&r->allocator, (size_t)a->width * a->height * 16);
     if (!sum)
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory reading the accumulation back");

@@ -55,12 +55,12 @@ bg_status bgi_gpu_accumulate_samples(bg_renderer *r, const bg_scene *scene, cons
 /* The mean of a's samples (samples > 0) as the host's RGBA8 bytes of the encoding (exact_bytes.c),
  * on the GPU: into target (RGBA8, a's size), or into a host image's pixels (rows top first, stride)
  * through a's own RGBA8 texture, one read-back of 4 bytes a pixel (parked for tiles.c while it
- * defers reads: shared/read_back.c). Alpha is 255, or 0 where the sum's alpha marks a pixel whose
- * walks ran out. */
+ * defers reads, when may_park says nothing writes the image after it: shared/read_back.c). Alpha is
+ * 255, or 0 where the sum's alpha marks a pixel whose walks ran out. */
 bg_status bgi_gpu_accumulation_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
                                      macs_texture *target);
 bg_status bgi_gpu_accumulation_read_bytes(bg_renderer *r, bg_accumulation *a, bg_output_encoding encoding,
-                                          unsigned char *pixels, size_t stride);
+                                          unsigned char *pixels, size_t stride, bool may_park);
 /* The sum of a (samples > 0) read back as float RGBA, rows top first. */
 bg_status bgi_gpu_accumulation_read(bg_renderer *r, const bg_accumulation *a, float *top_down);
 

@@ -95,7 +95,7 @@ bg_status bgi_gpu_samples_render(bg_renderer *r, const bg_scene *scene, const bg
     bool marks = r->marks_left;
     uint64_t fallback = 0;
     if (st == BG_OK && !out->as_float && out->image) {
-        st = bgi_gpu_accumulation_read_bytes(r, a, settings->encoding, out->image->pixels, out->stride);
+        st = bgi_gpu_accumulation_read_bytes(r, a, settings->encoding, out->image->pixels, out->stride, !marks);
         if (st == BG_OK && marks)
             fallback = bgi_gpu_fallback_image(state, settings, view, out->image, out->stride);
     } else if (st == BG_OK && !out->as_float) {
