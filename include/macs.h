@@ -260,6 +260,8 @@ typedef struct macs_features {
     bool float16_filter;         /* RGBA16F inputs filter linearly */
     bool float32_blend;          /* RGBA32F outputs blend */
     bool float16_blend;          /* RGBA16F outputs blend */
+    float max_line_width;        /* GL_ALIASED_LINE_WIDTH_RANGE's upper end (at least 1) */
+    float max_point_size;        /* GL_ALIASED_POINT_SIZE_RANGE's upper end (at least 1) */
 } macs_features;
 
 /* The GL strings of the current context; any of them may be NULL (Mesa returns NULL for the shading
@@ -311,7 +313,7 @@ MACS_API uint64_t macs_context_programs_compiled(const macs_context *ctx);
  * count only grows; the difference of two copies (macs_work_since) is the work between them.
  * Nothing is counted twice: a GL call is counted where MACS issues it, whichever function asked. */
 typedef struct macs_work {
-    uint64_t draws;             /* glDrawArrays calls: one per chunk of a pass run */
+    uint64_t draws;             /* glDrawArrays calls: one per chunk of a pass run, one per pass draw */
     uint64_t program_binds;     /* glUseProgram calls, the unbinding ones (program 0) included */
     uint64_t framebuffer_binds; /* glBindFramebuffer calls, the unbinding ones (framebuffer 0) included */
     uint64_t uniform_calls;     /* glUniform* calls: each pass uniform a chunk's program uses, per run,
@@ -319,6 +321,8 @@ typedef struct macs_work {
     uint64_t upload_bytes;      /* texel bytes handed to glTexImage2D and glTexSubImage2D (width x height
                                    x bytes per texel of the format and type given; a texture created
                                    without data counts 0) */
+    uint64_t vertex_bytes;      /* vertex bytes handed to glBufferData and glBufferSubData by
+                                   macs_geometry_create and macs_geometry_upload */
     uint64_t readback_bytes;    /* texel bytes glGetTexImage wrote into host memory or queued into a
                                    read-back buffer (macs_texture_read_begin), counted the same way */
     uint64_t syncs;             /* calls that wait for the GPU: glFinish, glGetTexImage into host memory,
@@ -652,6 +656,13 @@ enum {
     MACS_COLOR_MASK_NONE = 16
 };
 
+/* A vertex attribute of a geometry pass: declared as `attribute <float|vec2|vec3|vec4> name;` in its
+ * vertex shader. A geometry's vertices hold the pass's attributes in declaration order, packed. */
+typedef struct macs_attribute_desc {
+    const char *name;
+    int size; /* floats: 1 .. 4 */
+} macs_attribute_desc;
+
 /* Defaults: functions and main NULL (empty); no inputs; no uniforms; outputs required (output_count >= 1,
  * output_textures[i] for each output, all of one size); input_textures NULL (bind them later with
  * macs_pass_set_input); depth_stencil NULL; depth and stencil tests off; blend NONE; color_mask 0 = RGBA.
@@ -676,6 +687,19 @@ typedef struct macs_pass_desc {
     macs_stencil_state stencil;
     macs_blend blend;
     unsigned color_mask;
+    /* A geometry pass: vertex_main non-NULL (statements that must set gl_Position) makes the pass draw
+     * the triangles of a macs_geometry with macs_pass_draw instead of running over its outputs with
+     * macs_pass_run. Its vertex shader declares the attributes, every uniform of the pass (samplers
+     * excepted: the inputs are for the fragment code) and `varyings`, then vertex_functions, then
+     * main; varyings (declarations such as "varying float id;") go into both shaders. In the
+     * fragment code of a geometry pass macs_uv is gl_FragCoord.xy over the output size, the same
+     * point a full-screen pass interpolates. A geometry pass never splits: one with more outputs
+     * than the limits allow in one program is refused (MACS_ERR_LIMIT). */
+    const char *vertex_functions;
+    const char *vertex_main;
+    const char *varyings;
+    const macs_attribute_desc *attributes;
+    int attribute_count; /* 1 .. 16 with vertex_main, 0 without */
 } macs_pass_desc;
 
 /* A compiled render pass: one or more programs and framebuffers, run as a full-screen quad. */
@@ -712,6 +736,56 @@ typedef struct macs_run_desc {
 
 /* Runs the pass once over its outputs (run may be NULL for defaults). */
 MACS_API macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Geometry                                                                                        */
+
+/* Defaults: none; vertex_count > 0 and floats_per_vertex 1 .. 64 are required. vertices NULL leaves
+ * the contents undefined until macs_geometry_upload. */
+typedef struct macs_geometry_desc {
+    int vertex_count;
+    int floats_per_vertex;
+    const float *vertices; /* vertex_count x floats_per_vertex floats, or NULL */
+} macs_geometry_desc;
+
+/* A vertex buffer in GPU memory, drawn by geometry passes (macs_pass_draw). */
+typedef struct macs_geometry macs_geometry;
+
+/* Creates a geometry; a buffer GL cannot allocate is MACS_ERR_GPU_OUT_OF_MEMORY, naming its size. */
+MACS_API macs_status macs_geometry_create(macs_context *ctx, const macs_geometry_desc *desc, macs_geometry **out);
+
+/* Replaces vertices [first, first + count) with count x floats_per_vertex floats. */
+MACS_API macs_status macs_geometry_upload(macs_geometry *geometry, int first, int count, const float *vertices);
+
+/* Destroys a geometry (NULL ok). */
+MACS_API void macs_geometry_destroy(macs_geometry *geometry);
+
+/* How the triangles of a draw are rasterised: filled (GL's fill rule decides pixels on a shared
+ * edge), or as their edges (lines) or corners (square points) `size` pixels wide. With the same
+ * fragment code, solid + edges + corners cover every pixel whose centre lies within size / 2 of a
+ * triangle, drawn or not by the fill rule: the conservative cover a fragment-side exact test needs. */
+typedef enum macs_fill {
+    MACS_FILL_SOLID = 0,
+    MACS_FILL_EDGES,
+    MACS_FILL_CORNERS
+} macs_fill;
+
+/* Defaults: geometry required; all vertices from first (vertex_count 0); solid; size 0 = 1 pixel;
+ * scissor off. vertex_count must be a multiple of 3 (triangles), and size within
+ * macs_features.max_line_width (edges) or max_point_size (corners). */
+typedef struct macs_draw_desc {
+    const macs_geometry *geometry;
+    int first;
+    int vertex_count;
+    macs_fill fill;
+    float size;
+    bool scissor;
+    int scissor_x, scissor_y, scissor_width, scissor_height;
+} macs_draw_desc;
+
+/* Draws a geometry's triangles with a geometry pass into its outputs: the attributes read the
+ * geometry's floats, which must be the pass's attribute floats per vertex. One glDrawArrays. */
+MACS_API macs_status macs_pass_draw(macs_pass *pass, const macs_draw_desc *draw);
 
 /* Waits for and returns the sample count of the last run with occlusion_query set. */
 MACS_API macs_status macs_pass_occlusion_result(macs_pass *pass, uint64_t *samples);

@@ -66,6 +66,13 @@ static macs_status build_shared_objects(macs_context *ctx)
     gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof triangle, triangle, GL_STATIC_DRAW);
     gl->BindBuffer(GL_ARRAY_BUFFER, 0);
     gl->GenFramebuffers(1, &ctx->scratch_fbo);
+    /* The widest edges and corners a geometry pass may draw (macs_draw_desc.size). */
+    float range[2] = {1.0f, 1.0f};
+    gl->GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
+    ctx->features.max_line_width = range[1] >= 1.0f ? range[1] : 1.0f;
+    range[1] = 1.0f;
+    gl->GetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
+    ctx->features.max_point_size = range[1] >= 1.0f ? range[1] : 1.0f;
     if (ctx->features.color_buffer_float && gl->ClampColorARB) {
         /* The default, restated in case the caller's context changed it: float targets unclamped. */
         gl->ClampColorARB(GL_CLAMP_FRAGMENT_COLOR_ARB, GL_FIXED_ONLY_ARB);
@@ -358,6 +365,8 @@ void macs_context_destroy(macs_context *ctx)
         macs_timer_destroy(ctx->timers);
     while (ctx->readbacks)
         macs_readback_destroy(ctx->readbacks);
+    while (ctx->geometries)
+        macs_geometry_destroy(ctx->geometries);
     /* Table entries are NULL when creation failed before loading; then no GL object exists either. */
     if (ctx->gl.DeleteShader) {
         macsi_program_cache_destroy(ctx);

@@ -50,6 +50,12 @@
     X(void, VertexAttribPointer, (GLuint index, GLint size, GLenum type, GLboolean normalized, \
                                   GLsizei stride, const void *pointer)) \
     X(void, EnableVertexAttribArray, (GLuint index)) \
+    X(void, DisableVertexAttribArray, (GLuint index)) \
+    X(void, BufferSubData, (GLenum target, GLintptr offset, GLsizeiptr size, const void *data)) \
+    X(void, PolygonMode, (GLenum face, GLenum mode)) \
+    X(void, LineWidth, (GLfloat width)) \
+    X(void, PointSize, (GLfloat size)) \
+    X(void, GetFloatv, (GLenum pname, GLfloat *data)) \
     X(GLuint, CreateShader, (GLenum type)) \
     X(void, ShaderSource, (GLuint shader, GLsizei count, const GLchar *const *string, const GLint *length)) \
     X(void, CompileShader, (GLuint shader)) \

@@ -23,7 +23,8 @@ typedef struct macs_gl {
 
 /* A linked program in the context's cache, shared by every pass chunk with the same source. */
 typedef struct macs_program {
-    char *source;
+    char *source;        /* the fragment source */
+    char *vertex_source; /* NULL: the full-screen vertex shader */
     uint64_t hash;
     GLuint id;
     int refs;
@@ -60,6 +61,13 @@ struct macs_depth_stencil {
     macs_depth_format format;
     bool internal; /* owned by the context for split passes without a caller depth/stencil */
     struct macs_depth_stencil *prev, *next;
+};
+
+struct macs_geometry {
+    macs_context *ctx;
+    GLuint buffer;
+    int vertex_count, floats_per_vertex;
+    struct macs_geometry *prev, *next;
 };
 
 /* One uniform of a pass: its value lives on the CPU and is applied to each chunk's program at run. */
@@ -100,6 +108,12 @@ struct macs_pass {
     macs_blend blend;
     unsigned color_mask;
     bool attachments_dirty;
+    /* A geometry pass (vertex_main given): its attributes' floats per vertex, the location of its
+     * internal macs_inverse_size uniform, and how many attributes it enables. */
+    bool geometry;
+    int attribute_floats, attribute_count;
+    int attribute_sizes[16];
+    GLint inverse_size_location;
     GLuint query;
     bool query_issued;
     struct macs_pass *prev, *next;
@@ -132,6 +146,7 @@ struct macs_context {
     /* glGetQueryObjectui64v of the timer extension found (ARB or EXT), NULL without one */
     void (GLAPIENTRY *query_result64)(GLuint id, GLenum pname, GLuint64 *params);
     macs_readback *readbacks;
+    macs_geometry *geometries;
 };
 
 /* alloc.c: allocation through the caller's hooks; every result must be checked. */
@@ -189,13 +204,20 @@ macs_status macsi_check_filterable(macs_context *ctx, const macs_texture *t, con
 macs_status macsi_check_blendable(macs_context *ctx, const macs_texture *t, macs_blend blend, const char *where);
 
 /* program_cache.c */
-macs_status macsi_program_acquire(macs_context *ctx, const char *fragment_source, int input_count,
-                                 char *const *input_names, macs_program **out);
+/* vertex_source NULL: the shared full-screen vertex shader; else that source, with attribute i of
+ * attribute_names bound to location i. */
+macs_status macsi_program_acquire(macs_context *ctx, const char *vertex_source, const char *fragment_source,
+                                 int input_count, char *const *input_names, int attribute_count,
+                                 const char *const *attribute_names, macs_program **out);
 void macsi_program_release(macs_context *ctx, macs_program *program);
 void macsi_program_cache_destroy(macs_context *ctx);
 
 /* pass_source.c */
 char *macsi_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count);
+/* The vertex source of a geometry pass (desc->vertex_main set). */
+char *macsi_pass_vertex_source(const macs_allocator *a, const macs_pass_desc *desc);
+/* "float", "vec2" .. "vec4" for an attribute of 1 .. 4 floats. */
+const char *macsi_attribute_type(int size);
 size_t macsi_uniform_value_size(macs_uniform_type type, int count);
 
 /* depth_stencil.c */
@@ -232,6 +254,11 @@ void macsi_pass_forget_depth_stencil(macs_context *ctx, const macs_depth_stencil
 /* work.c: the GL calls macs_work counts, each counted and issued in one place. region is x, y, width,
  * height; the target is always GL_TEXTURE_2D level 0 and the draw one full-screen triangle. */
 void macsi_draw_triangle(macs_context *ctx);
+/* glDrawArrays(GL_TRIANGLES, first, count) of a geometry pass. */
+void macsi_draw_triangles(macs_context *ctx, GLint first, GLsizei count);
+/* glBufferData (create: the whole store, data may be NULL) or glBufferSubData of the bound
+ * GL_ARRAY_BUFFER; the bytes of data handed over are counted as vertex_bytes. */
+void macsi_buffer_data(macs_context *ctx, GLintptr offset, GLsizeiptr bytes, const void *data, bool create);
 void macsi_use_program(macs_context *ctx, GLuint program);
 void macsi_bind_framebuffer(macs_context *ctx, GLuint framebuffer);
 void macsi_uniform(macs_context *ctx, macs_uniform_type type, GLint location, GLsizei count, const void *value);

@@ -69,15 +69,43 @@ static macs_status copy_desc(macs_pass *p, const macs_pass_desc *d)
     return MACS_OK;
 }
 
+/* A geometry pass's attribute layout, and its refusal to split: its vertices would be drawn once
+ * per chunk, and its depth writes would then meet their own earlier values. */
+static macs_status geometry_layout(macs_pass *p, const macs_pass_desc *d, int per_chunk)
+{
+    p->geometry = true;
+    p->attribute_count = d->attribute_count;
+    for (int i = 0; i < d->attribute_count; i++) {
+        p->attribute_sizes[i] = d->attributes[i].size;
+        p->attribute_floats += d->attributes[i].size;
+    }
+    if (d->output_count > per_chunk)
+        return macsi_fail(p->ctx, MACS_ERR_LIMIT, "macs_pass_create: desc.output_count %d: a geometry pass cannot be "
+                         "split, and this context writes at most %d outputs in one program", d->output_count, per_chunk);
+    return MACS_OK;
+}
+
 static macs_status build_chunks(macs_pass *p, const macs_pass_desc *d)
 {
     macs_context *ctx = p->ctx;
     const macs_allocator *a = &ctx->allocator;
     int per_chunk = macsi_outputs_per_chunk(ctx);
+    char *vertex = NULL;
+    const char *attribute_names[16];
+    if (d->vertex_main) {
+        macs_status st = geometry_layout(p, d, per_chunk);
+        if (st != MACS_OK)
+            return st;
+        for (int i = 0; i < d->attribute_count; i++)
+            attribute_names[i] = d->attributes[i].name;
+        if (!(vertex = macsi_pass_vertex_source(a, d)))
+            return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "building the vertex source of a geometry pass");
+    }
     p->chunk_count = (d->output_count + per_chunk - 1) / per_chunk;
     p->chunks = macsi_calloc(a, (size_t)p->chunk_count, sizeof *p->chunks);
     if (!p->chunks) {
         p->chunk_count = 0;
+        macsi_free(a, vertex);
         return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating pass chunks");
     }
     for (int c = 0; c < p->chunk_count; c++) {
@@ -89,16 +117,23 @@ static macs_status build_chunks(macs_pass *p, const macs_pass_desc *d)
         char *source = macsi_pass_source(a, d, ch->first_output, ch->output_count);
         if (!ch->uniform_locations || !source) {
             macsi_free(a, source);
+            macsi_free(a, vertex);
             return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "building the shader source of a pass");
         }
-        macs_status st = macsi_program_acquire(ctx, source, p->input_count, p->input_names, &ch->program);
+        macs_status st = macsi_program_acquire(ctx, vertex, source, p->input_count, p->input_names,
+                                               d->attribute_count, attribute_names, &ch->program);
         macsi_free(a, source);
-        if (st != MACS_OK)
+        if (st != MACS_OK) {
+            macsi_free(a, vertex);
             return st;
+        }
         for (int i = 0; i < p->uniform_count; i++)
             ch->uniform_locations[i] = ctx->gl.GetUniformLocation(ch->program->id, p->uniforms[i].name);
+        if (p->geometry)
+            p->inverse_size_location = ctx->gl.GetUniformLocation(ch->program->id, "macs_inverse_size");
         ctx->gl.GenFramebuffers(1, &ch->fbo);
     }
+    macsi_free(a, vertex);
     return macsi_gl_check(ctx, "building pass chunks");
 }
 

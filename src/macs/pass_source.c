@@ -1,4 +1,5 @@
-/* Builds the GLSL 1.10 fragment source of one pass chunk from the caller's strings. */
+/* Builds the GLSL 1.10 sources of a pass from the caller's strings: the fragment source of each chunk,
+ * and the vertex source of a geometry pass. */
 #include <stdio.h>
 #include <string.h>
 
@@ -76,26 +77,76 @@ static void append_line_directive(text *t, int source)
     append(t, buf);
 }
 
-char *macsi_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count)
+const char *macsi_attribute_type(int size)
 {
-    text t = {a, NULL, 0, 0, false};
+    static const char *const types[4] = {"float", "vec2", "vec3", "vec4"};
+    return size >= 1 && size <= 4 ? types[size - 1] : NULL;
+}
+
+static void append_uniforms(text *t, const macs_pass_desc *desc)
+{
     char buf[256];
-    append(&t, "#version 110\nvarying vec2 macs_uv;\n");
-    for (int i = 0; i < desc->input_count; i++) {
-        snprintf(buf, sizeof buf, "uniform sampler2D %s;\n", desc->inputs[i].name);
-        append(&t, buf);
-    }
     for (int i = 0; i < desc->uniform_count; i++) {
         const macs_uniform_desc *u = &desc->uniforms[i];
         if (u->count > 0)
             snprintf(buf, sizeof buf, "uniform %s %s[%d];\n", glsl_type(u->type), u->name, u->count);
         else
             snprintf(buf, sizeof buf, "uniform %s %s;\n", glsl_type(u->type), u->name);
+        append(t, buf);
+    }
+}
+
+static char *finish(const macs_allocator *a, text *t)
+{
+    if (t->failed) {
+        macsi_free(a, t->s);
+        return NULL;
+    }
+    return t->s;
+}
+
+char *macsi_pass_vertex_source(const macs_allocator *a, const macs_pass_desc *desc)
+{
+    text t = {a, NULL, 0, 0, false};
+    char buf[256];
+    append(&t, "#version 110\n");
+    for (int i = 0; i < desc->attribute_count; i++) {
+        snprintf(buf, sizeof buf, "attribute %s %s;\n", macsi_attribute_type(desc->attributes[i].size),
+                 desc->attributes[i].name);
         append(&t, buf);
     }
+    append_uniforms(&t, desc);
+    append(&t, desc->varyings);
+    append_line_directive(&t, 1);
+    append(&t, desc->vertex_functions);
+    append(&t, "\n#line 0 0\nvoid main()\n{");
+    append_line_directive(&t, 2);
+    append(&t, desc->vertex_main);
+    append(&t, "\n}\n");
+    return finish(a, &t);
+}
+
+char *macsi_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int first_output, int output_count)
+{
+    text t = {a, NULL, 0, 0, false};
+    char buf[256];
+    /* A geometry pass has no full-screen triangle to interpolate macs_uv over: the same point comes
+     * from the pixel's window position. */
+    if (desc->vertex_main)
+        append(&t, "#version 110\nuniform vec2 macs_inverse_size;\nvec2 macs_uv;\n");
+    else
+        append(&t, "#version 110\nvarying vec2 macs_uv;\n");
+    for (int i = 0; i < desc->input_count; i++) {
+        snprintf(buf, sizeof buf, "uniform sampler2D %s;\n", desc->inputs[i].name);
+        append(&t, buf);
+    }
+    append_uniforms(&t, desc);
+    append(&t, desc->varyings);
     append_line_directive(&t, 1);
     append(&t, desc->functions);
     append(&t, "\n#line 0 0\nvoid main()\n{");
+    if (desc->vertex_main)
+        append(&t, "\nmacs_uv = gl_FragCoord.xy * macs_inverse_size;");
     append_line_directive(&t, 2);
     append(&t, desc->main);
     for (int i = 0; i < output_count; i++) {
@@ -107,9 +158,5 @@ char *macsi_pass_source(const macs_allocator *a, const macs_pass_desc *desc, int
         append(&t, ");");
     }
     append(&t, "\n}\n");
-    if (t.failed) {
-        macsi_free(a, t.s);
-        return NULL;
-    }
-    return t.s;
+    return finish(a, &t);
 }

@@ -219,6 +219,40 @@ static macs_status check_state(macs_context *ctx, const macs_pass_desc *d)
     return MACS_OK;
 }
 
+/* A geometry pass: attributes with names of their own and sizes 1 .. 4; none without vertex_main. */
+static macs_status check_geometry(macs_context *ctx, const macs_pass_desc *d)
+{
+    if (!d->vertex_main) {
+        if (d->attribute_count != 0 || d->vertex_functions || d->varyings)
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.%s is set but desc.vertex_main "
+                             "is NULL (only a geometry pass has a vertex shader)",
+                             d->attribute_count ? "attribute_count" : d->vertex_functions ? "vertex_functions" : "varyings");
+        return MACS_OK;
+    }
+    if (d->attribute_count < 1 || d->attribute_count > 16)
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.attribute_count %d is outside 1 .. 16 "
+                         "(a geometry pass draws vertices, which need an attribute)", d->attribute_count);
+    if (!d->attributes)
+        return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: desc.attribute_count %d but "
+                         "desc.attributes is NULL", d->attribute_count);
+    for (int i = 0; i < d->attribute_count; i++) {
+        const macs_attribute_desc *a = &d->attributes[i];
+        macs_status st = check_name(ctx, "attribute", i, a->name);
+        if (st == MACS_OK)
+            st = check_unique(ctx, d, "attribute", i, a->name, d->input_count, d->uniform_count);
+        if (st != MACS_OK)
+            return st;
+        for (int j = 0; j < i; j++)
+            if (strcmp(d->attributes[j].name, a->name) == 0)
+                return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: attribute %d \"%s\": the name is "
+                                 "already used by attribute %d", i, a->name, j);
+        if (a->size < 1 || a->size > 4)
+            return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_create: attribute %d \"%s\": size %d is "
+                             "outside 1 .. 4 floats", i, a->name, a->size);
+    }
+    return MACS_OK;
+}
+
 macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc)
 {
     macs_status st = check_counts(ctx, desc);
@@ -232,6 +266,8 @@ macs_status macsi_pass_validate(macs_context *ctx, const macs_pass_desc *desc)
         st = check_depth_stencil(ctx, desc);
     if (st == MACS_OK)
         st = check_state(ctx, desc);
+    if (st == MACS_OK)
+        st = check_geometry(ctx, desc);
     if (st == MACS_OK)
         st = check_float_features(ctx, desc);
     if (st != MACS_OK)

@@ -1,12 +1,17 @@
-/* Context-level cache of linked programs keyed on the full fragment source: identical pass chunks
- * share one program, and a program is deleted when the last chunk using it goes. */
+/* Context-level cache of linked programs keyed on the full fragment source and the vertex source
+ * (NULL for the shared full-screen one): identical pass chunks share one program, and a program is
+ * deleted when the last chunk using it goes. */
 #include <string.h>
 
 #include "internal.h"
 
-static uint64_t hash_source(const char *s)
+static uint64_t hash_source(const char *s, const char *vertex)
 {
     uint64_t h = 1469598103934665603ull; /* FNV-1a: cheap, and strcmp settles collisions anyway */
+    for (; vertex && *vertex; vertex++) {
+        h ^= (unsigned char)*vertex;
+        h *= 1099511628211ull;
+    }
     for (; *s; s++) {
         h ^= (unsigned char)*s;
         h *= 1099511628211ull;
@@ -14,12 +19,35 @@ static uint64_t hash_source(const char *s)
     return h;
 }
 
-static macs_status compile_and_link(macs_context *ctx, const char *source, int input_count,
-                                    char *const *input_names, GLuint *out)
+/* The vertex shader of a geometry pass, compiled; 0 after recording the failure. */
+static GLuint compile_vertex(macs_context *ctx, const char *source)
 {
     const macs_gl *gl = &ctx->gl;
     char log[MACS_MESSAGE_SIZE - 256];
     GLint ok = 0;
+    GLuint vs = gl->CreateShader(GL_VERTEX_SHADER);
+    gl->ShaderSource(vs, 1, &source, NULL);
+    gl->CompileShader(vs);
+    gl->GetShaderiv(vs, GL_COMPILE_STATUS, &ok);
+    if (ok)
+        return vs;
+    log[0] = '\0';
+    gl->GetShaderInfoLog(vs, (GLsizei)sizeof log, NULL, log);
+    gl->DeleteShader(vs);
+    macsi_fail(ctx, MACS_ERR_SHADER_COMPILE, "vertex shader (source 1 = vertex_functions, 2 = vertex_main):\n%s", log);
+    return 0;
+}
+
+static macs_status compile_and_link(macs_context *ctx, const char *vertex_source, const char *source,
+                                    int input_count, char *const *input_names, int attribute_count,
+                                    const char *const *attribute_names, GLuint *out)
+{
+    const macs_gl *gl = &ctx->gl;
+    char log[MACS_MESSAGE_SIZE - 256];
+    GLint ok = 0;
+    GLuint vs = ctx->vertex_shader;
+    if (vertex_source && !(vs = compile_vertex(ctx, vertex_source)))
+        return MACS_ERR_SHADER_COMPILE;
     GLuint fs = gl->CreateShader(GL_FRAGMENT_SHADER);
     gl->ShaderSource(fs, 1, &source, NULL);
     gl->CompileShader(fs);
@@ -28,16 +56,24 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
         log[0] = '\0';
         gl->GetShaderInfoLog(fs, (GLsizei)sizeof log, NULL, log);
         gl->DeleteShader(fs);
+        if (vertex_source)
+            gl->DeleteShader(vs);
         return macsi_fail(ctx, MACS_ERR_SHADER_COMPILE,
                          "fragment shader (source 1 = functions, 2 = main, 3+i = output i):\n%s", log);
     }
     GLuint program = gl->CreateProgram();
-    gl->AttachShader(program, ctx->vertex_shader);
+    gl->AttachShader(program, vs);
     gl->AttachShader(program, fs);
-    gl->BindAttribLocation(program, 0, "macs_position");
+    if (vertex_source)
+        for (int i = 0; i < attribute_count; i++)
+            gl->BindAttribLocation(program, (GLuint)i, attribute_names[i]);
+    else
+        gl->BindAttribLocation(program, 0, "macs_position");
     gl->LinkProgram(program);
-    /* The program keeps the shader alive as long as it needs it. */
+    /* The program keeps the shaders alive as long as it needs them. */
     gl->DeleteShader(fs);
+    if (vertex_source)
+        gl->DeleteShader(vs);
     gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
     if (!ok) {
         log[0] = '\0';
@@ -63,29 +99,40 @@ static macs_status compile_and_link(macs_context *ctx, const char *source, int i
     return MACS_OK;
 }
 
-macs_status macsi_program_acquire(macs_context *ctx, const char *source, int input_count,
-                                 char *const *input_names, macs_program **out)
+static bool same_vertex(const char *a, const char *b)
 {
-    uint64_t h = hash_source(source);
+    return a == b || (a && b && strcmp(a, b) == 0);
+}
+
+macs_status macsi_program_acquire(macs_context *ctx, const char *vertex_source, const char *source,
+                                 int input_count, char *const *input_names, int attribute_count,
+                                 const char *const *attribute_names, macs_program **out)
+{
+    uint64_t h = hash_source(source, vertex_source);
     for (macs_program *p = ctx->programs; p; p = p->next)
-        if (p->hash == h && strcmp(p->source, source) == 0) {
+        if (p->hash == h && strcmp(p->source, source) == 0 && same_vertex(p->vertex_source, vertex_source)) {
             p->refs++;
             *out = p;
             return MACS_OK;
         }
     macs_program *p = macsi_calloc(&ctx->allocator, 1, sizeof *p);
     char *copy = macsi_strdup(&ctx->allocator, source);
-    if (!p || !copy) {
+    char *vertex_copy = vertex_source ? macsi_strdup(&ctx->allocator, vertex_source) : NULL;
+    if (!p || !copy || (vertex_source && !vertex_copy)) {
         macsi_free(&ctx->allocator, p);
         macsi_free(&ctx->allocator, copy);
+        macsi_free(&ctx->allocator, vertex_copy);
         return macsi_fail(ctx, MACS_ERR_OUT_OF_MEMORY, "allocating a program cache entry");
     }
-    macs_status st = compile_and_link(ctx, source, input_count, input_names, &p->id);
+    macs_status st = compile_and_link(ctx, vertex_source, source, input_count, input_names, attribute_count,
+                                      attribute_names, &p->id);
     if (st != MACS_OK) {
         macsi_free(&ctx->allocator, p);
         macsi_free(&ctx->allocator, copy);
+        macsi_free(&ctx->allocator, vertex_copy);
         return st;
     }
+    p->vertex_source = vertex_copy;
     ctx->programs_compiled++;
     p->source = copy;
     p->hash = h;
@@ -106,6 +153,7 @@ void macsi_program_release(macs_context *ctx, macs_program *program)
             break;
         }
     ctx->gl.DeleteProgram(program->id);
+    macsi_free(&ctx->allocator, program->vertex_source);
     macsi_free(&ctx->allocator, program->source);
     macsi_free(&ctx->allocator, program);
 }
@@ -116,6 +164,7 @@ void macsi_program_cache_destroy(macs_context *ctx)
         macs_program *p = ctx->programs;
         ctx->programs = p->next;
         ctx->gl.DeleteProgram(p->id);
+        macsi_free(&ctx->allocator, p->vertex_source);
         macsi_free(&ctx->allocator, p->source);
         macsi_free(&ctx->allocator, p);
     }

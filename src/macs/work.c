@@ -10,7 +10,7 @@
 
 /* The fields of macs_work, once, for the difference. */
 #define MACS_WORK_FIELDS(X) \
-    X(draws) X(program_binds) X(framebuffer_binds) X(uniform_calls) X(upload_bytes) X(readback_bytes) \
+    X(draws) X(program_binds) X(framebuffer_binds) X(uniform_calls) X(upload_bytes) X(vertex_bytes) X(readback_bytes) \
     X(syncs) X(programs_compiled) X(timer_results)
 
 /* Bytes per texel of the GL_RGBA data MACS exchanges (it never uses another client format). */
@@ -31,6 +31,22 @@ void macsi_draw_triangle(macs_context *ctx)
 {
     ctx->work.draws++;
     ctx->gl.DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void macsi_draw_triangles(macs_context *ctx, GLint first, GLsizei count)
+{
+    ctx->work.draws++;
+    ctx->gl.DrawArrays(GL_TRIANGLES, first, count);
+}
+
+void macsi_buffer_data(macs_context *ctx, GLintptr offset, GLsizeiptr bytes, const void *data, bool create)
+{
+    if (data)
+        ctx->work.vertex_bytes += (uint64_t)bytes;
+    if (create)
+        ctx->gl.BufferData(GL_ARRAY_BUFFER, bytes, data, GL_STATIC_DRAW);
+    else
+        ctx->gl.BufferSubData(GL_ARRAY_BUFFER, offset, bytes, data);
 }
 
 void macsi_use_program(macs_context *ctx, GLuint program)
