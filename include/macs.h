@@ -644,7 +644,8 @@ typedef struct macs_stencil_state {
 typedef enum macs_blend {
     MACS_BLEND_NONE = 0,  /* replace */
     MACS_BLEND_ADD,       /* ONE, ONE */
-    MACS_BLEND_MULTIPLY   /* DST_COLOR, ZERO */
+    MACS_BLEND_MULTIPLY,  /* DST_COLOR, ZERO */
+    MACS_BLEND_MAX        /* the larger of source and destination, per channel (GL_MAX, core since 1.4) */
 } macs_blend;
 
 /* Colour write mask bits; MACS_COLOR_MASK_NONE writes no channel at all. */

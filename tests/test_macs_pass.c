@@ -257,6 +257,9 @@ static void blending_and_colour_masks(void **state)
     } cases[] = {
         {MACS_BLEND_ADD, 0, {1, 2, 3, 4}, {0.5f, 0.25f, -1, 2}, {1.5f, 2.25f, 2, 6}},
         {MACS_BLEND_MULTIPLY, 0, {2, 3, 4, 5}, {0.5f, 2, -1, 0.25f}, {1, 6, -4, 1.25f}},
+        {MACS_BLEND_MAX, 0, {2, -3, 4, -1e30f}, {0.5f, 2, -1, 7}, {2, 2, 4, 7}},
+        /* after MAX, an ADD pass adds again: the blend equation is set back */
+        {MACS_BLEND_ADD, 0, {1, 2, 3, 4}, {1, 1, 1, 1}, {2, 3, 4, 5}},
         {MACS_BLEND_NONE, MACS_COLOR_MASK_R | MACS_COLOR_MASK_B, {1, 2, 3, 4}, {9, 9, 9, 9}, {9, 2, 9, 4}},
         {MACS_BLEND_NONE, MACS_COLOR_MASK_NONE, {1, 2, 3, 4}, {9, 9, 9, 9}, {1, 2, 3, 4}},
         {MACS_BLEND_ADD, MACS_COLOR_MASK_A, {1, 2, 3, 4}, {10, 10, 10, 10}, {1, 2, 3, 14}},

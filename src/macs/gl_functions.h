@@ -26,6 +26,7 @@
     X(void, StencilOp, (GLenum fail, GLenum zfail, GLenum zpass)) \
     X(void, StencilMask, (GLuint mask)) \
     X(void, BlendFunc, (GLenum sfactor, GLenum dfactor)) \
+    X(void, BlendEquation, (GLenum mode)) \
     X(void, PixelStorei, (GLenum pname, GLint param)) \
     X(void, ReadBuffer, (GLenum mode)) \
     X(void, GenTextures, (GLsizei n, GLuint *textures)) \

@@ -203,7 +203,7 @@ static macs_status check_depth_stencil(macs_context *ctx, const macs_pass_desc *
     X(stencil.fail, MACS_STENCIL_OP_INVERT, "macs_stencil_op") \
     X(stencil.depth_fail, MACS_STENCIL_OP_INVERT, "macs_stencil_op") \
     X(stencil.pass, MACS_STENCIL_OP_INVERT, "macs_stencil_op") \
-    X(blend, MACS_BLEND_MULTIPLY, "macs_blend")
+    X(blend, MACS_BLEND_MAX, "macs_blend")
 
 static macs_status check_state(macs_context *ctx, const macs_pass_desc *d)
 {

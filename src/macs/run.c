@@ -54,8 +54,10 @@ static void apply_common_state(const macs_pass *p, const macs_run_desc *run)
     switch (p->blend) {
     case MACS_BLEND_ADD: gl->Enable(GL_BLEND); gl->BlendFunc(GL_ONE, GL_ONE); break;
     case MACS_BLEND_MULTIPLY: gl->Enable(GL_BLEND); gl->BlendFunc(GL_DST_COLOR, GL_ZERO); break;
+    case MACS_BLEND_MAX: gl->Enable(GL_BLEND); gl->BlendFunc(GL_ONE, GL_ONE); break;
     default: gl->Disable(GL_BLEND); break;
     }
+    gl->BlendEquation(p->blend == MACS_BLEND_MAX ? GL_MAX : GL_FUNC_ADD);
     unsigned m = p->color_mask == 0 ? 15u : (p->color_mask & MACS_COLOR_MASK_NONE) ? 0u : p->color_mask;
     gl->ColorMask((m & 1) != 0, (m & 2) != 0, (m & 4) != 0, (m & 8) != 0);
     /* Fixed-function state a shared caller context may have left on, which would alter results. */
