@@ -569,6 +569,19 @@ typedef enum bg_gpu_plan {
                           the CPU reference (bg_render_stats.fallback_pixels) */
 } bg_gpu_plan;
 
+/* How the fused tree plan finds the object each camera ray meets first (docs/gpu_pipeline.md,
+ * "Primary visibility by rasterisation"). Either way the first hits are the same, bit for bit. */
+typedef enum bg_primary_visibility {
+    BG_PRIMARY_AUTO = 0, /* rasterise where it was measured to pay (many bounded objects or a mesh, few
+                            triangles per pixel), else walk */
+    BG_PRIMARY_WALK,     /* every camera ray walks the object tree, as every other ray does */
+    BG_PRIMARY_RASTER    /* each tree object's footprint is drawn first, with its exact test in the
+                            fragment and the nearest kept by the depth test; the walk runs only where
+                            two objects or triangles tie. Needs BG_PLAN_FUSED_TREE's walk, a pinhole or
+                            orthographic camera, meshes without front-only or cut-out filters and
+                            float32 blending (bg_render_gpu fails with BG_ERR_LIMIT, naming why) */
+} bg_primary_visibility;
+
 /* Told how much of a render is done: fraction in [0, 1], never decreasing from call to call, first
  * 0 before any work and last exactly 1 once the image is complete (that last call's return value
  * is ignored). Return false to cancel: the render stops at the next row (CPU) or sample pass (GPU)
@@ -614,6 +627,8 @@ typedef struct bg_render_settings {
                            the frame; and count shaded fragments (occlusion queries) */
     unsigned gpu_disable_skips; /* GPU renderer only: BG_SKIP_* bits to switch off (testing) */
     bg_gpu_plan gpu_plan; /* GPU renderer only: the frame's plan; 0 = BG_PLAN_AUTO */
+    bg_primary_visibility primary; /* GPU renderer only, the fused tree plan: how camera rays find
+                           their first hit; 0 = BG_PRIMARY_AUTO */
     int samples;        /* camera rays per pixel, 0 .. BG_MAX_SAMPLES; 0 and 1 = one ray at the pixel
                            centre. More are placed on a fixed stratified pattern (docs/shading.md 1.1),
                            the same in both renderers, and averaged with equal weights (a box filter) */
@@ -849,6 +864,8 @@ typedef struct bg_render_stats {
                                         the accumulation resolves, which set only this field (the
                                         others stay the last render's). docs/gpu_pipeline.md, "GL work
                                         per frame", gives each plan's budget */
+    bool primary_raster;             /* the camera rays' first hits were rasterised
+                                        (bg_render_settings.primary) */
 } bg_render_stats;
 
 /* Copies the statistics of the last render (all zero before the first). */

@@ -36,6 +36,8 @@ bg_status bgi_render_settings_check(const bg_render_settings *s, const char *whe
     else if (s->gpu_plan != BG_PLAN_AUTO && s->gpu_plan != BG_PLAN_FUSED && s->gpu_plan != BG_PLAN_MULTIPASS &&
              s->gpu_plan != BG_PLAN_FUSED_TREE)
         snprintf(message, size, "%s: settings.gpu_plan %d is unknown", where, (int)s->gpu_plan);
+    else if (s->primary != BG_PRIMARY_AUTO && s->primary != BG_PRIMARY_WALK && s->primary != BG_PRIMARY_RASTER)
+        snprintf(message, size, "%s: settings.primary %d is unknown", where, (int)s->primary);
     else if (!isfinite(s->gpu_memory_budget) || (s->gpu_memory_budget != 0.0 && s->gpu_memory_budget < 1048576.0))
         snprintf(message, size, "%s: settings.gpu_memory_budget = %g must be 0 (1 GiB) or a finite number of bytes "
                  ">= 1 MiB", where, s->gpu_memory_budget);

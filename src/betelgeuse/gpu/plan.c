@@ -65,6 +65,12 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s settings.gpu_plan asks for it", no_env);
     if (f->state->environment.on && option)
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s", no_env, option);
+    /* Rasterised camera rays replace the tree variant's walk, and nothing of another plan. */
+    bool raster = f->settings->primary == BG_PRIMARY_RASTER;
+    if (raster && (fused != &bgi_gpu_fused_tree_plan || option))
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "settings.primary is BG_PRIMARY_RASTER, which replaces a walk of "
+                            "BG_PLAN_FUSED_TREE, but this frame goes to %s%s%s", fused && !option ? fused->name :
+                            "BG_PLAN_MULTIPASS", option ? ": " : "", option ? option : "");
     if (fused && option) {
         fall_back(r, option);
     } else if (fused) {
@@ -75,7 +81,7 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
             r->stats.plan = fused->id;
             return BG_OK;
         }
-        if (f->forced)
+        if (f->forced || raster)
             return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s cannot render this frame: %s", fused->name, why);
         if (f->state->environment.on)
             return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s declines it: %s", no_env, fused->name, why);

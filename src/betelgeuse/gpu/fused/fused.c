@@ -42,6 +42,7 @@ struct gpu_fused {
     macs_texture *out_bytes, *out_float;
     gpu_tree_textures tree;  /* the tree variant's textures (tree_textures.c) */
     gpu_marks marks;         /* the marks of a one-sample texture frame's short walks (shared/fallback.c) */
+    gpu_primary *primary;    /* the camera rays' rasterised first hits (primary.c); NULL until used */
 };
 
 /* ---- what the fused plan can render ---- */
@@ -51,7 +52,7 @@ struct gpu_fused {
 static int input_count(const gpu_fused_layout *l)
 {
     return l->sampler_count + (bgi_gpu_fused_layout_walks(l) ? 2 : 0) + (l->mesh ? 2 : 0) + (l->env_importance ? 2 : 0) +
-           (l->srgb ? 1 : 0);
+           (l->srgb ? 1 : 0) + (l->primary ? 1 : 0);
 }
 
 static int mesh_input(const gpu_fused_layout *l)
@@ -65,10 +66,15 @@ static int env_input(const gpu_fused_layout *l)
     return mesh_input(l) + (l->mesh ? 2 : 0);
 }
 
-/* The sRGB table is the last. */
+/* The sRGB table is the last but the primary visibility map. */
 static int srgb_input(const gpu_fused_layout *l)
 {
     return env_input(l) + (l->env_importance ? 2 : 0);
+}
+
+static int primary_input(const gpu_fused_layout *l)
+{
+    return srgb_input(l) + (l->srgb ? 1 : 0);
 }
 
 /* False with the reason when the layout is beyond the GL limits or, for BG_PLAN_AUTO, beyond the
@@ -204,6 +210,8 @@ static bg_status pass_create(bg_renderer *r, const gpu_fused_layout *l, program_
     }
     if (l->srgb)
         inputs[srgb_input(l)].name = "bg_srgb_table";
+    if (l->primary)
+        inputs[primary_input(l)].name = "bg_primary";
     macs_output_desc output = {"radiance", p->output};
     macs_texture *outs[1] = {out};
     macs_pass_desc desc;
@@ -315,6 +323,13 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, env_input(l) + 1, r->env_tables.conditional);
     if (!ms && l->srgb)
         ms = macs_pass_set_input(f->pass, srgb_input(l), r->scene_textures.srgb_table);
+    if (!ms && l->primary) {
+        macs_texture *map = NULL;
+        bg_status pst = bgi_gpu_primary_draw(r, &f->primary, l, state, &f->tree, o->width, o->height, &map);
+        if (pst != BG_OK)
+            return pst;
+        ms = macs_pass_set_input(f->pass, primary_input(l), map);
+    }
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
@@ -331,6 +346,7 @@ static void frame_stats(bg_renderer *r, const bg_scene_state *state, const gpu_f
     r->stats.chunks = macs_pass_chunk_count(r->fused->pass);
     r->stats.intersect_objects = (int)state->object_count;
     r->stats.intersect_pixels = (uint64_t)o->width * (uint64_t)o->height;
+    r->stats.primary_raster = r->fused->layout.primary;
 }
 
 /* The frame's end: the image read back, or the texture as the pass left it. Either way the pixels
@@ -390,6 +406,25 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     return BG_OK;
 }
 
+/* Whether the frame's camera rays take their tree hits from the rasterised map (settings.primary):
+ * BG_PRIMARY_RASTER where the layout and GL allow it (else an error saying why), BG_PRIMARY_AUTO
+ * where it also pays (primary.c). */
+static bg_status primary_choose(bg_renderer *r, const gpu_plan_frame *f, gpu_fused_layout *l)
+{
+    l->primary = false;
+    bg_primary_visibility asked = f->settings->primary;
+    if (asked == BG_PRIMARY_WALK || (asked == BG_PRIMARY_AUTO && !l->tree))
+        return BG_OK;
+    char why[256];
+    if (!bgi_gpu_primary_supported(r, l, why, sizeof why))
+        return asked == BG_PRIMARY_RASTER
+                   ? bgi_gpu_fail(r, BG_ERR_LIMIT, "settings.primary is BG_PRIMARY_RASTER, but %s", why)
+                   : BG_OK;
+    l->primary = asked == BG_PRIMARY_RASTER ||
+                 bgi_gpu_primary_pays(f->state, l, (uint64_t)f->out->width * (uint64_t)f->out->height);
+    return BG_OK;
+}
+
 /* One pass of the fused plan, unrolled or (tree) with the object tree walked from textures. */
 static bg_status render_variant(bg_renderer *r, const gpu_plan_frame *f, bool tree, char *why, size_t why_size)
 {
@@ -403,8 +438,8 @@ static bg_status render_variant(bg_renderer *r, const gpu_plan_frame *f, bool tr
     gpu_fused_layout l;
     if (!bgi_gpu_fused_layout_build(&r->allocator, f->state, f->settings, tree, bgi_gpu_srgb_table(r), &l))
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for the fused plan's layout");
-    bg_status st = BG_OK;
-    if (fits(r, f->state, &l, f->forced, why, why_size)) {
+    bg_status st = primary_choose(r, f, &l);
+    if (st == BG_OK && fits(r, f->state, &l, f->forced, why, why_size)) {
         why[0] = '\0';
         st = render(r, f->state, f->settings, f->out, &l, f->forced, why, why_size);
     }
@@ -438,6 +473,7 @@ void bgi_gpu_fused_release(bg_renderer *r)
     outputs_release(f);
     bgi_gpu_tree_textures_release(&r->allocator, &f->tree);
     bgi_gpu_marks_release(&f->marks);
+    bgi_gpu_primary_release(&r->allocator, &f->primary);
     bgi_gpu_fused_layout_free(&r->allocator, &f->layout);
     bgi_free(&r->allocator, f->key);
     bgi_free(&r->allocator, f->refused);

@@ -173,6 +173,8 @@ typedef struct gpu_fused_layout {
     bool env_light;      /* the environment lights the scene too, after the lights */
     bool env_importance; /* ... drawn from its importance tables (two more inputs) */
     int env_sampler;     /* the environment texture's sampler, -1 none */
+    bool primary;        /* camera rays take their tree hit from the rasterised map (primary.c): the
+                            program samples it as its last input, bg_primary */
 } gpu_fused_layout;
 /* Shadow tests (lights x casters) up to which lights are unrolled. Each unrolled light inlines its
  * own copy of every caster's test: at 2 lights x 17 casters (many_spheres) the program took 14 s
@@ -234,6 +236,28 @@ bool bgi_gpu_fused_uniforms_declare(const bg_allocator *a, const gpu_fused_layou
 void bgi_gpu_fused_uniforms_free(const bg_allocator *a, macs_uniform_desc *desc, char *names);
 /* Sets every uniform of the layout in the pass from the render's values; reports errors. */
 bg_status bgi_gpu_fused_uniforms_set(bg_renderer *r, macs_pass *pass, const gpu_fused_layout *l, const gpu_fused_values *v);
+
+/* ---- primary.c ---- (with primary_source.c) */
+/* Primary visibility by rasterisation: per pixel, which tree object (and which of a mesh's
+ * triangles) the camera ray meets first, or that none does, or that two tie. */
+typedef struct gpu_primary gpu_primary;
+
+/* Why the layout's frames cannot rasterise their camera rays on this GL (into why), or true. */
+bool bgi_gpu_primary_supported(const bg_renderer *r, const gpu_fused_layout *l, char *why, size_t size);
+/* Whether BG_PRIMARY_AUTO rasterises a frame of `pixels` pixels of the scene (the layout supports it). */
+bool bgi_gpu_primary_pays(const bg_scene_state *state, const gpu_fused_layout *l, uint64_t pixels);
+/* Draws the frame's map (of the output's size, for the view's sample and window) into *map. */
+bg_status bgi_gpu_primary_draw(bg_renderer *r, gpu_primary **p, const gpu_fused_layout *l, const bg_scene_state *state,
+                               const gpu_tree_textures *tree, int width, int height, macs_texture **map);
+void bgi_gpu_primary_release(const bg_allocator *a, gpu_primary **p);
+
+/* primary_source.c: the exact test of one tree object (and triangle) that the map's fragments and the
+ * fused program's camera rays share, so that both see the same bits: bg_primary_exact. */
+void bgi_gpu_primary_exact_source(const gpu_fused_layout *l, gpu_text *t);
+/* The rasterising program: its fragment functions and main, and its vertex main. */
+bool bgi_gpu_primary_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, gpu_text *vertex);
+/* The GLSL file of an analytic shape (BG_SHAPES). */
+const char *bgi_gpu_fused_shape_file(bg_shape shape);
 
 /* ---- fused_source.c ---- */
 /* The fused shader of a layout: its functions (the glsl110/ library and the generated scene code)

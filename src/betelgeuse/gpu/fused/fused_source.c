@@ -21,6 +21,11 @@
 static const char *const shape_file[BG_SHAPE_COUNT_] = {BG_SHAPES(FILE_OF_)};
 #undef FILE_OF_
 
+const char *bgi_gpu_fused_shape_file(bg_shape shape)
+{
+    return shape_file[shape];
+}
+
 #define SEEN_CAP 64
 
 /* The name of a uniform row for object or material i, in a buffer of the caller's. */
@@ -265,6 +270,34 @@ static void emit_tree_walks(const gpu_fused_layout *l, gpu_text *t)
         emit_tree_blocked(l, t);
 }
 
+/* A camera ray's tree hit from the rasterised map (primary.c): none, or the one object (and
+ * triangle) it names, tested again here with the walk's own test and merged by the walk's rule
+ * (lower object index on equal distances); a tie in the map, or a test that disagrees with the
+ * map's, walks as every other ray does. The map is of the output's size, so the pixel's texel is
+ * macs_uv. */
+static void emit_primary_lookup(const gpu_fused_layout *l, gpu_text *t)
+{
+    bgi_gpu_text_append(t, "    bool walk = true;\n"
+                           "    if (bg_primary_pending) {\n"
+                           "        bg_primary_pending = false;\n"
+                           "        vec4 seen = texture2D(bg_primary, macs_uv);\n"
+                           "        if (seen.x < -0.5)\n"
+                           "            walk = false;\n"
+                           "        else if (seen.x == -seen.y && seen.z == -seen.w) {\n"
+                           "            float tq;\n            vec3 pq, nq, bq;\n            bool fq;\n"
+                           "            mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, seen.x);\n"
+                           "            if (bg_primary_exact(ro, rd, seen.x, seen.z, m, tq, pq, nq, fq, bq)) {\n"
+                           "                walk = false;\n"
+                           "                if (win < 0.0 || tq < t || (tq == t && seen.x < win)) {\n"
+                           "                    t = tq;\n                    win = seen.x;\n                    p_obj = pq;\n"
+                           "                    n_obj = nq;\n                    first_root = fq;\n");
+    if (l->mesh)
+        bgi_gpu_text_append(t, "                    bg_win_tri = seen.z >= 0.0 ? seen.z : -1.0;\n"
+                               "                    bg_win_bary = bq;\n");
+    bgi_gpu_text_append(t, "                }\n            }\n        }\n    }\n"
+                           "    if (walk)\n        bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
+}
+
 /* The nearest root: a strict < keeps the object added first on a tie (docs/shading.md 2.7). */
 static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
 {
@@ -300,7 +333,9 @@ static void emit_nearest(const gpu_fused_layout *l, gpu_text *t)
                             bgi_gpu_shape_suffix(l->objects[j].shape), id.s, to_object.s, nearer, id.s,
                             l->mesh ? "        bg_win_tri = -1.0;\n" : "");
     }
-    if (bgi_gpu_fused_layout_walks(l))
+    if (l->primary)
+        emit_primary_lookup(l, t);
+    else if (bgi_gpu_fused_layout_walks(l))
         bgi_gpu_text_append(t, "    bg_tree_nearest(ro, rd, t, win, p_obj, n_obj, first_root);\n");
     if (l->mesh)
         bgi_gpu_text_append(t, "    bg_hit_p = ro.xyz + t * rd.xyz;\n");
@@ -702,6 +737,8 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
                                "bg_forward, bg_right, bg_up, bg_ro, bg_rd);\n", BGI_DIMENSION_LENS);
     if (bgi_gpu_fused_layout_budgeted(l))
         bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
+    if (l->primary)
+        bgi_gpu_text_append(t, "bg_primary_pending = true;\n");
     if (l->max_depth == 0)
         bgi_gpu_text_printf(t, "%s;\n", trace_call_of(l));
     else if (l->stack == 0)
@@ -720,6 +757,10 @@ bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_te
 {
     bool ok = library(l, functions);
     emit_tree_walks(l, functions);
+    if (l->primary) {
+        bgi_gpu_primary_exact_source(l, functions);
+        bgi_gpu_text_append(functions, "bool bg_primary_pending; // the camera ray's tree hit is the map's\n");
+    }
     emit_nearest(l, functions);
     emit_blocked(l, functions);
     emit_surface(l, functions);
