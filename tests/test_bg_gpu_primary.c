@@ -2,7 +2,7 @@
  * rays take their first hit from the rasterised map, and the image is the walk's, float for float,
  * on a closed mesh with shared edges and instances beside analytic shapes, with several samples per
  * pixel, in a window of a larger frame, orthographic, and on many spheres; BG_PRIMARY_AUTO takes it
- * on many spheres; where it cannot run, BG_PRIMARY_RASTER is refused by name. */
+ * for a coarse mesh and not for spheres; where it cannot run, BG_PRIMARY_RASTER is refused by name. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -37,7 +37,7 @@ static uint32_t material(bg_scene *scene, double r, double g, double b, double m
 /* An icosphere (every edge shared by two triangles), two more instances of it, a sphere that
  * cuts into one of them and a plane under all: ties on every shared edge and where sphere and mesh
  * meet, a mirror's bounce on the GPU's walk. */
-static bg_scene *mesh_scene(mesh *m)
+static bg_scene *mesh_scene(mesh *m, int level)
 {
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
@@ -53,7 +53,7 @@ static bg_scene *mesh_scene(mesh *m)
     c.fov_y_degrees = 45.0;
     assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
     memset(m, 0, sizeof *m);
-    mesh_icosphere_desc d = {3, 0, true, false};
+    mesh_icosphere_desc d = {level, 0, true, false};
     char why[256];
     if (mesh_icosphere(&d, m, why, sizeof why) != BG_OK)
         fail_msg("icosphere: %s", why);
@@ -151,7 +151,7 @@ static void mesh_instances_equal_the_walk(void **state)
 {
     (void)state;
     mesh m;
-    bg_scene *s = mesh_scene(&m);
+    bg_scene *s = mesh_scene(&m, 3);
     expect_same(s, tree_settings(), W, H, "mesh, instances, sphere, plane");
     bg_scene_destroy(s);
     mesh_free(&m);
@@ -162,7 +162,7 @@ static void samples_equal_the_walk(void **state)
 {
     (void)state;
     mesh m;
-    bg_scene *s = mesh_scene(&m);
+    bg_scene *s = mesh_scene(&m, 3);
     bg_render_settings set = tree_settings();
     set.samples = 4;
     expect_same(s, set, W, H, "4 samples");
@@ -175,7 +175,7 @@ static void window_equals_the_walk(void **state)
 {
     (void)state;
     mesh m;
-    bg_scene *s = mesh_scene(&m);
+    bg_scene *s = mesh_scene(&m, 3);
     bg_render_settings set = tree_settings();
     set.frame_width = 2 * W;
     set.frame_height = 2 * H;
@@ -190,7 +190,7 @@ static void orthographic_equals_the_walk(void **state)
 {
     (void)state;
     mesh m;
-    bg_scene *s = mesh_scene(&m);
+    bg_scene *s = mesh_scene(&m, 3);
     bg_camera c = bg_camera_init();
     c.position = bg_vec3_make(0.3, 0.6, 3.2);
     c.look_at = bg_vec3_make(0.0, 0.0, 0.0);
@@ -203,7 +203,24 @@ static void orthographic_equals_the_walk(void **state)
     mesh_free(&m);
 }
 
-/* 64 spheres over a plane: the same floats, and BG_PRIMARY_AUTO rasterises them. */
+/* A sphere beside the eye, whose box holds the eye: the box's six faces are drawn, not the three
+ * that face an eye outside it. */
+static void eye_inside_a_box_equals_the_walk(void **state)
+{
+    (void)state;
+    mesh m;
+    bg_scene *s = mesh_scene(&m, 3);
+    bg_object_desc sp = bg_object_desc_init(BG_SHAPE_SPHERE, material(s, 0.3, 0.9, 0.3, 0.0));
+    sp.transform = bg_mat4_translate(-0.5, -0.2, 3.2); /* radius 1, the eye at (0.3, 0.6, 3.2) */
+    uint32_t id;
+    assert_int_equal(bg_scene_add_object(s, &sp, &id), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    expect_same(s, tree_settings(), W, H, "eye inside a box");
+    bg_scene_destroy(s);
+    mesh_free(&m);
+}
+
+/* 64 spheres over a plane: the same floats; BG_PRIMARY_AUTO walks them (measured not to pay). */
 static void spheres_equal_the_walk(void **state)
 {
     (void)state;
@@ -212,8 +229,26 @@ static void spheres_equal_the_walk(void **state)
     bg_render_stats st;
     free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, W, H, &st, "64 spheres, AUTO"));
     assert_int_equal(st.plan, BG_PLAN_FUSED_TREE);
-    assert_true(st.primary_raster);
+    assert_false(st.primary_raster);
     bg_scene_destroy(s);
+}
+
+/* BG_PRIMARY_AUTO rasterises a mesh of at most one footprint triangle per 100 pixels: 3 x 80
+ * triangles and a sphere's box (12) in 160 x 160 pixels, not in 96 x 80. */
+static void auto_takes_small_meshes(void **state)
+{
+    (void)state;
+    mesh m;
+    bg_scene *s = mesh_scene(&m, 1);
+    bg_render_stats st;
+    free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, 160, 160, &st, "AUTO, 160 x 160"));
+    assert_int_equal(st.plan, BG_PLAN_FUSED_TREE);
+    assert_true(st.primary_raster);
+    free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, W, H, &st, "AUTO, 96 x 80"));
+    assert_false(st.primary_raster);
+    expect_same(s, tree_settings(), 160, 160, "coarse mesh, 160 x 160");
+    bg_scene_destroy(s);
+    mesh_free(&m);
 }
 
 /* bg_render_gpu fails with status and a message naming needle; the image is untouched. */
@@ -266,7 +301,9 @@ int main(void)
         cmocka_unit_test(samples_equal_the_walk),
         cmocka_unit_test(window_equals_the_walk),
         cmocka_unit_test(orthographic_equals_the_walk),
+        cmocka_unit_test(eye_inside_a_box_equals_the_walk),
         cmocka_unit_test(spheres_equal_the_walk),
+        cmocka_unit_test(auto_takes_small_meshes),
         cmocka_unit_test(refusals_name_the_reason),
     };
     return cmocka_run_group_tests_name("bg_gpu_primary", tests, util_gpu_group_setup, util_gpu_group_teardown);
