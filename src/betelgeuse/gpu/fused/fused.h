@@ -254,8 +254,9 @@ void bgi_gpu_primary_release(const bg_allocator *a, gpu_primary **p);
 /* primary_source.c: the exact test of one tree object (and triangle) that the map's fragments and the
  * fused program's camera rays share, so that both see the same bits: bg_primary_exact. */
 void bgi_gpu_primary_exact_source(const gpu_fused_layout *l, gpu_text *t);
-/* The rasterising program: its fragment functions and main, and its vertex main. */
-bool bgi_gpu_primary_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, gpu_text *vertex);
+/* The rasterising program: its fragment functions and main, its vertex functions and main. */
+bool bgi_gpu_primary_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, gpu_text *vertex_functions,
+                            gpu_text *vertex);
 /* The GLSL file of an analytic shape (BG_SHAPES). */
 const char *bgi_gpu_fused_shape_file(bg_shape shape);
 

@@ -24,10 +24,10 @@
 #include "../../common/alloc.h"
 #include "fused.h"
 
-enum { FLOATS = 5, BOX_VERTICES = 36 };
-/* The cover's dilation: edges and corners this many pixels wide reach every centre within one
- * pixel of a footprint. */
-#define DILATION 2.0f
+/* A footprint vertex: its triangle's three corners (object space for a mesh, camera-relative for a
+ * box), then (object, triangle, which corner): every vertex of a triangle computes the same footprint
+ * (bg_primary_cover.glsl). */
+enum { FLOATS = 12, BOX_VERTICES = 36 };
 /* The second draw's margin: fragments within this fraction of the nearest distance tie with it. */
 #define TIE_SCALE (1.0f - 1.0f / 65536.0f)
 /* BG_PRIMARY_AUTO rasterises a scene whose tree holds a mesh, when the footprints have at most one
@@ -74,9 +74,6 @@ bool bgi_gpu_primary_supported(const bg_renderer *r, const gpu_fused_layout *l, 
         snprintf(why, size, "a mesh is front-only or cut out, which its footprint cannot show");
     else if (!f.float32_blend)
         snprintf(why, size, "GL cannot blend RGBA32F outputs (GL_MAX picks the nearest object)");
-    else if (f.max_line_width < DILATION || f.max_point_size < DILATION)
-        snprintf(why, size, "GL draws lines up to %g and points up to %g pixels wide, fewer than %g", f.max_line_width,
-                 f.max_point_size, DILATION);
     else
         return true;
     return false;
@@ -134,12 +131,15 @@ static int box_triangles(const float lo[3], const float hi[3], float object, con
         if (any && !front[f])
             continue;
         for (int k = 0; k < 6; k++) {
-            int c = faces[f][split[k]];
-            out[0] = c & 1 ? hi[0] : lo[0];
-            out[1] = c & 2 ? hi[1] : lo[1];
-            out[2] = c & 4 ? hi[2] : lo[2];
-            out[3] = object;
-            out[4] = -1.0f;
+            for (int j = 0; j < 3; j++) {
+                int c = faces[f][split[k - k % 3 + j]];
+                out[3 * j] = c & 1 ? hi[0] : lo[0];
+                out[3 * j + 1] = c & 2 ? hi[1] : lo[1];
+                out[3 * j + 2] = c & 4 ? hi[2] : lo[2];
+            }
+            out[9] = object;
+            out[10] = -1.0f;
+            out[11] = (float)(k % 3);
             out += FLOATS;
         }
         written += 6;
@@ -189,7 +189,7 @@ static bg_status gather_boxes(bg_renderer *r, gpu_primary *p, const bg_scene_sta
     return ms ? bgi_gpu_fail_macs(r, ms, "primary visibility: the boxes' vertices") : BG_OK;
 }
 
-/* A mesh's triangles in object space, three vertices each: (corner, 0, triangle). */
+/* A mesh's triangles in object space, three vertices each (the triangle's corners, 0, triangle, which). */
 static bg_status mesh_geometry(bg_renderer *r, const bg_mesh_data *mesh, primary_mesh *out)
 {
     size_t vertices = (size_t)mesh->triangle_count * 3;
@@ -202,10 +202,12 @@ static bg_status mesh_geometry(bg_renderer *r, const bg_mesh_data *mesh, primary
         return bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory for a mesh's footprint (%zu bytes)", bytes);
     float *o = v;
     for (uint32_t t = 0; t < mesh->triangle_count; t++)
-        for (int c = 0; c < 3; c++) {
-            memcpy(o, &mesh->positions[3 * (size_t)mesh->indices[3 * (size_t)t + (size_t)c]], 3 * sizeof *o);
-            o[3] = 0.0f;
-            o[4] = (float)t;
+        for (int k = 0; k < 3; k++) {
+            for (int c = 0; c < 3; c++)
+                memcpy(o + 3 * c, &mesh->positions[3 * (size_t)mesh->indices[3 * (size_t)t + (size_t)c]], 3 * sizeof *o);
+            o[9] = 0.0f;
+            o[10] = (float)t;
+            o[11] = (float)k;
             o += FLOATS;
         }
     macs_geometry_desc d = {(int)vertices, FLOATS, v};
@@ -266,7 +268,7 @@ static bg_status gather_meshes(bg_renderer *r, gpu_primary *p, const bg_scene_st
 
 /* ---- the passes ---- */
 
-static const macs_attribute_desc attributes[] = {{"bg_corner", 3}, {"bg_ident", 2}};
+static const macs_attribute_desc attributes[] = {{"bg_c0", 3}, {"bg_c1", 3}, {"bg_c2", 3}, {"bg_ident", 3}};
 
 /* The program's uniforms: the camera's as the fused pass has them, the viewport, the textures'
  * geometry, the depth scale and the draw's object. */
@@ -326,18 +328,20 @@ static bg_status targets_prepare(bg_renderer *r, gpu_primary *p, int width, int 
 
 static bg_status passes_prepare(bg_renderer *r, gpu_primary *p, const gpu_fused_layout *l)
 {
-    gpu_text functions, main, vertex, key;
+    gpu_text functions, main, vertex_functions, vertex, key;
     bgi_gpu_text_init(&functions, &r->allocator);
     bgi_gpu_text_init(&main, &r->allocator);
+    bgi_gpu_text_init(&vertex_functions, &r->allocator);
     bgi_gpu_text_init(&vertex, &r->allocator);
     bgi_gpu_text_init(&key, &r->allocator);
-    bool ok = bgi_gpu_primary_source(l, &functions, &main, &vertex);
+    bool ok = bgi_gpu_primary_source(l, &functions, &main, &vertex_functions, &vertex);
     bgi_gpu_text_append(&key, functions.s ? functions.s : "");
     bgi_gpu_text_append(&key, main.s ? main.s : "");
+    bgi_gpu_text_append(&key, vertex_functions.s ? vertex_functions.s : "");
     bgi_gpu_text_append(&key, vertex.s ? vertex.s : "");
     bg_status st = BG_OK;
     if (!ok || key.failed)
-        st = functions.failed || main.failed || vertex.failed || key.failed
+        st = functions.failed || main.failed || vertex_functions.failed || vertex.failed || key.failed
                  ? bgi_gpu_fail(r, BG_ERR_OUT_OF_MEMORY, "out of memory building the primary visibility shader")
                  : bgi_gpu_fail(r, BG_ERR_GL, "primary visibility shader: a glsl110/ file is missing");
     if (st == BG_OK && !(p->depth_pass && p->key && strcmp(p->key, key.s) == 0)) {
@@ -349,10 +353,11 @@ static bg_status passes_prepare(bg_renderer *r, gpu_primary *p, const gpu_fused_
         macs_pass_desc d;
         bgi_gpu_pass_desc_init(&d, main.s, inputs, NULL, l->kinds.mesh ? 2 : 1, u, un, &output, &p->map, 1);
         d.functions = functions.s;
+        d.vertex_functions = vertex_functions.s;
         d.vertex_main = vertex.s;
         d.varyings = "varying vec4 bg_item;\n";
         d.attributes = attributes;
-        d.attribute_count = 2;
+        d.attribute_count = 4;
         d.depth_stencil = p->depth;
         d.depth = (macs_depth_state){true, true, MACS_COMPARE_LEQUAL};
         d.color_mask = MACS_COLOR_MASK_NONE;
@@ -376,6 +381,7 @@ static bg_status passes_prepare(bg_renderer *r, gpu_primary *p, const gpu_fused_
     }
     bgi_gpu_text_free(&functions);
     bgi_gpu_text_free(&main);
+    bgi_gpu_text_free(&vertex_functions);
     bgi_gpu_text_free(&vertex);
     bgi_gpu_text_free(&key);
     return st;
@@ -451,19 +457,13 @@ static void to_camera(const bg_scene_state *state, uint32_t i, float m16[16])
             m16[c * 4 + row] = (float)(m[row][c] - (c == 3 && row < 3 ? eye[row] : 0.0));
 }
 
-/* Draws one geometry solid, then as edges and corners (the cover), with the pass's uniforms as set. */
+/* Draws one geometry's footprints. */
 static macs_status draw_cover(macs_pass *pass, const macs_geometry *g, int vertices)
 {
-    macs_status ms = MACS_OK;
-    for (int fill = MACS_FILL_SOLID; fill <= MACS_FILL_CORNERS && !ms; fill++) {
-        macs_draw_desc d = {0};
-        d.geometry = g;
-        d.vertex_count = vertices;
-        d.fill = (macs_fill)fill;
-        d.size = fill == MACS_FILL_SOLID ? 0.0f : DILATION;
-        ms = macs_pass_draw(pass, &d);
-    }
-    return ms;
+    macs_draw_desc d = {0};
+    d.geometry = g;
+    d.vertex_count = vertices;
+    return macs_pass_draw(pass, &d);
 }
 
 /* Every footprint through one pass: the boxes, then each mesh object's triangles. */

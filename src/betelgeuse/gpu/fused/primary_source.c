@@ -77,22 +77,28 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     return ok;
 }
 
-bool bgi_gpu_primary_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, gpu_text *vertex)
+bool bgi_gpu_primary_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, gpu_text *vertex_functions,
+                            gpu_text *vertex)
 {
     bool ok = library(l, functions);
     bgi_gpu_primary_exact_source(l, functions);
+    const char *seen[SEEN_CAP];
+    int n = 0;
+    ok = ok && bgi_gpu_text_snippet(vertex_functions, "bg_primary_cover.glsl", seen, &n, SEEN_CAP);
     /* Indices travel as two varyings of 12 bits each: a whole number interpolated across a triangle
      * keeps a relative error of some float ulps, which reaches 0.5 past a few million; floor(x + 0.5)
      * of a part below 4096 is always the number. */
     bgi_gpu_text_printf(vertex,
-                        "vec3 p = (bg_draw_to_camera * vec4(bg_corner, 1.0)).xyz;\n"
-                        "float w = %s;\n"
-                        "vec2 s = vec2(dot(p, bg_right), dot(p, bg_up)) / bg_tan_half;\n"
-                        "gl_Position = vec4(((s + w) * bg_size - 2.0 * w * bg_shift) / bg_viewport - w, 0.5 * w, w);\n"
+                        "vec3 p0 = (bg_draw_to_camera * vec4(bg_c0, 1.0)).xyz;\n"
+                        "vec3 p1 = (bg_draw_to_camera * vec4(bg_c1, 1.0)).xyz;\n"
+                        "vec3 p2 = (bg_draw_to_camera * vec4(bg_c2, 1.0)).xyz;\n"
+                        "vec2 win = bg_cover_corner(p0, p1, p2, bg_ident.z, bg_forward, bg_right, bg_up, bg_tan_half, "
+                        "bg_size, bg_shift, bg_viewport, %s);\n"
+                        "gl_Position = vec4(2.0 * win / bg_viewport - 1.0, 0.5, 1.0);\n"
                         "vec2 item = vec2(bg_draw_object >= 0.0 ? bg_draw_object : bg_ident.x, bg_ident.y);\n"
                         "vec2 high = floor(item / 4096.0);\n"
                         "bg_item = vec4(high.x, item.x - 4096.0 * high.x, high.y, item.y - 4096.0 * high.y);\n",
-                        l->orthographic ? "1.0" : "dot(p, bg_forward)");
+                        l->orthographic ? "true" : "false");
     bgi_gpu_text_printf(main,
                         "vec4 bg_whole = floor(bg_item + 0.5);\n"
                         "vec2 bg_it = vec2(bg_whole.x * 4096.0 + bg_whole.y, bg_whole.z * 4096.0 + bg_whole.w);\n"
@@ -105,5 +111,5 @@ bool bgi_gpu_primary_source(const gpu_fused_layout *l, gpu_text *functions, gpu_
                         "    discard;\n"
                         "gl_FragDepth = clamp(bg_t * bg_inv_dmax * bg_depth_scale, 0.0, 1.0);\n",
                         bgi_gpu_camera_function(l->orthographic));
-    return ok && !functions->failed && !main->failed && !vertex->failed;
+    return ok && !functions->failed && !main->failed && !vertex_functions->failed && !vertex->failed;
 }
