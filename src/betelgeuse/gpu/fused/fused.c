@@ -323,13 +323,6 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
         ms = macs_pass_set_input(f->pass, env_input(l) + 1, r->env_tables.conditional);
     if (!ms && l->srgb)
         ms = macs_pass_set_input(f->pass, srgb_input(l), r->scene_textures.srgb_table);
-    if (!ms && l->primary) {
-        macs_texture *map = NULL;
-        bg_status pst = bgi_gpu_primary_draw(r, &f->primary, l, state, &f->tree, o->width, o->height, &map);
-        if (pst != BG_OK)
-            return pst;
-        ms = macs_pass_set_input(f->pass, primary_input(l), map);
-    }
     if (!ms)
         ms = macs_pass_set_output(f->pass, 0, *out);
     if (ms)
@@ -337,6 +330,19 @@ static bg_status bind_frame(bg_renderer *r, const bg_scene_state *state, const b
     gpu_fused_values v = {state, settings, l->tree ? &f->tree.dims : NULL, &r->meshes,
                           o->width, o->height, o->as_float, &r->view};
     return bgi_gpu_fused_uniforms_set(r, f->pass, l, &v);
+}
+
+/* The camera rays' first hits drawn into the map the pass reads (primary.c), as part of its
+ * intersection phase. */
+static bg_status primary_map(bg_renderer *r, const bg_scene_state *state, const gpu_frame_out *o)
+{
+    struct gpu_fused *f = r->fused;
+    macs_texture *map = NULL;
+    bg_status st = bgi_gpu_primary_draw(r, &f->primary, &f->layout, state, &f->tree, o->width, o->height, &map);
+    if (st != BG_OK)
+        return st;
+    macs_status ms = macs_pass_set_input(f->pass, primary_input(&f->layout), map);
+    return ms ? bgi_gpu_fail_macs(r, ms, "binding the primary visibility map") : BG_OK;
 }
 
 /* One pass did everything; it counts as the intersection pass it starts with. */
@@ -391,6 +397,8 @@ static bg_status render(bg_renderer *r, const bg_scene_state *state, const bg_re
     macs_texture *out = NULL;
     st = bind_frame(r, state, settings, o, &out);
     bgi_gpu_phase_end(r, BG_PHASE_SETUP);
+    if (st == BG_OK && r->fused->layout.primary)
+        st = primary_map(r, state, o);
     if (st == BG_OK) {
         macs_status ms = macs_pass_run(r->fused->pass, NULL);
         if (ms)
