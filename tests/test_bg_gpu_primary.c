@@ -251,6 +251,48 @@ static void auto_takes_small_meshes(void **state)
     mesh_free(&m);
 }
 
+/* The GL work of rasterised frames: the map's two draws of every footprint (one draw for the boxes,
+ * one per mesh object) and the fused pass; each mesh's vertices uploaded once, at its first frame;
+ * a camera move re-uploads the boxes (camera-relative) and never a mesh. */
+static void work_of_the_map(void **state)
+{
+    (void)state;
+    mesh m;
+    bg_scene *s = mesh_scene(&m, 3);
+    bg_renderer *r = util_renderer(util_fx.ctx);
+    float px[W * H * 4];
+    bg_image img = {W, H, BG_PIXEL_RGBA32F, 0, px};
+    bg_render_settings set = tree_settings();
+    set.primary = BG_PRIMARY_RASTER;
+    const uint64_t vertex = 12 * sizeof(float), mesh_bytes = (uint64_t)m.triangle_count * 3 * vertex;
+    const uint64_t box_bytes = 36 * vertex; /* one sphere: at most six faces */
+    bg_render_stats st;
+    util_render_gpu(r, util_fx.ctx, s, &set, &img, "first frame");
+    bg_renderer_get_stats(r, &st);
+    assert_true(st.primary_raster);
+    if (st.gl_work.vertex_bytes < mesh_bytes || st.gl_work.vertex_bytes > mesh_bytes + box_bytes)
+        fail_msg("first frame: %llu vertex bytes, not the mesh's %llu and a box's at most %llu",
+                 (unsigned long long)st.gl_work.vertex_bytes, (unsigned long long)mesh_bytes,
+                 (unsigned long long)box_bytes);
+    util_render_gpu(r, util_fx.ctx, s, &set, &img, "second frame");
+    bg_renderer_get_stats(r, &st);
+    assert_int_equal(st.gl_work.vertex_bytes, 0);
+    assert_int_equal(st.gl_work.draws, 2 * (1 + 3) + 1);
+    bg_camera c = bg_camera_init();
+    c.position = bg_vec3_make(0.5, 0.7, 3.0);
+    c.look_at = bg_vec3_make(0.0, 0.0, 0.0);
+    c.fov_y_degrees = 45.0;
+    assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+    assert_int_equal(bg_scene_commit(s), BG_OK);
+    util_render_gpu(r, util_fx.ctx, s, &set, &img, "after a camera move");
+    bg_renderer_get_stats(r, &st);
+    assert_true(st.gl_work.vertex_bytes > 0 && st.gl_work.vertex_bytes <= box_bytes);
+    assert_int_equal(st.programs_compiled, 0);
+    bg_renderer_destroy(r);
+    bg_scene_destroy(s);
+    mesh_free(&m);
+}
+
 /* bg_render_gpu fails with status and a message naming needle; the image is untouched. */
 static void expect_refused(bg_scene *s, const bg_render_settings *set, bg_status status, const char *needle)
 {
@@ -304,6 +346,7 @@ int main(void)
         cmocka_unit_test(eye_inside_a_box_equals_the_walk),
         cmocka_unit_test(spheres_equal_the_walk),
         cmocka_unit_test(auto_takes_small_meshes),
+        cmocka_unit_test(work_of_the_map),
         cmocka_unit_test(refusals_name_the_reason),
     };
     return cmocka_run_group_tests_name("bg_gpu_primary", tests, util_gpu_group_setup, util_gpu_group_teardown);
