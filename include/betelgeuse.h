@@ -573,7 +573,7 @@ typedef enum bg_gpu_plan {
  * "Primary visibility by rasterisation"). Either way the first hits are the same, bit for bit. */
 typedef enum bg_primary_visibility {
     BG_PRIMARY_AUTO = 0, /* rasterise where it was measured to pay (a mesh in the tree, at most one
-                            footprint triangle per 100 pixels), else walk */
+                            footprint triangle per 8 pixels), else walk */
     BG_PRIMARY_WALK,     /* every camera ray walks the object tree, as every other ray does */
     BG_PRIMARY_RASTER    /* each tree object's footprint is drawn first, with its exact test in the
                             fragment and the nearest kept by the depth test; the walk runs only where

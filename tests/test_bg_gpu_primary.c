@@ -233,20 +233,20 @@ static void spheres_equal_the_walk(void **state)
     bg_scene_destroy(s);
 }
 
-/* BG_PRIMARY_AUTO rasterises a mesh of at most one footprint triangle per 100 pixels: 3 x 80
- * triangles and a sphere's box (12) in 160 x 160 pixels, not in 96 x 80. */
+/* BG_PRIMARY_AUTO rasterises a mesh of at most one footprint triangle per 8 pixels: 3 x 1280
+ * triangles and a sphere's box (12) in 200 x 160 pixels, not in 96 x 80. */
 static void auto_takes_small_meshes(void **state)
 {
     (void)state;
     mesh m;
-    bg_scene *s = mesh_scene(&m, 1);
+    bg_scene *s = mesh_scene(&m, 3);
     bg_render_stats st;
-    free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, 160, 160, &st, "AUTO, 160 x 160"));
+    free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, 200, 160, &st, "AUTO, 200 x 160"));
     assert_int_equal(st.plan, BG_PLAN_FUSED_TREE);
     assert_true(st.primary_raster);
     free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, W, H, &st, "AUTO, 96 x 80"));
     assert_false(st.primary_raster);
-    expect_same(s, tree_settings(), 160, 160, "coarse mesh, 160 x 160");
+    expect_same(s, tree_settings(), 200, 160, "mesh, 200 x 160");
     bg_scene_destroy(s);
     mesh_free(&m);
 }

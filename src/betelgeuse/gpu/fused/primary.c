@@ -31,13 +31,14 @@ enum { FLOATS = 12, BOX_VERTICES = 36 };
 /* The second draw's margin: fragments within this fraction of the nearest distance tie with it. */
 #define TIE_SCALE (1.0f - 1.0f / 65536.0f)
 /* BG_PRIMARY_AUTO rasterises a scene whose tree holds a mesh, when the footprints have at most one
- * triangle per this many pixels: every triangle costs its edges' and corners' fragments in both
- * draws, seen or not, where a camera ray's walk through a mesh costs the two trees' steps. Measured
- * (bench_primary, llvmpipe, 2 cores, interleaved rounds): an icosphere of 5120 triangles took 0.67 of
- * the walk's time at 1024x1024 (a triangle per 205 pixels) and 0.98 at 512x512 (per 51), one of 81920
- * triangles 1.39 at 1024x1024 (per 13); many_spheres (64 and 1024 boxes) took 0.97-1.09 at either
- * size, since its camera rays' walks are 6 % of its frame: analytic scenes keep the walk. */
-#define AUTO_PIXELS_PER_TRIANGLE 100.0
+ * triangle per this many pixels: every triangle costs a vertex shader run per corner in both draws,
+ * seen or not, where a camera ray's walk through a mesh costs the two trees' steps. Measured
+ * (bench_primary, llvmpipe, 2 cores, interleaved rounds, raster / walk): an icosphere of 5120
+ * triangles 0.63 at 512x512 and 1024x1024, one of 81920 triangles 1.01 at 512x512 (a triangle per 3.2
+ * pixels) and 0.69 at 1024x1024 (per 12.8), one of 1310720 triangles 4.5 at 512x512; many_spheres
+ * (64 and 1024 boxes) 0.96-1.05, since its camera rays' walks are about 6 % of its frame: analytic
+ * scenes keep the walk. */
+#define AUTO_PIXELS_PER_TRIANGLE 8.0
 
 typedef struct primary_mesh {
     uint64_t serial; /* the mesh's (bg_mesh_data.serial) */
