@@ -82,16 +82,6 @@ static bg_scene *mesh_scene(mesh *m, int level)
     return s;
 }
 
-static bg_scene *spheres_scene(int n)
-{
-    scene_params p = {0};
-    p.spheres = n;
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_int_equal(scenes_build_ex(SCENE_MANY_SPHERES, &p, s), BG_OK);
-    return s;
-}
-
 /* The float image of s with settings set and primary visibility `primary`; its stats in *stats. */
 static float *render(bg_scene *s, bg_render_settings set, bg_primary_visibility primary, int w, int h,
                      bg_render_stats *stats, const char *label)
@@ -224,7 +214,7 @@ static void eye_inside_a_box_equals_the_walk(void **state)
 static void spheres_equal_the_walk(void **state)
 {
     (void)state;
-    bg_scene *s = spheres_scene(64);
+    bg_scene *s = util_many_spheres(64);
     expect_same(s, tree_settings(), W, H, "64 spheres");
     bg_render_stats st;
     free(render(s, bg_render_settings_init(), BG_PRIMARY_AUTO, W, H, &st, "64 spheres, AUTO"));
@@ -313,7 +303,7 @@ static void expect_refused(bg_scene *s, const bg_render_settings *set, bg_status
 static void refusals_name_the_reason(void **state)
 {
     (void)state;
-    bg_scene *s = spheres_scene(16);
+    bg_scene *s = util_many_spheres(16);
     bg_render_settings set = bg_render_settings_init();
     set.primary = (bg_primary_visibility)7;
     expect_refused(s, &set, BG_ERR_INVALID_ARGUMENT, "settings.primary 7");

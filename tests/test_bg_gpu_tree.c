@@ -44,16 +44,6 @@ static bg_render_stats render(bg_renderer *r, bg_scene *s, const bg_render_setti
     return stats;
 }
 
-static bg_scene *spheres_scene(int n)
-{
-    scene_params p = {0};
-    p.spheres = n;
-    bg_scene *s = NULL;
-    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    assert_int_equal(scenes_build_ex(SCENE_MANY_SPHERES, &p, s), BG_OK);
-    return s;
-}
-
 /* Renders with BG_PLAN_AUTO, expects the tree variant with every pixel its own, within the
  * many_spheres thresholds; returns the programs the render built. */
 static int tree_render(bg_renderer *r, bg_scene *s, bg_image *img, const char *label)
@@ -76,10 +66,10 @@ static void auto_walks_a_tree(void **state)
     bg_renderer *r = util_renderer(util_fx.ctx);
     unsigned char px[W * H * 4];
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, px};
-    bg_scene *s = spheres_scene(64);
+    bg_scene *s = util_many_spheres(64);
     assert_true(tree_render(r, s, &img, "64 spheres") >= 1);
     bg_scene_destroy(s);
-    s = spheres_scene(1024);
+    s = util_many_spheres(1024);
     assert_int_equal(tree_render(r, s, &img, "1024 spheres"), 0);
     bg_scene_destroy(s);
     bg_renderer_destroy(r);
@@ -96,7 +86,7 @@ static void recommits_keep_the_program(void **state)
     assert_non_null(first);
     assert_non_null(px);
     bg_image img = {W, H, BG_PIXEL_RGBA8, 0, first};
-    bg_scene *s = spheres_scene(64);
+    bg_scene *s = util_many_spheres(64);
     bg_mat4 here = bg_mat4_mul(bg_mat4_translate(0.1, 0.0, 0.2), bg_mat4_scale(0.3, 0.3, 0.3));
     bg_mat4 there = bg_mat4_mul(bg_mat4_translate(0.4, 0.3, -0.5), bg_mat4_scale(0.3, 0.3, 0.3));
     assert_int_equal(bg_scene_set_transform(s, 5, &here), BG_OK);
@@ -315,7 +305,7 @@ static void tree_beyond_the_texture_size(void **state)
     caps.max_texture_size = 64;
     macs_context *ctx = util_context(util_fx.headless, &caps);
     bg_renderer *r = util_renderer(ctx);
-    bg_scene *s = spheres_scene(4096);
+    bg_scene *s = util_many_spheres(4096);
     unsigned char px[48 * 36 * 4];
     bg_image img = {48, 36, BG_PIXEL_RGBA8, 0, px};
     bg_render_settings set = bg_render_settings_init();
@@ -327,7 +317,7 @@ static void tree_beyond_the_texture_size(void **state)
         fail_msg("unclear message: \"%s\"", msg);
     bg_renderer_clear_error(r);
     bg_scene_destroy(s);
-    s = spheres_scene(64);
+    s = util_many_spheres(64);
     util_render_gpu(r, ctx, s, &set, &img, "64 spheres after the limit");
     bg_scene_destroy(s);
     bg_renderer_destroy(r);

@@ -17,6 +17,16 @@
 
 static void skip_refused(bg_renderer *r, bg_status st, const char *label);
 
+bg_scene *util_many_spheres(int n)
+{
+    scene_params p = {0};
+    p.spheres = n;
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    assert_int_equal(scenes_build_ex(SCENE_MANY_SPHERES, &p, s), BG_OK);
+    return s;
+}
+
 unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height)
 {
     unsigned char *cpu = malloc((size_t)width * height * 4);

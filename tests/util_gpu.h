@@ -71,6 +71,9 @@ void util_expect_render_ok(bg_renderer *r, bg_status st, const char *what);
 void util_render_gpu(bg_renderer *r, macs_context *ctx, bg_scene *s, const bg_render_settings *set, bg_image *img,
                      const char *label);
 
+/* A new committed many_spheres scene of n spheres (fails the test if it cannot be built). */
+bg_scene *util_many_spheres(int n);
+
 /* The CPU reference of a scene at width x height, RGBA8, malloc'd (free it). */
 unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, int width, int height);
 /* The same on the GPU with the given plan, on a renderer of its own over util_fx's context; fails the

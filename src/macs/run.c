@@ -115,6 +115,17 @@ static macs_status end_run(macs_context *ctx, const char *where)
     return macsi_gl_check(ctx, where);
 }
 
+/* What a run or a draw of a validated pass starts with: its GL context current, earlier GL errors
+ * drained (they are not this call's), the outputs and depth/stencil attached (*ds the one bound). */
+static macs_status begin(macs_pass *pass, const char *what, macs_depth_stencil **ds)
+{
+    macs_status st = macsi_gl_current(pass->ctx, what);
+    if (st != MACS_OK)
+        return st;
+    macsi_gl_drain(pass->ctx);
+    return prepare_attachments(pass, ds);
+}
+
 macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run)
 {
     if (!pass)
@@ -127,14 +138,10 @@ macs_status macs_pass_run(macs_pass *pass, const macs_run_desc *run)
     if (pass->geometry)
         return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_run: the pass is a geometry pass (it has a "
                          "vertex_main): draw it with macs_pass_draw");
+    macs_depth_stencil *ds = NULL;
     macs_status st = validate_run(pass, run);
     if (st == MACS_OK)
-        st = macsi_gl_current(ctx, "macs_pass_run");
-    if (st != MACS_OK)
-        return st;
-    macsi_gl_drain(ctx);
-    macs_depth_stencil *ds = NULL;
-    st = prepare_attachments(pass, &ds);
+        st = begin(pass, "macs_pass_run", &ds);
     if (st != MACS_OK)
         return st;
     apply_common_state(pass, run);
@@ -222,14 +229,10 @@ macs_status macs_pass_draw(macs_pass *pass, const macs_draw_desc *draw)
     if (!draw)
         return macsi_fail(ctx, MACS_ERR_INVALID_ARGUMENT, "macs_pass_draw: draw is NULL");
     int count = 0;
+    macs_depth_stencil *ds = NULL;
     macs_status st = validate_draw(pass, draw, &count);
     if (st == MACS_OK)
-        st = macsi_gl_current(ctx, "macs_pass_draw");
-    if (st != MACS_OK)
-        return st;
-    macsi_gl_drain(ctx);
-    macs_depth_stencil *ds = NULL;
-    st = prepare_attachments(pass, &ds);
+        st = begin(pass, "macs_pass_draw", &ds);
     if (st != MACS_OK)
         return st;
     macs_run_desc run = {draw->scissor, draw->scissor_x, draw->scissor_y, draw->scissor_width, draw->scissor_height,
