@@ -88,7 +88,8 @@ SCENES_OBJ := $(SCENES_SRC:%.c=$(BUILD)/%.o)
 EXAMPLE_SRC := $(sort $(wildcard examples/*.c))
 EXAMPLE_BIN := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/examples/%)
 
-# Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export), and
+# Every bench/*.c is one program; bench/lib/*.c is code they share (timing, CSV, POV-Ray export, the
+# BENCH_CASES selection), and
 # they also link the counting allocator of the tests (tests/util_alloc.c).
 # The Embree peer (bench/lib/embree_*.c) is built only where Embree 4 or 3 is installed, 4 first:
 # pkg-config embree4 or embree3, else the headers under /usr/include (Debian's libembree-dev: Embree 3

@@ -3,6 +3,8 @@
  * stands.
  *
  * Usage: bench_embree [out_dir]   (default bench/out; QUICK=1 for fewer runs)
+ * BENCH_CASES (bench/lib/bench_select.h) picks cases by the table's scene column: paper_earth,
+ * paper_earth_shadow, glass, many_spheres64, many_spheres1024, each also as name@512 or name@1024.
  * Per case: the CPU reference renders first (the image every other is compared with); the peer builds
  * its BVH (timed on its own, not part of a frame); after one warm-up frame each, four contestants are
  * timed in interleaved rounds, in this order: one peer frame, one GPU frame (BG_PLAN_AUTO), one
@@ -10,12 +12,13 @@
  * CPU reference frame. The drift of a shared machine then falls on all alike, and each ratio is the
  * median of its per-round ratios. Rounds: a case whose GPU warm-up takes over BENCH_SLOW_MS gets
  * BENCH_SLOW_RUNS, over VERY_SLOW_MS one (every contestant); the multipass follows its own rules
- * (MULTIPASS_MAX_OBJECTS, MULTIPASS_SLOW_MS). Writes out_dir/embree.csv.
+ * (MULTIPASS_MAX_OBJECTS, MULTIPASS_SLOW_MS). Writes out_dir/embree.csv (the cases run, only).
  * Built only where Embree is installed (Makefile, bench section). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "lib/bench_measure.h"
+#include "lib/bench_select.h"
 #include "lib/embree_internal.h" /* the peer's Embree header (3 or 4), for RTC_VERSION_* */
 #include "lib/embree_peer.h"
 #include "scenes/scenes.h"
@@ -25,8 +28,11 @@
 #define VERY_SLOW_MS 60000.0
 /* The multipass draws its intersection and shadow passes per object batch and per ray set, so on
  * llvmpipe many_spheres costs it about 20 s a frame at 64 spheres and minutes at 1024: it is not run on
- * more spheres than MULTIPASS_MAX_OBJECTS, and a multipass warm-up over MULTIPASS_SLOW_MS gets one round. */
+ * more spheres than MULTIPASS_MAX_OBJECTS, nor on that many at more pixels than MULTIPASS_MAX_SIDE
+ * squared (a minute's warm-up and a minute's round at 1024x1024, for a row the 512 one already gives),
+ * and a multipass warm-up over MULTIPASS_SLOW_MS gets one round. */
 #define MULTIPASS_MAX_OBJECTS 64
+#define MULTIPASS_MAX_SIDE 512
 #define MULTIPASS_SLOW_MS 10000.0
 
 typedef struct bench_case {
@@ -38,7 +44,8 @@ typedef struct bench_case {
 static const bench_case cases[] = {
     {SCENE_PAPER_EARTH, 512, 0},        {SCENE_PAPER_EARTH, 1024, 0}, {SCENE_PAPER_EARTH_SHADOW, 512, 0},
     {SCENE_PAPER_EARTH_SHADOW, 1024, 0}, {SCENE_GLASS, 512, 0},         {SCENE_GLASS, 1024, 0},
-    {SCENE_MANY_SPHERES, 512, 64},      {SCENE_MANY_SPHERES, 512, 1024},
+    {SCENE_MANY_SPHERES, 512, 64},      {SCENE_MANY_SPHERES, 1024, 64}, {SCENE_MANY_SPHERES, 512, 1024},
+    {SCENE_MANY_SPHERES, 1024, 1024},
 };
 #define CASE_COUNT (int)(sizeof cases / sizeof cases[0])
 
@@ -86,6 +93,12 @@ static bool case_setup(case_run *run, embree_peer *peer, const gpu_pair *gpu, bg
     return ok;
 }
 
+/* Whether the multipass runs a case at all (MULTIPASS_MAX_OBJECTS, MULTIPASS_MAX_SIDE). */
+static bool multipass_runs(const bench_case *c)
+{
+    return c->spheres <= MULTIPASS_MAX_OBJECTS && (c->spheres == 0 || c->size <= MULTIPASS_MAX_SIDE);
+}
+
 /* The multipass's rounds: none on many objects, one after a slow warm-up, else the case's. */
 static void choose_multipass_rounds(case_run *run, const bench_case *c, int case_rounds, int runs)
 {
@@ -93,6 +106,11 @@ static void choose_multipass_rounds(case_run *run, const bench_case *c, int case
     if (c->spheres > MULTIPASS_MAX_OBJECTS) {
         snprintf(run->note, sizeof run->note, "MP not run: minutes per frame (over %d spheres)",
                  MULTIPASS_MAX_OBJECTS);
+        return;
+    }
+    if (!multipass_runs(c)) {
+        snprintf(run->note, sizeof run->note, "MP not run: spheres over %dx%d (its %d row: 1 round)",
+                 MULTIPASS_MAX_SIDE, MULTIPASS_MAX_SIDE, MULTIPASS_MAX_SIDE);
         return;
     }
     int own = bench_rounds_after(mp->warm_ms, runs);
@@ -116,7 +134,7 @@ static bool prepare(case_run *run, const bench_case *c, bg_scene *scene, int run
         return false;
     }
     run->build_ms = embree_peer_build_ms(run->peer.peer);
-    if (c->spheres <= MULTIPASS_MAX_OBJECTS && !bench_warm_up(&run->c[MULTIPASS]))
+    if (multipass_runs(c) && !bench_warm_up(&run->c[MULTIPASS]))
         return false;
     if (!bench_warm_up(&run->c[PEER]) || !bench_warm_up(&run->c[GPU]))
         return false;
@@ -151,7 +169,7 @@ static void note_gpu_oddities(case_run *run)
 static void case_label(const bench_case *c, char *buffer, size_t size)
 {
     if (c->spheres > 0)
-        snprintf(buffer, size, "%s_%d", scenes_name(c->id), c->spheres);
+        snprintf(buffer, size, "%s%d", scenes_name(c->id), c->spheres);
     else
         snprintf(buffer, size, "%s", scenes_name(c->id));
 }
@@ -271,17 +289,40 @@ static void print_header(const bench_gpu *gpu, const embree_peer *peer, int runs
            "shading. Round order: Embree, GPU (BG_PLAN_AUTO; plan: the one it ran), MP (BG_PLAN_MULTIPASS, its own\n"
            "renderer), CPU reference. Cells: n rounds, ms median [min-max]. Ratios: medians of the per-round\n"
            "ratios (GPU/Emb > 1: the peer is faster). Errors against the CPU reference's image; BVH: the peer's\n"
-           "build, not in its frames. MP: 1 round when its warm-up exceeds %.0f s, not run over %d spheres.\n",
-           embree_peer_describe(peer, how, sizeof how), MULTIPASS_SLOW_MS / 1000.0, MULTIPASS_MAX_OBJECTS);
+           "build, not in its frames. MP: 1 round when its warm-up exceeds %.0f s, not run over %d spheres\n"
+           "(nor on spheres over %dx%d).\n",
+           embree_peer_describe(peer, how, sizeof how), MULTIPASS_SLOW_MS / 1000.0, MULTIPASS_MAX_OBJECTS,
+           MULTIPASS_MAX_SIDE, MULTIPASS_MAX_SIDE);
+    bench_select_print(stdout);
     printf(TABLE_FORMAT("s"), "scene", "size", "plan", "Embree: n ms [min-max]", "GPU: n ms [min-max]",
            "MP: n ms [min-max]", "CPU ref: n ms [min-max]", "GPU/Emb", "GPU/CPU", "MP/GPU", "BVH ms", "GPU error",
            "MP error", "Embree error", "note");
+}
+
+/* Which cases BENCH_CASES picks, in selected[]; false (with the program's names on stderr) when it
+ * names a case that is not here. Asked before anything opens, so that a typo costs nothing. */
+static bool select_cases(bool selected[CASE_COUNT])
+{
+    char known[512] = "", label[64], last[64] = "";
+    size_t used = 0;
+    for (int i = 0; i < CASE_COUNT; i++) {
+        case_label(&cases[i], label, sizeof label);
+        selected[i] = bench_selected(label, cases[i].size);
+        /* A scene's sizes are neighbours in cases[]: its name once. */
+        if (strcmp(label, last) != 0 && used < sizeof known)
+            used += (size_t)snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", label);
+        snprintf(last, sizeof last, "%s", label);
+    }
+    return bench_select_check("bench_embree", known);
 }
 
 int main(int argc, char **argv)
 {
     const char *dir = bench_out_dir(argc, argv);
     const int runs = bench_quick() ? 3 : 7;
+    bool selected[CASE_COUNT];
+    if (!select_cases(selected))
+        return 2;
     char message[512];
     embree_peer *peer = embree_peer_create(NULL, message, sizeof message);
     if (!peer) {
@@ -301,7 +342,8 @@ int main(int argc, char **argv)
     if (csv) {
         print_header(&gpu, peer, runs);
         for (int i = 0; i < CASE_COUNT && !status; i++)
-            status = !run_case(peer, &pair, &cases[i], runs, csv);
+            if (selected[i])
+                status = !run_case(peer, &pair, &cases[i], runs, csv);
         fclose(csv);
     }
     bg_renderer_destroy(pair.multipass);
