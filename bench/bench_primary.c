@@ -3,12 +3,14 @@
  * takes. Scenes: many_spheres with 64 and 1024 spheres, and a closed mesh (an icosphere) of 5120,
  * 81920 and 1310720 triangles filling most of the view; at 512x512 and 1024x1024.
  *
- * Usage: bench_primary [out_dir] [case ...]   (cases: spheres64 spheres1024 ico5k ico80k ico1m;
- * default all; QUICK=1: 512 only, 3 rounds). Writes out_dir/primary.csv. The ratio raster / walk
- * below 1 is the stage's saving; AUTO's choice is printed beside it. */
+ * Usage: bench_primary [out_dir]   (BENCH_CASES picks cases: many_spheres64 many_spheres1024
+ * icosphere5k icosphere82k icosphere1.3m, each at 512 and 1024; QUICK=1: 512 only, 3 rounds;
+ * PHASES=1 prints each frame's phases). Writes out_dir/primary.csv. The ratio raster / walk below 1
+ * is the stage's saving; AUTO's choice is printed beside it. */
 #include <stdlib.h>
 #include <string.h>
 
+#include "lib/bench_select.h"
 #include "lib/bench_util.h"
 #include "scenes/meshes.h"
 #include "scenes/scenes.h"
@@ -23,19 +25,10 @@ typedef struct bench_case {
 } bench_case;
 
 static const bench_case cases[] = {
-    {"spheres64", 64, 0}, {"spheres1024", 1024, 0}, {"ico5k", 0, 4}, {"ico80k", 0, 6}, {"ico1m", 0, 8},
+    {"many_spheres64", 64, 0}, {"many_spheres1024", 1024, 0}, {"icosphere5k", 0, 4}, {"icosphere82k", 0, 6},
+    {"icosphere1.3m", 0, 8},
 };
 #define CASES (int)(sizeof cases / sizeof cases[0])
-
-static bool wanted(const char *name, int argc, char **argv)
-{
-    if (argc <= 2)
-        return true;
-    for (int k = 2; k < argc; k++)
-        if (strcmp(argv[k], name) == 0)
-            return true;
-    return false;
-}
 
 /* An icosphere of radius 1 seen from 3.2 away, one light and a dim ambient. */
 static bg_scene *icosphere_scene(int level)
@@ -125,11 +118,15 @@ int main(int argc, char **argv)
     int rounds = bench_quick() ? QUICK_ROUNDS : ROUNDS;
     static const int sizes[] = {512, 1024};
     int size_count = bench_quick() ? 1 : 2;
-    printf("GL: %s\n%-12s %5s %10s %10s %7s %5s\n", gpu.renderer_name, "case", "size", "walk ms", "raster ms", "ratio",
+    bench_select_print(stdout);
+    printf("GL: %s\n%-16s %5s %10s %10s %7s %5s\n", gpu.renderer_name, "case", "size", "walk ms", "raster ms", "ratio",
            "auto");
     int status = 0;
     for (int c = 0; c < CASES && !status; c++) {
-        if (!wanted(cases[c].name, argc, argv))
+        bool any = false;
+        for (int z = 0; z < size_count; z++)
+            any = bench_selected(cases[c].name, sizes[z]) || any;
+        if (!any)
             continue;
         bg_scene *s = scene_of(&cases[c]);
         if (!s) {
@@ -138,6 +135,8 @@ int main(int argc, char **argv)
         }
         for (int z = 0; z < size_count && !status; z++) {
             int n = sizes[z];
+            if (!bench_selected(cases[c].name, n))
+                continue;
             bg_image img;
             bg_renderer *walk_r = bench_gpu_renderer(&gpu, (bg_renderer_desc){0});
             bg_renderer *raster_r = bench_gpu_renderer(&gpu, (bg_renderer_desc){0});
@@ -162,7 +161,7 @@ int main(int argc, char **argv)
                 status = 1;
             if (!status) {
                 bench_times w = bench_times_of(walk, rounds), ra = bench_times_of(raster, rounds);
-                printf("%-12s %5d %10.1f %10.1f %7.3f %5s\n", cases[c].name, n, w.median, ra.median,
+                printf("%-16s %5d %10.1f %10.1f %7.3f %5s\n", cases[c].name, n, w.median, ra.median,
                        ra.median / w.median, auto_raster ? "R" : "W");
                 fprintf(csv, "%s,%d,%.3f,%.3f,%.4f,%d\n", cases[c].name, n, w.median, ra.median, ra.median / w.median,
                         auto_raster ? 1 : 0);
@@ -176,5 +175,7 @@ int main(int argc, char **argv)
     }
     fclose(csv);
     bench_gpu_close(&gpu);
+    if (!bench_select_check("bench_primary", "many_spheres64 many_spheres1024 icosphere5k icosphere82k icosphere1.3m"))
+        return 2;
     return status;
 }
