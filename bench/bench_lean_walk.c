@@ -3,17 +3,20 @@
  * program of build A, then of build B, then A again, and takes the median of the per-round ratios.
  * Two libraries cannot share one process (the same symbols), hence a process per round.
  *
- * Usage: bench_lean_walk CASE SIZE FRAMES
+ * Usage: bench_lean_walk CASE SIZE FRAMES [PLAN]
  *   CASE: spheres64, spheres1024 (SCENE_MANY_SPHERES), terrain<n> (an n x n terrain, 2 n^2
  *   triangles, as bench_mesh draws it), ico<level> (the unit icosphere, 20 * 4^level triangles,
- *   a closed mesh, lit by two lights with shadows).
- * After one untimed frame (compilation), FRAMES frames of SIZE x SIZE (BG_PLAN_AUTO, RGBA8) are timed;
+ *   a closed mesh, lit by two lights with shadows), bunny (examples/scenes/bunny_scene.h, run from
+ *   the source tree's root), or a shared scene's short name (scenes_find: paper_earth, glass, ...).
+ *   PLAN: auto (default), fused, tree or multipass.
+ * After one untimed frame (compilation), FRAMES frames of SIZE x SIZE (RGBA8) are timed;
  * prints "CASE plan median_ms min_ms checksum", the checksum an FNV-1a hash of the last image's bytes,
  * so that two builds' images can be compared bit for bit. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "lib/bench_measure.h"
+#include "scenes/bunny_scene.h"
 #include "scenes/meshes.h"
 #include "scenes/scenes.h"
 
@@ -59,6 +62,16 @@ static bg_scene *case_scene(const char *name)
         p.spheres = atoi(name + strlen("spheres"));
         return bench_scene(SCENE_MANY_SPHERES, &p);
     }
+    scene_id id;
+    if (scenes_find(name, &id))
+        return bench_scene((int)id, NULL);
+    if (strcmp(name, "bunny") == 0) {
+        bg_scene *scene = NULL;
+        if (bg_scene_create(NULL, &scene) == BG_OK && bunny_scene_build(scene, "bench_lean_walk") == BG_OK)
+            return scene;
+        bg_scene_destroy(scene);
+        return NULL;
+    }
     bool terrain = strncmp(name, "terrain", 7) == 0, ico = strncmp(name, "ico", 3) == 0;
     if (!terrain && !ico) {
         fprintf(stderr, "bench_lean_walk: unknown case %s\n", name);
@@ -100,8 +113,13 @@ static unsigned long long fnv1a(const unsigned char *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    if (argc != 4) {
-        fprintf(stderr, "usage: bench_lean_walk CASE SIZE FRAMES\n");
+    static const char *const plans[] = {"auto", "fused", "multipass", "tree"}; /* bg_gpu_plan's order */
+    int plan = argc == 5 ? -1 : 0;
+    for (int p = 0; argc == 5 && p < 4; p++)
+        if (strcmp(argv[4], plans[p]) == 0)
+            plan = p;
+    if ((argc != 4 && argc != 5) || plan < 0) {
+        fprintf(stderr, "usage: bench_lean_walk CASE SIZE FRAMES [auto|fused|tree|multipass]\n");
         return 2;
     }
     int size = atoi(argv[2]), frames = atoi(argv[3]);
@@ -120,6 +138,7 @@ int main(int argc, char **argv)
         return 1;
     }
     bg_render_settings settings = bg_render_settings_init();
+    settings.gpu_plan = (bg_gpu_plan)plan;
     bg_render_stats stats;
     memset(&stats, 0, sizeof stats);
     double times[64];

@@ -19,17 +19,16 @@ const float BG_OBJECT_TEXELS = 8.0;
 
 // The centre of texel 0 of item `index`, the texels of one item lying side by side in one row, so
 // that its texel f is at + vec2(f * dims.z, 0.0). With k items per row and `per` texels per item,
-// q = index / k = row + column / k is exact (k a power of two), fract(q) = column / k is the
-// column's first texel over the width (column * per / (k * per)), and q - fract(q) is the row: the
-// same texel centres as (column * per + f + 0.5) / width and (row + 0.5) / height, in fewer
-// operations (measured in docs/benchmarks.md, "A leaner walk"). Every term of the first coordinate
-// is a multiple of 1 / (2 width) well within float's 24 bits, so each sum is exact; the second is
-// computed as before, (row + 0.5) * (1 / height).
+// q = index / k = row + column / k is exact (k a power of two), and q - floor(q) = column / k is
+// the item's first texel over the width (column * per / (k * per)), also exact: the same texel
+// centres as (column * per + f + 0.5) / width and (row + 0.5) / height, to the bit, in fewer
+// operations (docs/benchmarks.md, "A leaner walk: what was measured"). Every term of the first
+// coordinate is a multiple of 1 / (2 width) well within float's 24 bits, so each sum is exact.
 vec2 bg_tree_at(vec4 dims, float index)
 {
     float q = index * dims.y;
-    float column = fract(q);
-    return vec2(column + 0.5 * dims.z, (q - column + 0.5) * dims.w);
+    float row = floor(q);
+    return vec2(q - row + 0.5 * dims.z, (row + 0.5) * dims.w);
 }
 
 // The texel `field` of item `index` of a texture of `per` texels per item (per is implied by dims,
