@@ -19,17 +19,32 @@
 // "Triangle meshes"); nodes and triangles each have their own texture, so every fetch knows which
 // it reads.
 
+// The centre of texel k of a texture of inv_rows = 1 / its height, from q = k / width = row +
+// column / width (exact, the width a power of two): q - floor(q) = column / width exactly, so the
+// centre (column + 0.5) / width, (row + 0.5) / height comes to the bit without the column's
+// difference and product (docs/benchmarks.md, "A leaner walk: what was measured"). The texels
+// after k are at q + i / width, exact too, which a walk step uses for a node's second and third.
+vec2 bg_mesh_at(vec4 dims, float inv_rows, float q)
+{
+    float row = floor(q);
+    return vec2(q - row + 0.5 * dims.y, (row + 0.5) * inv_rows);
+}
+
 vec4 bg_mesh_texel(sampler2D s, vec4 dims, float inv_rows, float k)
 {
-    float row = floor(k * dims.y);
-    float column = k - row * dims.x;
-    return texture2D(s, vec2((column + 0.5) * dims.y, (row + 0.5) * inv_rows));
+    return texture2D(s, bg_mesh_at(dims, inv_rows, k * dims.y));
 }
 
 // Texel k of the node texture.
 vec4 bg_mesh_node(sampler2D nodes, vec4 dims, float k)
 {
     return bg_mesh_texel(nodes, dims, dims.w, k);
+}
+
+// Texel q * width of the node texture (bg_mesh_at).
+vec4 bg_mesh_node_at(sampler2D nodes, vec4 dims, float q)
+{
+    return texture2D(nodes, bg_mesh_at(dims, dims.w, q));
 }
 
 // Texel k of the triangle texture.

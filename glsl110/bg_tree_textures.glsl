@@ -17,20 +17,34 @@
 
 const float BG_OBJECT_TEXELS = 8.0;
 
-// The texel `field` of item `index` of a texture of `per` texels per item.
+// The centre of texel 0 of item `index`, the texels of one item lying side by side in one row, so
+// that its texel f is at + vec2(f * dims.z, 0.0). With k items per row and `per` texels per item,
+// q = index / k = row + column / k is exact (k a power of two), and q - floor(q) = column / k is
+// the item's first texel over the width (column * per / (k * per)), also exact: the same texel
+// centres as (column * per + f + 0.5) / width and (row + 0.5) / height, to the bit, in fewer
+// operations (docs/benchmarks.md, "A leaner walk: what was measured"). Every term of the first
+// coordinate is a multiple of 1 / (2 width) well within float's 24 bits, so each sum is exact.
+vec2 bg_tree_at(vec4 dims, float index)
+{
+    float q = index * dims.y;
+    float row = floor(q);
+    return vec2(q - row + 0.5 * dims.z, (row + 0.5) * dims.w);
+}
+
+// The texel `field` of item `index` of a texture of `per` texels per item (per is implied by dims,
+// and kept to name the layout at the call).
 vec4 bg_tree_fetch(sampler2D s, vec4 dims, float per, float index, float field)
 {
-    float row = floor(index * dims.y);
-    float column = (index - row * dims.x) * per + field;
-    return texture2D(s, vec2((column + 0.5) * dims.z, (row + 0.5) * dims.w));
+    return texture2D(s, bg_tree_at(dims, index) + vec2(field * dims.z, 0.0));
 }
 
 // The world-to-object transform of object i as a mat4 (columns), from its three stored rows.
 mat4 bg_tree_to_object(sampler2D objects, vec4 dims, float i)
 {
-    vec4 r0 = bg_tree_fetch(objects, dims, BG_OBJECT_TEXELS, i, 0.0);
-    vec4 r1 = bg_tree_fetch(objects, dims, BG_OBJECT_TEXELS, i, 1.0);
-    vec4 r2 = bg_tree_fetch(objects, dims, BG_OBJECT_TEXELS, i, 2.0);
+    vec2 at = bg_tree_at(dims, i);
+    vec4 r0 = texture2D(objects, at);
+    vec4 r1 = texture2D(objects, at + vec2(dims.z, 0.0));
+    vec4 r2 = texture2D(objects, at + vec2(2.0 * dims.z, 0.0));
     return mat4(vec4(r0.x, r1.x, r2.x, 0.0), vec4(r0.y, r1.y, r2.y, 0.0), vec4(r0.z, r1.z, r2.z, 0.0),
                 vec4(r0.w, r1.w, r2.w, 1.0));
 }
@@ -45,9 +59,10 @@ mat3 bg_tree_normal_matrix(mat4 m)
 // The three stored rows of the object's object-to-world linear part as a mat3 (columns).
 mat3 bg_tree_to_world3(sampler2D objects, vec4 dims, float i)
 {
-    vec4 r0 = bg_tree_fetch(objects, dims, BG_OBJECT_TEXELS, i, 5.0);
-    vec4 r1 = bg_tree_fetch(objects, dims, BG_OBJECT_TEXELS, i, 6.0);
-    vec4 r2 = bg_tree_fetch(objects, dims, BG_OBJECT_TEXELS, i, 7.0);
+    vec2 at = bg_tree_at(dims, i);
+    vec4 r0 = texture2D(objects, at + vec2(5.0 * dims.z, 0.0));
+    vec4 r1 = texture2D(objects, at + vec2(6.0 * dims.z, 0.0));
+    vec4 r2 = texture2D(objects, at + vec2(7.0 * dims.z, 0.0));
     return mat3(vec3(r0.x, r1.x, r2.x), vec3(r0.y, r1.y, r2.y), vec3(r0.z, r1.z, r2.z));
 }
 

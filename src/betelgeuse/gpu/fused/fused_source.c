@@ -180,8 +180,10 @@ static void emit_walk(const gpu_fused_layout *l, gpu_text *t, const char *origin
     bgi_gpu_text_printf(t, "    for (int outer = 0; outer < %d; outer++) {\n        for (int inner = 0; inner < %d; inner++) {\n",
                     outer > 0 ? outer : 1, INNER);
     bgi_gpu_text_printf(t, "            if (%s%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop, done);
-    bgi_gpu_text_append(t, "            vec4 lo = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 0.0);\n"
-                       "            vec4 hi = bg_tree_fetch(bg_nodes, bg_tree_dims, 2.0, node, 1.0);\n");
+    /* A node's two texels share a row: one address, and the second a texel to the right. */
+    bgi_gpu_text_append(t, "            vec2 at = bg_tree_at(bg_tree_dims, node);\n"
+                       "            vec4 lo = texture2D(bg_nodes, at);\n"
+                       "            vec4 hi = texture2D(bg_nodes, at + vec2(bg_tree_dims.z, 0.0));\n");
     bgi_gpu_text_printf(t, "            bool entered = bg_tree_box(%s, inv, %s, lo.xyz, hi.xyz);\n", origin, t_max);
     bgi_gpu_text_printf(t, "            if (entered && lo.w >= 0.0%s) {\n"
                        "                mat4 m = bg_tree_to_object(bg_objects, bg_object_dims, lo.w);\n",

@@ -27,16 +27,18 @@ static void emit_mesh_loop(int walk_budget, gpu_text *t, const char *t_max, cons
                         outer > 0 ? outer : 1, INNER);
     bgi_gpu_text_printf(t, "            if (%s)\n                break;\n            bg_tree_left -= 1.0;\n", stop);
     /* lo and hi are an interior node's box, or a leaf's first two corners (lo.w its triangle); either
-     * way hi.w is the miss link, which a leaf's is too, since nothing follows a leaf but its miss. */
-    bgi_gpu_text_append(t, "            vec4 lo = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node);\n"
-                           "            vec4 hi = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 1.0);\n"
+     * way hi.w is the miss link, which a leaf's is too, since nothing follows a leaf but its miss.
+     * The step's texels are addressed from one q = node / width (bg_mesh_at). */
+    bgi_gpu_text_append(t, "            float q = node * bg_mesh_dims.y;\n"
+                           "            vec4 lo = bg_mesh_node_at(bg_mesh_nodes, bg_mesh_dims, q);\n"
+                           "            vec4 hi = bg_mesh_node_at(bg_mesh_nodes, bg_mesh_dims, q + bg_mesh_dims.y);\n"
                            "            float next = hi.w;\n"
                            "            if (lo.w < 0.0) {\n");
     bgi_gpu_text_printf(t, "                if (bg_tree_box(o, inv, %s, lo.xyz, hi.xyz))\n"
                            "                    next = node + 2.0;\n"
                            "            } else if (lo.w != skip) {\n", t_max);
     bgi_gpu_text_append(t, "                vec3 v0 = lo.xyz;\n                vec3 v1 = hi.xyz;\n"
-                           "                vec3 v2 = bg_mesh_node(bg_mesh_nodes, bg_mesh_dims, node + 2.0).xyz;\n"
+                           "                vec3 v2 = bg_mesh_node_at(bg_mesh_nodes, bg_mesh_dims, q + 2.0 * bg_mesh_dims.y).xyz;\n"
                            "                float tt;\n                vec3 b;\n                bool f;\n");
     bgi_gpu_text_append(t, body);
     bgi_gpu_text_append(t, "            }\n            node = next;\n        }\n");
