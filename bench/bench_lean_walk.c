@@ -16,42 +16,21 @@
 #include <string.h>
 
 #include "lib/bench_measure.h"
+#include "lib/mesh_scene.h"
 #include "scenes/bunny_scene.h"
 #include "scenes/meshes.h"
 #include "scenes/scenes.h"
 
-/* A mesh seen from a camera looking down at 35 degrees, a white diffuse material, two lights
- * (bench_mesh's terrain scene; the icosphere is placed where the terrain is). */
+/* A mesh in the mesh benchmarks' scene (lib/mesh_scene.c), seen from above at 35 degrees as
+ * bench_mesh's terrain (the icosphere from a little further), committed. */
 static bg_status build_mesh(bg_scene *scene, const mesh *m, bool sphere)
 {
-    uint32_t mat = 0, obj = 0, light = 0;
-    bg_material material = bg_material_init();
-    bg_status st = bg_scene_add_material(scene, &material, &mat);
-    bg_mesh_desc d = bg_mesh_desc_init(mat);
-    d.positions = m->positions;
-    d.vertex_count = m->vertex_count;
-    d.indices = m->indices;
-    d.triangle_count = m->triangle_count;
-    if (st == BG_OK)
-        st = bg_scene_add_mesh(scene, &d, &obj);
-    bg_light l = bg_light_init();
-    l.position = bg_vec3_make(1.5, 2.0, 1.0);
-    l.intensity = 0.7;
-    if (st == BG_OK)
-        st = bg_scene_add_light(scene, &l, &light);
-    l.position = bg_vec3_make(-2.0, 1.5, 0.5);
-    l.intensity = 0.5;
-    if (st == BG_OK)
-        st = bg_scene_add_light(scene, &l, &light);
     bg_camera cam = bg_camera_init();
     cam.position = sphere ? bg_vec3_make(0.0, 1.6, 2.8) : bg_vec3_make(0.0, 1.6, 2.3);
     cam.look_at = bg_vec3_make(0.0, 0.0, 0.0);
     cam.fov_y_degrees = 40.0;
-    if (st == BG_OK)
-        st = bg_scene_set_camera(scene, &cam);
-    if (st == BG_OK)
-        st = bg_scene_commit(scene);
-    return st;
+    bg_status st = bench_mesh_scene(scene, m, &cam);
+    return st == BG_OK ? bg_scene_commit(scene) : st;
 }
 
 /* The case's committed scene, or NULL with a message on stderr. */

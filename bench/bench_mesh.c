@@ -38,6 +38,7 @@
 
 #include "../tests/util_alloc.h"
 #include "lib/bench_measure.h"
+#include "lib/mesh_scene.h"
 #include "lib/bench_select.h"
 #include "scenes/meshes.h"
 #ifdef BENCH_EMBREE
@@ -100,32 +101,11 @@ static bg_camera camera_of(shape_kind kind)
     return cam;
 }
 
-/* The mesh in a white diffuse material, two lights, the shape's camera. */
+/* The mesh in the benchmarks' scene (lib/mesh_scene.c) with the shape's camera. */
 static bg_status build(bg_scene *scene, const mesh *m, shape_kind kind)
 {
-    uint32_t mat = 0, obj = 0, light = 0;
-    bg_material material = bg_material_init();
-    bg_status st = bg_scene_add_material(scene, &material, &mat);
-    bg_mesh_desc d = bg_mesh_desc_init(mat);
-    d.positions = m->positions;
-    d.vertex_count = m->vertex_count;
-    d.indices = m->indices;
-    d.triangle_count = m->triangle_count;
-    if (st == BG_OK)
-        st = bg_scene_add_mesh(scene, &d, &obj);
-    bg_light l = bg_light_init();
-    l.position = bg_vec3_make(1.5, 2.0, 1.0);
-    l.intensity = 0.7;
-    if (st == BG_OK)
-        st = bg_scene_add_light(scene, &l, &light);
-    l.position = bg_vec3_make(-2.0, 1.5, 0.5);
-    l.intensity = 0.5;
-    if (st == BG_OK)
-        st = bg_scene_add_light(scene, &l, &light);
     bg_camera cam = camera_of(kind);
-    if (st == BG_OK)
-        st = bg_scene_set_camera(scene, &cam);
-    return st;
+    return bench_mesh_scene(scene, m, &cam);
 }
 
 /* One image size of a point: its renderers (one per plan and size, so that each keeps its caches),
