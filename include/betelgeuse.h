@@ -582,6 +582,21 @@ typedef enum bg_primary_visibility {
                             float32 blending (bg_render_gpu fails with BG_ERR_LIMIT, naming why) */
 } bg_primary_visibility;
 
+/* How a render adds up the light a camera ray brings (docs/shading.md 8, 9 and 13). */
+typedef enum bg_integrator {
+    BG_INTEGRATOR_WHITTED = 0, /* the paper's model: emission, ambient and every light at each hit,
+                                  then mirror and refracted rays (and glossy ones) as a ray tree */
+    BG_INTEGRATOR_PATH         /* global illumination: one path per camera sample that bounces off
+                                  every surface by sampling its BRDF, with every light sampled at each
+                                  hit (multiple importance sampling for visible area lights and the
+                                  environment) and Russian roulette from BG_PATH_ROULETTE_DEPTH on.
+                                  Area lights are emitters of uniform radiance (docs/shading.md 13) */
+} bg_integrator;
+
+/* The first bounce level at which a path may be ended by Russian roulette under BG_INTEGRATOR_PATH:
+ * the camera ray's hit is level 0, so levels 0 .. 2 always go on (up to max_depth). */
+#define BG_PATH_ROULETTE_DEPTH 3
+
 /* Told how much of a render is done: fraction in [0, 1], never decreasing from call to call, first
  * 0 before any work and last exactly 1 once the image is complete (that last call's return value
  * is ignored). Return false to cancel: the render stops at the next row (CPU) or sample pass (GPU)
@@ -609,13 +624,20 @@ typedef void (*bg_rows_fn)(int y0, int y1, void *user);
 #define BG_MAX_DEPTH 64
 
 /* Defaults (bg_render_settings_init): background (0, 0, 0) linear, max_depth 5 bounce levels,
- * min_weight 1/512, sRGB encoding, threads 0 (the online cores), dmax 0 (automatic), no phase
+ * min_weight 1/512, the Whitted integrator (no ambient should path be chosen), sRGB encoding,
+ * threads 0 (the online cores), dmax 0 (automatic), no phase
  * timing, every skip on, GPU plan automatic, one sample at each pixel centre, the frame is the
  * image, no progress callback, no rows callback. */
 typedef struct bg_render_settings {
     double background[3];
-    int max_depth;      /* bounce levels after the primary hit, 0 .. BG_MAX_DEPTH */
-    double min_weight;  /* a ray whose path weight is below this in every channel is not followed */
+    int max_depth;      /* bounce levels after the primary hit, 0 .. BG_MAX_DEPTH; under
+                           BG_INTEGRATOR_PATH the most bounces of any path */
+    double min_weight;  /* BG_INTEGRATOR_WHITTED: a ray whose path weight is below this in every
+                           channel is not followed (the path integrator uses roulette instead) */
+    bg_integrator integrator; /* 0 = BG_INTEGRATOR_WHITTED */
+    bool path_ambient;  /* BG_INTEGRATOR_PATH only: add the scene's ambient term at each hit as
+                           Whitted does; false (the default) leaves it out, since the bounces bring
+                           the light it stands in for */
     bg_output_encoding encoding;
     int threads;        /* CPU renderer only; 0 = online cores, at most 256 */
     double dmax;        /* GPU renderer only: the distance up to which depth is linear and finest

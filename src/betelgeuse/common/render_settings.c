@@ -24,6 +24,8 @@ bg_status bgi_render_settings_check(const bg_render_settings *s, const char *whe
         snprintf(message, size, "%s: settings.max_depth %d is not in 0..%d", where, s->max_depth, BG_MAX_DEPTH);
     else if (!isfinite(s->min_weight) || s->min_weight < 0.0)
         snprintf(message, size, "%s: settings.min_weight must be finite and >= 0", where);
+    else if (s->integrator != BG_INTEGRATOR_WHITTED && s->integrator != BG_INTEGRATOR_PATH)
+        snprintf(message, size, "%s: settings.integrator %d is unknown", where, (int)s->integrator);
     else if (s->encoding != BG_ENCODING_SRGB && s->encoding != BG_ENCODING_LINEAR)
         snprintf(message, size, "%s: settings.encoding %d is unknown", where, (int)s->encoding);
     else if (s->threads < 0 || s->threads > BG_MAX_THREADS)
