@@ -17,6 +17,12 @@
 #define BGI_DIMENSION_LENS 0
 #define BGI_DIMENSION_LIGHT(k) (1 + 2 * (k))
 #define BGI_DIMENSION_GLOSSY(level) (2 + 2 * (level))
+/* The path integrator's (docs/shading.md 13.2): light slot k (the environment's is light_count) of
+ * slots a level, the direction and the event of a hit at level L. Level 0 keeps the lights' and
+ * the glossy lobe's dimensions above. */
+#define BGI_DIMENSION_PATH_LIGHT(k, level, slots) (1 + 2 * ((k) + (level) * (slots)))
+#define BGI_DIMENSION_PATH_DIRECTION(level) (2 + 4 * (level))
+#define BGI_DIMENSION_PATH_EVENT(level) (4 + 4 * (level))
 
 typedef struct bgi_sample_point {
     uint32_t pixel_hash; /* the frame pixel's hash, in [0, 4096) */

@@ -282,6 +282,7 @@ static bg_status derive_light_shapes(bg_scene *s)
         if (st != BG_OK)
             return st;
         objects[k].material = material;
+        objects[k].light = i + 1;
         s->p_objects.count++;
     }
     return BG_OK;

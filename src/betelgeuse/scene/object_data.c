@@ -145,5 +145,6 @@ bg_status bgi_object_derive_shape(bg_scene *scene, const char *where, const char
     o->uv_scale[0] = d->uv_scale[0];
     o->uv_scale[1] = d->uv_scale[1];
     o->casts_shadows = d->casts_shadows;
+    o->light = 0; /* the commit names the light of a visible light's own object */
     return BG_OK;
 }

@@ -64,6 +64,7 @@ typedef struct bg_object_data {
     bool casts_shadows;
     bool bounded;                /* false for planes */
     double bounds_min[3], bounds_max[3]; /* world-space box; meaningful when bounded */
+    uint32_t light;              /* a visible area light's object: 1 + the light's index; else 0 */
 } bg_object_data;
 
 /* The camera with its derived orthonormal basis (forward, right, up: right-handed). */
