@@ -97,6 +97,9 @@ bg_status bgi_gpu_plan_render(bg_renderer *r, const bg_scene *scene, const bg_sc
     memset(&r->stats, 0, sizeof r->stats);
     if (state->gpu_range[0])
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s (docs/gpu_pipeline.md, \"Float range\")", state->gpu_range);
+    if (settings->integrator == BG_INTEGRATOR_PATH)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "settings.integrator is BG_INTEGRATOR_PATH, which no GPU plan draws yet; "
+                            "bg_render_cpu renders it");
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     gpu_plan_frame f = {scene, state, settings, out, false};
     bg_status st = choose_and_render(r, &f);
