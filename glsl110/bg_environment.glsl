@@ -38,16 +38,17 @@ float bg_env_first_above(sampler2D table, float n, float row, vec2 size, float x
     return lo;
 }
 
-// The environment as a light at the unit-square point xi: its unit direction l and E_l (false when
-// it brings nothing).
-bool bg_env_light(vec2 xi, sampler2D env, sampler2D marginal, sampler2D conditional, vec4 info, out vec3 l,
-                  out vec3 e)
+// The environment's direction at the unit-square point xi (docs/shading.md 7.1): the unit direction
+// l, the density pdf it is drawn with and its texel (i, j); false when there is none.
+bool bg_env_direction(vec2 xi, sampler2D marginal, sampler2D conditional, vec4 info, out vec3 l, out float pdf,
+                      out vec2 texel)
 {
     const float pi = 3.141592654;
     float w = info.y, h = info.z;
-    float i, j, u, v, pdf;
+    float i, j, u, v;
     l = vec3(0.0);
-    e = vec3(0.0);
+    pdf = 0.0;
+    texel = vec2(0.0);
     if (info.w > 0.5) {
         j = bg_env_first_above(marginal, h, 0.0, vec2(h, 1.0), xi.x);
         float m1 = bg_env_table(marginal, j, 0.0, vec2(h, 1.0));
@@ -73,6 +74,43 @@ bool bg_env_light(vec2 xi, sampler2D env, sampler2D marginal, sampler2D conditio
     }
     float theta = pi * (1.0 - v), phi = 2.0 * pi * (u - 0.5);
     l = vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
-    e = texture2D(env, vec2((i + 0.5) / w, (j + 0.5) / h)).rgb * (info.x / (pi * pdf));
+    texel = vec2(i, j);
+    return true;
+}
+
+// The environment as a light at the unit-square point xi: its unit direction l and E_l (false when
+// it brings nothing).
+bool bg_env_light(vec2 xi, sampler2D env, sampler2D marginal, sampler2D conditional, vec4 info, out vec3 l,
+                  out vec3 e)
+{
+    const float pi = 3.141592654;
+    float pdf;
+    vec2 texel;
+    e = vec3(0.0);
+    if (!bg_env_direction(xi, marginal, conditional, info, l, pdf, texel))
+        return false;
+    e = texture2D(env, vec2((texel.x + 0.5) / info.y, (texel.y + 0.5) / info.z)).rgb * (info.x / (pi * pdf));
     return bg_max3(e) > 0.0;
+}
+
+// The density with which bg_env_direction draws the direction d (docs/shading.md 13.3, p_env): the
+// importance tables' of the texel d falls in, with the sine of d's unclamped v, or 1 / (4 pi); 0 at
+// the poles, which the tables never draw.
+float bg_env_pdf(vec3 d, sampler2D marginal, sampler2D conditional, vec4 info)
+{
+    const float pi = 3.141592654;
+    if (info.w < 0.5)
+        return 1.0 / (4.0 * pi);
+    float w = info.y, h = info.z;
+    float u = abs(d.x) + abs(d.z) > 0.0 ? 0.5 + atan(d.x, -d.z) / 6.283185307 : 0.5;
+    float v = 1.0 - acos(clamp(d.y, -1.0, 1.0)) / pi;
+    float i = min(floor(u * w), w - 1.0), j = clamp(floor(v * h), 0.0, h - 1.0);
+    float sin_t = sin(pi * v);
+    if (!(sin_t > 0.0))
+        return 0.0;
+    float m1 = bg_env_table(marginal, j, 0.0, vec2(h, 1.0));
+    float m0 = j > 0.0 ? bg_env_table(marginal, j - 1.0, 0.0, vec2(h, 1.0)) : 0.0;
+    float c1 = bg_env_table(conditional, i, j, vec2(w, h));
+    float c0 = i > 0.0 ? bg_env_table(conditional, i - 1.0, j, vec2(w, h)) : 0.0;
+    return (m1 - m0) * (c1 - c0) * w * h / (2.0 * pi * pi * sin_t);
 }

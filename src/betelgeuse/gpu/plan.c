@@ -65,6 +65,14 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s settings.gpu_plan asks for it", no_env);
     if (f->state->environment.on && option)
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s", no_env, option);
+    /* Nor does it draw the path integrator, which only the fused plans do. */
+    bool path = f->settings->integrator == BG_INTEGRATOR_PATH;
+    const char *no_path = "settings.integrator is BG_INTEGRATOR_PATH, which the multipass plan does not draw; it would "
+                          "render this frame because";
+    if (path && !fused)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s settings.gpu_plan asks for it", no_path);
+    if (path && option)
+        return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s", no_path, option);
     /* Rasterised camera rays replace the tree variant's walk, and nothing of another plan. */
     bool raster = f->settings->primary == BG_PRIMARY_RASTER;
     if (raster && (fused != &bgi_gpu_fused_tree_plan || option))
@@ -85,6 +93,8 @@ static bg_status choose_and_render(bg_renderer *r, gpu_plan_frame *f)
             return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s cannot render this frame: %s", fused->name, why);
         if (f->state->environment.on)
             return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s declines it: %s", no_env, fused->name, why);
+        if (path)
+            return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s %s declines it: %s", no_path, fused->name, why);
         fall_back(r, why);
     }
     f->forced = asked == BG_PLAN_MULTIPASS;
@@ -97,9 +107,6 @@ bg_status bgi_gpu_plan_render(bg_renderer *r, const bg_scene *scene, const bg_sc
     memset(&r->stats, 0, sizeof r->stats);
     if (state->gpu_range[0])
         return bgi_gpu_fail(r, BG_ERR_LIMIT, "%s (docs/gpu_pipeline.md, \"Float range\")", state->gpu_range);
-    if (settings->integrator == BG_INTEGRATOR_PATH)
-        return bgi_gpu_fail(r, BG_ERR_LIMIT, "settings.integrator is BG_INTEGRATOR_PATH, which no GPU plan draws yet; "
-                            "bg_render_cpu renders it");
     uint64_t compiled = macs_context_programs_compiled(r->ctx);
     gpu_plan_frame f = {scene, state, settings, out, false};
     bg_status st = choose_and_render(r, &f);

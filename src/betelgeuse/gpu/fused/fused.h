@@ -48,7 +48,7 @@ typedef enum gpu_fused_need {
     GPU_FUSED_NEED_TANGENT,
     GPU_FUSED_NEED_UV, GPU_FUSED_NEED_USED, GPU_FUSED_NEED_ANISO, GPU_FUSED_NEED_TRANSPARENT,
     GPU_FUSED_NEED_COAT, GPU_FUSED_NEED_COAT_ANISO,
-    GPU_FUSED_NEED_SCRAMBLE, GPU_FUSED_NEED_LENS, GPU_FUSED_NEED_AREA, GPU_FUSED_NEED_ENV
+    GPU_FUSED_NEED_SCRAMBLE, GPU_FUSED_NEED_LENS, GPU_FUSED_NEED_AREA, GPU_FUSED_NEED_ENV, GPU_FUSED_NEED_PATH
 } gpu_fused_need;
 
 /* Who a uniform belongs to: the frame, the light arrays (one element per light), an object, a material. */
@@ -85,6 +85,7 @@ typedef enum gpu_fused_scope { GPU_FUSED_FRAME = 0, GPU_FUSED_LIGHTS, GPU_FUSED_
     X(LIGHT_EXP, LIGHTS, "bg_lexp", FLOAT, LIGHTS, light_exponent)              \
     X(LIGHT_EDGE_U, LIGHTS, "bg_ledge_u", VEC4, AREA, light_edge_u)             \
     X(LIGHT_EDGE_V, LIGHTS, "bg_ledge_v", VEC4, AREA, light_edge_v)             \
+    X(LIGHT_PATH, LIGHTS, "bg_lpath", VEC4, PATH, light_path)                   \
     X(ID, OBJECT, "bg_o%u_id", FLOAT, ALWAYS, object_id)                        \
     X(TO_OBJECT, OBJECT, "bg_o%u_to_object", MAT4, ALWAYS, object_to_object)    \
     X(NORMAL, OBJECT, "bg_o%u_normal", MAT3, ALWAYS, object_normal)             \
@@ -109,6 +110,8 @@ typedef struct gpu_fused_material {
     bool used, aniso, coat, transparent;
     bool glossy;                          /* its reflected ray is drawn from its lobe (bg_glossy.glsl) */
     bool bounce;                          /* may spawn a secondary ray (bgi_gpu_material_may_bounce) */
+    uint32_t light;                       /* the material of a visible area light's object: 1 + the
+                                             light's index (bg_object_data.light), else 0 */
     bool textured;                        /* some parameter samples a texture: its objects need UVs */
     uint32_t texture[GPU_P_COUNT_]; /* scene texture (1-based) of each parameter, 0 none */
     int channel[GPU_P_COUNT_];      /* the texel channel of a textured scalar */
@@ -173,6 +176,10 @@ typedef struct gpu_fused_layout {
     bool env_light;      /* the environment lights the scene too, after the lights */
     bool env_importance; /* ... drawn from its importance tables (two more inputs) */
     int env_sampler;     /* the environment texture's sampler, -1 none */
+    bool path;           /* BG_INTEGRATOR_PATH (docs/shading.md 13): a chain of one ray per hit, with
+                            next-event estimation and the way on drawn at each hit */
+    bool path_ambient;   /* ... adding the ambient term at each hit (settings.path_ambient) */
+    bool visible_lights; /* ... and some visible area light's object may be met by chance */
     bool primary;        /* camera rays take their tree hit from the rasterised map (primary.c): the
                             program samples it as its last input, bg_primary */
 } gpu_fused_layout;
@@ -216,6 +223,9 @@ bool bgi_gpu_fused_object_uv(const gpu_fused_layout *l, uint32_t object);
 uint32_t bgi_gpu_fused_layout_lights(const gpu_fused_layout *l);
 /* Whether the program walks a tree: the tree variant with some object in the scene's tree. */
 bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l);
+/* Whether the program computes the sample points of docs/shading.md 1.3 (the scramble uniforms):
+ * for a distribution effect, or for the path integrator, whose every hit draws its own. */
+bool bgi_gpu_fused_layout_samples(const gpu_fused_layout *l);
 /* Whether the program's walks (the object tree's or a mesh's) share a step budget per pixel, so
  * that a pixel may run out and go to the CPU reference. */
 bool bgi_gpu_fused_layout_budgeted(const gpu_fused_layout *l);
@@ -265,6 +275,13 @@ const char *bgi_gpu_fused_shape_file(bg_shape shape);
  * into functions, its main into main, and the expression written to the output. False when a
  * library file is missing or memory ran out. */
 bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output);
+
+/* ---- fused_path_source.c ---- */
+/* The path integrator's generated functions (after bg_fused_surface): the environment's radiance,
+ * the miss, the visible lights met by chance, the lights sampled towards a hit. */
+void bgi_gpu_fused_path_functions(const gpu_fused_layout *l, gpu_text *functions);
+/* The path integrator's main after the camera ray: its chain of hits. */
+void bgi_gpu_fused_path_main(const gpu_fused_layout *l, gpu_text *main);
 
 
 #endif

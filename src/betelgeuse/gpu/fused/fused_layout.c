@@ -169,6 +169,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         const bg_object_data *o = &state->objects[j];
         l.objects[j] = (gpu_fused_object){o->shape, o->material, o->uv_mapping, o->casts_shadows, false, 0};
         l.materials[o->material].used = true;
+        l.materials[o->material].light = o->light;
         l.mesh |= o->shape == BGI_SHAPE_MESH;
     }
     l.mesh_filters = l.mesh ? bgi_gpu_meshes_filters(state) : 0;
@@ -187,6 +188,7 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         if (!m->used)
             continue;
         describe_material(&state->materials[k], m, &l);
+        l.visible_lights |= m->light > 0;
         l.transparent |= m->transparent;
         l.glossy |= m->glossy;
         l.aniso |= m->aniso;
@@ -213,17 +215,21 @@ bool bgi_gpu_fused_layout_build(const bg_allocator *a, const bg_scene_state *sta
         l.srgb |= l.sampler_modes[k].srgb;
     }
     l.shadows = any_shadow(&l) && bgi_gpu_fused_layout_lights(&l) > 0;
-    l.max_depth = bounce ? settings->max_depth : 0;
-    l.stack = l.transparent ? l.max_depth : 0;
+    /* A path is a chain whatever its materials: every surface with a non-Dirac part bounces. */
+    l.path = settings->integrator == BG_INTEGRATOR_PATH;
+    l.path_ambient = l.path && settings->path_ambient;
+    l.visible_lights &= l.path;
+    l.max_depth = bounce || l.path ? settings->max_depth : 0;
+    l.stack = l.transparent && !l.path ? l.max_depth : 0;
     uint32_t tests = bgi_gpu_fused_layout_lights(&l) * (casters(&l) ? casters(&l) : 1);
     l.light_loop = l.light_count > 1 && tests > GPU_FUSED_UNROLLED_SHADOW_TESTS;
     /* The loop bound is a constant of the program, so it cannot depend on min_weight; the pruned
      * bound only tells whether that constant is enough (bgi_gpu_fused_render). Each ray runs the light
      * loop too, where there is one, and every iteration counts against llvmpipe's limit. */
-    double full = rays_bound(l.max_depth, l.transparent, 0.0);
+    double full = rays_bound(l.max_depth, l.transparent && !l.path, 0.0);
     int most = GPU_MAX_LOOP / (1 + (l.light_loop ? (int)l.light_count : 0));
     l.loop_rays = full < most ? (int)full : most;
-    l.rays_needed = rays_bound(l.max_depth, l.transparent, settings->min_weight);
+    l.rays_needed = rays_bound(l.max_depth, l.transparent && !l.path, settings->min_weight);
     l.walk_budget = tree || l.mesh ? walk_budget(&l) : 0;
     *out = l;
     return true;
@@ -252,6 +258,11 @@ bool bgi_gpu_fused_object_tangent(const gpu_fused_layout *l, uint32_t object)
 uint32_t bgi_gpu_fused_layout_lights(const gpu_fused_layout *l)
 {
     return l->light_count + (l->env_light ? 1u : 0u);
+}
+
+bool bgi_gpu_fused_layout_samples(const gpu_fused_layout *l)
+{
+    return l->lens || l->area || l->glossy || l->env_light || l->path;
 }
 
 bool bgi_gpu_fused_layout_walks(const gpu_fused_layout *l)

@@ -91,7 +91,7 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
     if (ok && l->env)
         ok = bgi_gpu_text_snippet(t, "bg_environment.glsl", seen, &n, SEEN_CAP);
     /* The distribution effects' sample points, and the frame pixel's hash they start from. */
-    if (ok && (l->lens || l->area || l->glossy || l->env_light)) {
+    if (ok && bgi_gpu_fused_layout_samples(l)) {
         ok = bgi_gpu_text_snippet(t, "bg_scramble.glsl", seen, &n, SEEN_CAP);
         bgi_gpu_text_append(t, "float bg_ph;\n");
     }
@@ -103,7 +103,7 @@ static bool library(const gpu_fused_layout *l, gpu_text *t)
         ok = bgi_gpu_text_snippet(t, "bg_area_light.glsl", seen, &n, SEEN_CAP);
     if (ok && l->max_depth > 0)
         ok = bgi_gpu_text_snippet(t, "bg_stage_spawn.glsl", seen, &n, SEEN_CAP);
-    return ok && bgi_gpu_text_snippet(t, "bg_fused_trace.glsl", seen, &n, SEEN_CAP);
+    return ok && bgi_gpu_text_snippet(t, l->path ? "bg_path.glsl" : "bg_fused_trace.glsl", seen, &n, SEEN_CAP);
 }
 
 /* ---- generated functions ---- */
@@ -557,6 +557,8 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
     position = 0;
     for (uint32_t k = 0; k < l->material_count; k++)
         used += l->materials[k].used ? 1 : 0;
+    if (l->visible_lights)
+        bgi_gpu_text_append(t, "    bg_path_light = -1.0;\n");
     for (uint32_t k = 0; k < l->material_count; k++) {
         if (!l->materials[k].used)
             continue;
@@ -564,11 +566,19 @@ static void emit_surface(const gpu_fused_layout *l, gpu_text *t)
         snprintf(value, sizeof value, "%u.0", (unsigned)k);
         branch(t, "mat", value, position++, used);
         emit_material(l, t, k);
+        /* Under the path integrator a visible area light's object glows with the light's own Le on
+         * its front (docs/shading.md 13.1), which bg_fused_path_emitted adds, in place of its
+         * material's emission. */
+        if (l->visible_lights && l->materials[k].light)
+            bgi_gpu_text_printf(t, "        emission = vec3(0.0);\n        bg_path_light = %u.0;\n",
+                                (unsigned)(l->materials[k].light - 1));
         bgi_gpu_text_append(t, "    }\n");
     }
-    bgi_gpu_text_append(t, "    nrm = vec4(n, base_r);\n    base = vec4(base_c, base_p);\n    coat = vec4(coat_c, coat_r);\n"
-                       "    tangent = vec4(tg, coat_p);\n    once = emission + (1.0 - transparency) * ambient;\n"
-                       "    xparent = vec2(transparency, ior);\n}\n");
+    /* The path integrator adds the ambient term only when asked to (settings.path_ambient). */
+    bgi_gpu_text_printf(t, "    nrm = vec4(n, base_r);\n    base = vec4(base_c, base_p);\n    coat = vec4(coat_c, coat_r);\n"
+                           "    tangent = vec4(tg, coat_p);\n    once = emission%s;\n"
+                           "    xparent = vec2(transparency, ior);\n}\n",
+                        !l->path || l->path_ambient ? " + (1.0 - transparency) * ambient" : "");
 }
 
 /* One light's term, the light given by its index into the light arrays (a number or the loop's).
@@ -732,7 +742,7 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
     bgi_gpu_text_append(t, ""
                        "vec4 bg_cw = vec4(1.0, 1.0, 1.0, 0.0);\nvec3 bg_radiance = vec3(0.0);\n"
                        "vec4 bg_hit, bg_nrm, bg_base, bg_coat;\nvec2 bg_xp;\n");
-    if (l->lens || l->area || l->glossy || l->env_light)
+    if (bgi_gpu_fused_layout_samples(l))
         bgi_gpu_text_append(t, "bg_ph = bg_pixel_hash(gl_FragCoord.xy, bg_pixel_at);\n");
     if (l->lens)
         bgi_gpu_text_printf(t, "bg_lens_ray(bg_sample_disc(bg_sample_square(bg_ph, %d.0, bg_sample_of, bg_sample_perm)), bg_lens.x, bg_lens.y, "
@@ -741,7 +751,9 @@ static void emit_main(const gpu_fused_layout *l, gpu_text *t)
         bgi_gpu_text_printf(t, "bg_tree_left = %d.0;\nbg_tree_short = 0.0;\n", l->walk_budget);
     if (l->primary)
         bgi_gpu_text_append(t, "bg_primary_pending = true;\n");
-    if (l->max_depth == 0)
+    if (l->path)
+        bgi_gpu_fused_path_main(l, t);
+    else if (l->max_depth == 0)
         bgi_gpu_text_printf(t, "%s;\n", trace_call_of(l));
     else if (l->stack == 0)
         emit_chain(l, t);
@@ -765,9 +777,15 @@ bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_te
     }
     emit_nearest(l, functions);
     emit_blocked(l, functions);
+    if (l->visible_lights)
+        bgi_gpu_text_append(functions, "float bg_path_light; // the visible area light whose object the ray met, or -1\n");
     emit_surface(l, functions);
-    emit_direct(l, functions);
-    emit_environment_ray(l, functions);
+    if (l->path) {
+        bgi_gpu_fused_path_functions(l, functions);
+    } else {
+        emit_direct(l, functions);
+        emit_environment_ray(l, functions);
+    }
     emit_main(l, main);
     *output = "bg_out";
     return ok && !functions->failed && !main->failed;

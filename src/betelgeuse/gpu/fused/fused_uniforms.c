@@ -4,6 +4,7 @@
  * GPU_FUSED_UNIFORMS, one value function here.
  *
  * Every position is camera-relative (origin.c): the eye is the origin of the GPU's frame. */
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -172,6 +173,34 @@ LIGHT_ROW_(light_edge_u, edge_u, 4)
 LIGHT_ROW_(light_edge_v, edge_v, 4)
 #undef LIGHT_ROW_
 
+/* The path integrator's area light (docs/shading.md 13.1): its radiance Le = pi col I / A for a
+ * rectangle, col I / R^2 for a sphere, computed in double; w 1 where the light is visible (its object
+ * may be met by chance, so the two ways of meeting it are weighted by the power heuristic), else 0.
+ * A Dirac light is (0, 0, 0, 0): it keeps Whitted's packing. */
+static void light_path(const gpu_fused_values *v, uint32_t i, float *out)
+{
+    (void)i;
+    const bg_scene_state *state = v->state;
+    for (uint32_t k = 0; k < state->light_count; k++) {
+        const bg_light *l = &state->lights[k];
+        double scale = 0.0;
+        if (l->type == BG_LIGHT_RECTANGLE) {
+            const bg_vec3 *u = &l->edge_u, *e = &l->edge_v;
+            double c[3] = {u->y * e->z - u->z * e->y, u->z * e->x - u->x * e->z, u->x * e->y - u->y * e->x};
+            double area = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            scale = area > 0.0 ? 3.14159265358979323846 / area : 0.0;
+        } else if (l->type == BG_LIGHT_SPHERE && l->radius > 0.0) {
+            scale = 1.0 / (l->radius * l->radius);
+        }
+        bool visible = false;
+        for (uint32_t j = 0; j < state->object_count; j++)
+            visible |= state->objects[j].light == k + 1;
+        for (int c = 0; c < 3; c++)
+            out[4 * k + c] = (float)(l->color[c] * l->intensity * scale);
+        out[4 * k + 3] = visible && scale > 0.0 ? 1.0f : 0.0f;
+    }
+}
+
 /* GL takes matrices column by column; the scene's are row-major. */
 static void column_major3(const double *m, float *out)
 {
@@ -281,14 +310,14 @@ bool bgi_gpu_fused_uniform_present(const gpu_fused_layout *l, int r, uint32_t i)
         if (w->need == GPU_FUSED_NEED_MESH)
             return l->mesh;
         if (w->need == GPU_FUSED_NEED_SCRAMBLE)
-            return l->lens || l->area || l->glossy || l->env_light;
+            return bgi_gpu_fused_layout_samples(l);
         if (w->need == GPU_FUSED_NEED_ENV)
             return l->env;
         if (w->need == GPU_FUSED_NEED_LENS)
             return l->lens;
         return w->need == GPU_FUSED_NEED_BOUNCE ? l->max_depth > 0 : w->need == GPU_FUSED_NEED_TREE ? l->tree : true;
     case GPU_FUSED_LIGHTS:
-        return l->light_count > 0 && (w->need != GPU_FUSED_NEED_AREA || l->area);
+        return l->light_count > 0 && (w->need != GPU_FUSED_NEED_AREA || l->area) && (w->need != GPU_FUSED_NEED_PATH || l->path);
     case GPU_FUSED_OBJECT:
         if (l->objects[i].in_tree)
             return false;
