@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
+#include "scenes/path_box.h"
 #include "util_gl.h"
 #include "util_gpu.h"
 
@@ -22,73 +23,14 @@ enum { W = 48, H = 40 };
 static const bg_gpu_plan plans[] = {BG_PLAN_FUSED, BG_PLAN_FUSED_TREE};
 static const char *const plan_names[] = {"fused", "tree"};
 
-static uint32_t material(bg_scene *s, double r, double g, double b, double roughness)
-{
-    bg_material m = bg_material_init();
-    m.base.reflectance = (bg_color_param){r, g, b, 0};
-    m.base.roughness.value = roughness;
-    uint32_t id;
-    if (bg_scene_add_material(s, &m, &id) != BG_OK)
-        fail_msg("bg_scene_add_material: %s", bg_scene_error_message(s));
-    return id;
-}
-
-/* The rectangle c + [0, 1] u + [0, 1] v: the prototype square [-1, 1]^2 of y = 0 with x along u / 2,
- * z along v / 2 and y along their normal. */
-static void wall(bg_scene *s, bg_vec3 c, bg_vec3 u, bg_vec3 v, uint32_t mat)
-{
-    bg_vec3 n = bg_vec3_make(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
-    double len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    const double cols[3][3] = {{0.5 * u.x, 0.5 * u.y, 0.5 * u.z}, {n.x / len, n.y / len, n.z / len},
-                               {0.5 * v.x, 0.5 * v.y, 0.5 * v.z}};
-    const double centre[3] = {c.x + 0.5 * (u.x + v.x), c.y + 0.5 * (u.y + v.y), c.z + 0.5 * (u.z + v.z)};
-    bg_object_desc o = bg_object_desc_init(BG_SHAPE_RECTANGLE, mat);
-    o.transform = bg_mat4_identity();
-    for (int r = 0; r < 3; r++) {
-        for (int j = 0; j < 3; j++)
-            o.transform.m[r][j] = cols[j][r];
-        o.transform.m[r][3] = centre[r];
-    }
-    uint32_t id;
-    if (bg_scene_add_object(s, &o, &id) != BG_OK)
-        fail_msg("bg_scene_add_object: %s", bg_scene_error_message(s));
-}
-
-/* The six walls of the box [-1, 1]^3 (each a little larger, so that no ray leaves through an edge),
- * of materials left, right and the rest. */
-static void box(bg_scene *s, uint32_t left, uint32_t right, uint32_t rest)
-{
-    const double a = -1.05, b = 2.1;
-    wall(s, bg_vec3_make(-1, a, a), bg_vec3_make(0, b, 0), bg_vec3_make(0, 0, b), left);
-    wall(s, bg_vec3_make(1, a, a), bg_vec3_make(0, b, 0), bg_vec3_make(0, 0, b), right);
-    wall(s, bg_vec3_make(a, -1, a), bg_vec3_make(b, 0, 0), bg_vec3_make(0, 0, b), rest);
-    wall(s, bg_vec3_make(a, 1, a), bg_vec3_make(b, 0, 0), bg_vec3_make(0, 0, b), rest);
-    wall(s, bg_vec3_make(a, a, -1), bg_vec3_make(b, 0, 0), bg_vec3_make(0, b, 0), rest);
-    wall(s, bg_vec3_make(a, a, 1), bg_vec3_make(b, 0, 0), bg_vec3_make(0, b, 0), rest);
-}
-
-static void camera(bg_scene *s, bg_vec3 eye, bg_vec3 at)
-{
-    bg_camera c = bg_camera_init();
-    c.position = eye;
-    c.look_at = at;
-    c.fov_y_degrees = 60.0;
-    assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
-}
-
-static bg_scene *new_scene(void)
+/* A new scene that builder builds and commits. */
+static bg_scene *built(bg_status (*builder)(bg_scene *))
 {
     bg_scene *s = NULL;
     assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
-    const double none[3] = {0, 0, 0};
-    assert_int_equal(bg_scene_set_ambient(s, none), BG_OK);
+    if (builder(s) != BG_OK)
+        fail_msg("building the scene: %s", bg_scene_error_message(s));
     return s;
-}
-
-static void commit(bg_scene *s)
-{
-    if (bg_scene_commit(s) != BG_OK)
-        fail_msg("bg_scene_commit: %s", bg_scene_error_message(s));
 }
 
 static bg_render_settings path_settings(int samples, int max_depth)
@@ -136,16 +78,10 @@ static float *linear_image(bg_scene *s, const bg_render_settings *set, int w, in
 static void white_box_gives_e_times_bounces(void **state)
 {
     (void)state;
-    bg_scene *s = new_scene();
-    bg_material m = bg_material_init();
-    m.base.reflectance = (bg_color_param){1, 1, 1, 0};
-    m.base.roughness.value = 1.0;
-    m.emission = (bg_color_param){WHITE_BOX_E, WHITE_BOX_E, WHITE_BOX_E, 0};
-    uint32_t white;
-    assert_int_equal(bg_scene_add_material(s, &m, &white), BG_OK);
-    box(s, white, white, white);
-    camera(s, bg_vec3_make(0.2, -0.1, 0.6), bg_vec3_make(-0.3, 0.2, -1));
-    commit(s);
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    if (path_box_white(s, WHITE_BOX_E) != BG_OK)
+        fail_msg("path_box_white: %s", bg_scene_error_message(s));
     const int depths[] = {0, 2, 5};
     for (size_t k = 0; k < sizeof depths / sizeof depths[0]; k++) {
         bg_render_settings set = path_settings(4, depths[k]);
@@ -169,34 +105,13 @@ static void white_box_gives_e_times_bounces(void **state)
 
 /* ---- the plans ---- */
 
-static bg_scene *cornell_box(void)
-{
-    bg_scene *s = new_scene();
-    uint32_t red = material(s, 0.75, 0.1, 0.1, 1.0), green = material(s, 0.1, 0.7, 0.15, 1.0);
-    uint32_t white = material(s, 0.75, 0.75, 0.75, 1.0);
-    box(s, red, green, white);
-    bg_light l = bg_light_init();
-    l.type = BG_LIGHT_RECTANGLE;
-    l.visible = true;
-    l.position = bg_vec3_make(-0.3, 0.98, 0.3);
-    l.edge_u = bg_vec3_make(0.6, 0, 0);
-    l.edge_v = bg_vec3_make(0, 0, -0.6);
-    l.intensity = 3.0;
-    uint32_t id;
-    assert_int_equal(bg_scene_add_light(s, &l, &id), BG_OK);
-    assert_int_equal(bg_scene_add_sphere(s, bg_vec3_make(-0.4, -0.65, -0.3), 0.35, white, &id), BG_OK);
-    camera(s, bg_vec3_make(0, 0, 0.95), bg_vec3_make(0, 0, -1));
-    commit(s);
-    return s;
-}
-
 /* The multipass plan does not draw the path integrator: forced, or chosen by BG_PLAN_AUTO for a
  * setting only it has, it refuses by naming settings.integrator; BG_PLAN_AUTO otherwise takes a
  * fused plan. */
 static void multipass_refuses_path(void **state)
 {
     (void)state;
-    bg_scene *s = cornell_box();
+    bg_scene *s = built(path_box_cornell);
     unsigned char px[8 * 8 * 4];
     bg_image img = {8, 8, BG_PIXEL_RGBA8, 0, px};
     bg_renderer *r = util_renderer(util_fx.ctx);
@@ -229,7 +144,7 @@ static void multipass_refuses_path(void **state)
 static void whitted_and_path_are_two_programs(void **state)
 {
     (void)state;
-    bg_scene *s = cornell_box();
+    bg_scene *s = built(path_box_cornell);
     for (int plan = 0; plan < 2; plan++) {
         unsigned char a[W * H * 4], b[W * H * 4], c[W * H * 4];
         bg_image ia = {W, H, BG_PIXEL_RGBA8, 0, a}, ib = {W, H, BG_PIXEL_RGBA8, 0, b}, ic = {W, H, BG_PIXEL_RGBA8, 0, c};
