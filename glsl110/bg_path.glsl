@@ -21,8 +21,8 @@ void bg_fused_path_direct(vec3 p, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, 
 // What a ray of direction d drawn with density pb sees where it meets nothing, MIS weight included.
 vec3 bg_fused_path_miss(vec3 d, float pb);
 // What the visible area light's object bg_path_light gives the ray from o along d that meets it at
-// distance t, MIS weight included (0 for any other object).
-vec3 bg_fused_path_emitted(vec3 o, vec3 d, float t, float pb);
+// distance t, MIS weight included, and in a 1 (0 for any other object, which gives nothing here).
+vec4 bg_fused_path_emitted(vec3 o, vec3 d, float t, float pb);
 
 // The power heuristic p^2 / (p^2 + q^2) for the way of density p against the other's q, from the
 // smaller ratio so that no square overflows; 1 where the other way cannot draw the direction.
@@ -91,7 +91,7 @@ float bg_path_f_pdf(vec3 n, vec3 view, vec3 l, float r)
     float t = min(dot(n, h), 1.0), vh = dot(view, h);
     float z_den = 1.0 + r * t * t - t * t;
     float z = z_den > 0.0 ? r / (z_den * z_den) : 0.0;
-    if (vh > 0.0)
+    if (t > 0.0 && vh > 0.0)
         pdf += (1.0 - q_c) * z * t / (4.0 * 3.14159265358979 * vh);
     return pdf;
 }
@@ -161,15 +161,15 @@ vec3 bg_path_emitted(vec3 o, vec3 d, float t, float pb, vec4 pos, vec4 edge_u, v
     return pb > 0.0 ? le.rgb * bg_power_heuristic(pb, p_l) : le.rgb;
 }
 
-// The way on for the event e1 (13.3 step 5): 0 f, 1 reflect, 2 transmit, in x, and in y e1 rescaled
-// to [0, 1) within the way's interval. A way of share 0 is never taken, also where rounding leaves
-// e1 past the shares' sum.
+// The way on for the event e1 (13.3 step 5): 0 f, 1 reflect, 2 transmit, 3 none, in x, and in y e1
+// rescaled to [0, 1) within the f way's interval. Where rounding leaves e1 past the shares' sum the
+// way is reflect, and none if reflect has no share (the CPU's order of tests).
 vec2 bg_path_pick(vec4 way, float e1)
 {
-    if (e1 < way.x || (way.x > 0.0 && way.y <= 0.0 && way.z <= 0.0))
-        return vec2(0.0, min(e1 / way.x, 1.0 - 1.0 / 4096.0));
-    if (e1 < way.x + way.y || way.z <= 0.0)
-        return vec2(1.0, 0.0);
+    if (e1 < way.x)
+        return vec2(0.0, e1 / way.x);
+    if (e1 < way.x + way.y || !(way.z > 0.0))
+        return vec2(way.y > 0.0 ? 1.0 : 3.0, 0.0);
     return vec2(2.0, 0.0);
 }
 
@@ -207,10 +207,11 @@ void bg_path_f_ray(vec4 hit, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, float
 }
 
 // One hit of the path (13.3 steps 1-3): adds the miss's or the hit's own light and the lights
-// sampled towards the hit to radiance; false on a miss. On a hit, hit is (position, hit code), the
-// surface is nrm, base, coat, tangent, xparent, and way its shares of the ways on. At the last level
-// (last: max_depth) no way on follows, so the lights there are weighed against nothing.
-bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, float last, inout vec3 radiance, out vec4 hit,
+// sampled towards the hit to radiance; false where the path ends: a miss, or a visible area light's
+// object, which emits and does nothing else. On a hit, hit is (position, hit code), the surface is
+// nrm, base, coat, tangent, xparent, and way its shares of the ways on. The lights of every level,
+// the last one's included, are weighed against the f way's density of their direction.
+bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, inout vec3 radiance, out vec4 hit,
                        out vec4 nrm, out vec4 base, out vec4 coat, out vec4 tangent, out vec2 xparent, out vec4 way)
 {
     hit = vec4(0.0);
@@ -232,7 +233,10 @@ bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, float last, inout ve
     bg_fused_surface(win, p_obj, n_obj, first_root, rd.xyz, code, nrm, base, coat, tangent, once, xparent);
     vec3 p = ro.xyz + t * rd.xyz;
     hit = vec4(p, code);
-    radiance += cw.rgb * (once + bg_fused_path_emitted(ro.xyz, rd.xyz, t, pb));
+    vec4 emitter = bg_fused_path_emitted(ro.xyz, rd.xyz, t, pb);
+    radiance += cw.rgb * (once + emitter.rgb);
+    if (emitter.a > 0.5)
+        return false;
     // Lights reach the hit as in Whitted's (section 7); a perfect mirror has no non-Dirac part, so
     // neither its lights nor its f way are traced.
     float opaque = 1.0 - xparent.x;
@@ -241,7 +245,6 @@ bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, float last, inout ve
     way = bg_path_ways(reach, hit, nrm, base, coat, xparent, rd.xyz);
     bool diffuse = nrm.w > 0.0 || coat.w > 0.0;
     if (reach && diffuse)
-        bg_fused_path_direct(p, nrm, base, coat, tangent, view, win, cw.rgb * opaque, cw.a,
-                             cw.a < last ? way : vec4(0.0, 0.0, 0.0, way.w), radiance);
+        bg_fused_path_direct(p, nrm, base, coat, tangent, view, win, cw.rgb * opaque, cw.a, way, radiance);
     return true;
 }

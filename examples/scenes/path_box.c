@@ -48,13 +48,13 @@ static bg_status lambertian(bg_scene *s, double r, double g, double b, double e,
     return bg_scene_add_material(s, &m, id);
 }
 
-static bg_status camera_and_commit(bg_scene *s, bg_vec3 eye, bg_vec3 at)
+static bg_status camera_and_commit(bg_scene *s, bg_vec3 eye, bg_vec3 at, double fov)
 {
     const double none[3] = {0, 0, 0};
     bg_camera c = bg_camera_init();
     c.position = eye;
     c.look_at = at;
-    c.fov_y_degrees = 60.0;
+    c.fov_y_degrees = fov;
     bg_status st = bg_scene_set_ambient(s, none);
     if (st == BG_OK)
         st = bg_scene_set_camera(s, &c);
@@ -74,15 +74,15 @@ bg_status path_box_cornell(bg_scene *s)
     bg_light l = bg_light_init();
     l.type = BG_LIGHT_RECTANGLE;
     l.visible = true;
-    l.position = bg_vec3_make(-0.3, 0.98, 0.3);
+    l.position = bg_vec3_make(-0.3, 0.98, -0.3);
     l.edge_u = bg_vec3_make(0.6, 0, 0);
-    l.edge_v = bg_vec3_make(0, 0, -0.6); /* u x v = -y: it shines down */
-    l.intensity = 3.0;
+    l.edge_v = bg_vec3_make(0, 0, 0.6); /* u x v = -y: it shines down */
+    l.intensity = 0.5;
     if (st == BG_OK)
         st = bg_scene_add_light(s, &l, &id);
     if (st == BG_OK)
         st = bg_scene_add_sphere(s, bg_vec3_make(-0.4, -0.65, -0.3), 0.35, white, &id);
-    return st == BG_OK ? camera_and_commit(s, bg_vec3_make(0, 0, 0.95), bg_vec3_make(0, 0, -1)) : st;
+    return st == BG_OK ? camera_and_commit(s, bg_vec3_make(0, -0.1, 0.95), bg_vec3_make(0, 0.25, -1), 75.0) : st;
 }
 
 bg_status path_box_white(bg_scene *s, double e)
@@ -91,5 +91,5 @@ bg_status path_box_white(bg_scene *s, double e)
     bg_status st = lambertian(s, 1.0, 1.0, 1.0, e, &white);
     if (st == BG_OK)
         st = path_box_walls(s, white, white, white);
-    return st == BG_OK ? camera_and_commit(s, bg_vec3_make(0.2, -0.1, 0.6), bg_vec3_make(-0.3, 0.2, -1)) : st;
+    return st == BG_OK ? camera_and_commit(s, bg_vec3_make(0.2, -0.1, 0.6), bg_vec3_make(-0.3, 0.2, -1), 60.0) : st;
 }

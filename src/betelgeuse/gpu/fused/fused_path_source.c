@@ -55,18 +55,18 @@ static void emit_miss(const gpu_fused_layout *l, gpu_text *t)
  * bg_fused_surface), by an if-chain over the visible lights, each with its constant index. */
 static void emit_emitted(const gpu_fused_layout *l, gpu_text *t)
 {
-    bgi_gpu_text_append(t, "vec3 bg_fused_path_emitted(vec3 o, vec3 d, float t, float pb)\n{\n");
+    bgi_gpu_text_append(t, "vec4 bg_fused_path_emitted(vec3 o, vec3 d, float t, float pb)\n{\n");
     for (uint32_t k = 0; k < l->material_count && l->visible_lights; k++) {
         const gpu_fused_material *m = &l->materials[k];
         if (!m->used || !m->light)
             continue;
         unsigned i = (unsigned)(m->light - 1);
         bgi_gpu_text_printf(t, "    if (bg_path_light == %u.0)\n"
-                               "        return bg_path_emitted(o, d, t, pb, bg_lpos[%u], bg_ledge_u[%u], bg_ledge_v[%u], "
-                               "bg_lpath[%u]);\n",
+                               "        return vec4(bg_path_emitted(o, d, t, pb, bg_lpos[%u], bg_ledge_u[%u], bg_ledge_v[%u], "
+                               "bg_lpath[%u]), 1.0);\n",
                             i, i, i, i, i);
     }
-    bgi_gpu_text_append(t, "    return vec3(0.0);\n}\n");
+    bgi_gpu_text_append(t, "    return vec4(0.0);\n}\n");
 }
 
 /* One light's estimate at a hit of level `level` (13.3 step 3): light i (a number or the loop's)
@@ -147,6 +147,7 @@ static void emit_way_on(const gpu_fused_layout *l, gpu_text *t)
                            "    vec2 bg_ev = bg_sample_square(bg_ph, %d.0 + %d.0 * bg_cw.a, bg_sample_of, bg_sample_perm);\n"
                            "    vec2 bg_xi = bg_sample_square(bg_ph, %d.0 + %d.0 * bg_cw.a, bg_sample_of, bg_sample_perm);\n"
                            "    vec2 bg_pick = bg_path_pick(bg_way, bg_ev.x);\n"
+                           "    if (bg_pick.x > 2.5)\n        break;\n"
                            "    vec4 bg_o1, bg_d1, bg_w1;\n"
                            "    if (bg_pick.x < 0.5) {\n"
                            "        bg_path_f_ray(bg_hit, bg_nrm, bg_base, bg_coat, bg_tg, bg_xp.x, bg_rd.xyz, bg_cw.rgb, bg_way, "
@@ -173,9 +174,8 @@ static void emit_way_on(const gpu_fused_layout *l, gpu_text *t)
 
 void bgi_gpu_fused_path_main(const gpu_fused_layout *l, gpu_text *t)
 {
-    char ray[256];
-    snprintf(ray, sizeof ray, "bg_fused_path_ray(bg_ro, bg_rd, bg_cw, bg_pb, %d.0, bg_radiance, bg_hit, bg_nrm, bg_base, "
-                              "bg_coat, bg_tg, bg_xp, bg_way)", l->max_depth);
+    const char *ray = "bg_fused_path_ray(bg_ro, bg_rd, bg_cw, bg_pb, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, "
+                      "bg_tg, bg_xp, bg_way)";
     bgi_gpu_text_append(t, "vec4 bg_tg, bg_way;\nfloat bg_pb = 0.0;\n");
     if (l->max_depth == 0) {
         bgi_gpu_text_printf(t, "%s;\n", ray);
