@@ -590,7 +590,9 @@ typedef enum bg_integrator {
                                   every surface by sampling its BRDF, with every light sampled at each
                                   hit (multiple importance sampling for visible area lights and the
                                   environment) and Russian roulette from BG_PATH_ROULETTE_DEPTH on.
-                                  Area lights are emitters of uniform radiance (docs/shading.md 13) */
+                                  Area lights are emitters of uniform radiance (docs/shading.md 13).
+                                  The CPU reference and the fused GPU plans draw it; BG_PLAN_MULTIPASS
+                                  refuses it (BG_ERR_LIMIT), and BG_PLAN_AUTO takes a fused plan */
 } bg_integrator;
 
 /* The first bounce level at which a path may be ended by Russian roulette under BG_INTEGRATOR_PATH:
