@@ -515,7 +515,7 @@ valgrind: $(VALGRIND_TESTS) $(BUILD)/tests/probe_headless
 # on stderr.
 BENCH_OUT ?= bench/out
 BENCH_ENV := $(TEST_ENV) QUICK=$(QUICK)
-BENCH_PROGRAMS := bench_paper bench_frame_cost bench_scaling bench_tradeoffs bench_phases bench_recommit bench_mesh bench_primary bench_walk_floor bench_distribution bench_progressive $(if $(EMBREE_LIBS),bench_embree)
+BENCH_PROGRAMS := bench_paper bench_frame_cost bench_scaling bench_tradeoffs bench_phases bench_recommit bench_mesh bench_primary bench_walk_floor bench_distribution bench_progressive bench_path $(if $(EMBREE_LIBS),bench_embree)
 # The benchmark programs built but not run: CI checks that they still compile.
 bench-programs: all $(BENCH_BIN)
 
