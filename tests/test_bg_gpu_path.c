@@ -327,10 +327,11 @@ static double mean_of(const float *px, int n, int c)
  * worth, measured below. */
 static const gpu_threshold path_row = {SCENE_COUNT, PATH_INTERIOR_MAX, PATH_MEAN, PATH_PSNR, PATH_OVER};
 
-static void gpu_follows_cpu(bg_scene *(*make)(void), const char *what)
+static void gpu_follows_cpu_with(bg_scene *(*make)(void), bool ambient, const char *what)
 {
     bg_scene *s = make();
     bg_render_settings set = path_settings(16, 5);
+    set.path_ambient = ambient;
     unsigned char *cpu = util_cpu_reference(s, &set, W, H);
     float *cpu_linear = linear_image(s, &set, W, H, -1);
     for (int plan = 0; plan < 2; plan++) {
@@ -354,10 +355,26 @@ static void gpu_follows_cpu(bg_scene *(*make)(void), const char *what)
     bg_scene_destroy(s);
 }
 
+static void gpu_follows_cpu(bg_scene *(*make)(void), const char *what)
+{
+    gpu_follows_cpu_with(make, false, what);
+}
+
+/* The box under a dim ambient light, which settings.path_ambient adds at every hit. */
+static bg_scene *ambient_box(void)
+{
+    bg_scene *s = built(path_box_cornell);
+    const double dim[3] = {0.05, 0.04, 0.06};
+    assert_int_equal(bg_scene_set_ambient(s, dim), BG_OK);
+    commit(s);
+    return s;
+}
+
 static void cornell_box_gpu_follows_cpu(void **state)
 {
     (void)state;
     gpu_follows_cpu(cornell_box, "Cornell box");
+    gpu_follows_cpu_with(ambient_box, true, "Cornell box, path_ambient");
 }
 
 static void glossy_gpu_follows_cpu(void **state)
