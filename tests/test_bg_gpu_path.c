@@ -1,7 +1,9 @@
 /* The path integrator on the GPU (docs/shading.md 13, docs/gpu_pipeline.md "The path integrator"):
- * both fused plans draw it and follow the CPU reference at 16 samples; a box of emitting white
- * walls gives its exact radiance; the multipass plan refuses it by name; a Whitted program and a
- * path program of one scene are two programs. */
+ * both fused plans draw it and follow the CPU reference at 16 samples (area lights met both ways,
+ * glossy lobes, glass, a mesh, a lighting environment, the light loop, path_ambient); a box of
+ * emitting white walls gives its exact radiance; the multipass plan refuses it by name; a Whitted
+ * program and a path program of one scene are two programs; the tree plan's walks that run out
+ * hand their pixels to the CPU's path. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,6 +16,7 @@
 #include <cmocka.h>
 
 #include "betelgeuse.h"
+#include "scenes/meshes.h"
 #include "scenes/path_box.h"
 #include "util_gl.h"
 #include "util_gpu.h"
@@ -257,6 +260,35 @@ static bg_scene *glass_box(void)
     return s;
 }
 
+/* The box with a smooth white icosphere of 320 triangles (a mesh object: its rays leave from offset
+ * origins and it may shadow itself) in place of nothing, beside the sphere. */
+static bg_scene *mesh_box(void)
+{
+    bg_scene *s = built(path_box_cornell);
+    mesh m;
+    memset(&m, 0, sizeof m);
+    mesh_icosphere_desc d = {2, 0, true, false};
+    char why[256];
+    if (mesh_icosphere(&d, &m, why, sizeof why) != BG_OK)
+        fail_msg("icosphere: %s", why);
+    bg_material white = bg_material_init();
+    white.base.reflectance = (bg_color_param){0.8, 0.8, 0.7, 0};
+    white.base.roughness.value = 0.7;
+    bg_mesh_desc md = bg_mesh_desc_init(add_material(s, &white));
+    md.positions = m.positions;
+    md.vertex_count = m.vertex_count;
+    md.indices = m.indices;
+    md.triangle_count = m.triangle_count;
+    md.normals = m.normals;
+    md.transform = bg_mat4_mul(bg_mat4_translate(0.45, -0.55, -0.4), bg_mat4_scale(0.4, 0.4, 0.4));
+    uint32_t id;
+    if (bg_scene_add_mesh(s, &md, &id) != BG_OK)
+        fail_msg("bg_scene_add_mesh: %s", bg_scene_error_message(s));
+    mesh_free(&m);
+    commit(s);
+    return s;
+}
+
 /* A 32 x 16 sky: a blue gradient above, dark ground below, a small bright sun. */
 static uint32_t sky_texture(bg_scene *s)
 {
@@ -389,6 +421,12 @@ static void glass_gpu_follows_cpu(void **state)
     gpu_follows_cpu(glass_box, "glass sphere");
 }
 
+static void mesh_gpu_follows_cpu(void **state)
+{
+    (void)state;
+    gpu_follows_cpu(mesh_box, "mesh");
+}
+
 static void environment_gpu_follows_cpu(void **state)
 {
     (void)state;
@@ -436,6 +474,7 @@ int main(void)
         cmocka_unit_test(cornell_box_gpu_follows_cpu),
         cmocka_unit_test(glossy_gpu_follows_cpu),
         cmocka_unit_test(glass_gpu_follows_cpu),
+        cmocka_unit_test(mesh_gpu_follows_cpu),
         cmocka_unit_test(environment_gpu_follows_cpu),
         cmocka_unit_test(walks_that_run_out_go_to_the_cpu),
     };
