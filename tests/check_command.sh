@@ -63,6 +63,10 @@ for scene in area_lights depth_of_field glossy environment; do
 	expect 0 "render $scene" "$cli" render "$json/$scene.json" --size 64x48 -o "$out/$scene.png" --quiet
 	[ -s "$out/$scene.png" ] || fail "render $scene wrote no image"
 done
+# The path integrator's shipped scene, on the CPU (test_scenefile_environment checks its light).
+expect 0 "render window_room (cpu)" "$cli" render "$json/window_room.json" --size 32x24 --samples 2 --renderer cpu \
+	-o "$out/window_room.png" --quiet
+[ -s "$out/window_room.png" ] || fail "render window_room wrote no image"
 expect 0 "render an OBJ model" "$cli" render "$root/tests/data/two_boxes.obj" --size 48x36 -o "$out/obj.png" \
 	--renderer cpu --float "$out/obj.pfm"
 head -c 2 "$out/obj.pfm" | grep -q PF || fail "--float wrote no PFM"
