@@ -445,7 +445,8 @@ static void the_settings_choose_the_integrator(void **state)
         if (bg_scenefile_load_string(json, NULL, s, &r, message, sizeof message) != BG_OK)
             fail_msg("%s: %s", json, message);
         if (r.settings.integrator != cases[i].integrator || r.settings.path_ambient != cases[i].path_ambient)
-            fail_msg("%s: integrator %d, path_ambient %d", json, (int)r.settings.integrator, (int)r.settings.path_ambient);
+            fail_msg("%s: integrator %d, path_ambient %d", json, (int)r.settings.integrator,
+                     (int)r.settings.path_ambient);
         /* The rest of the settings stay the defaults the file does not change. */
         assert_true(r.settings.min_weight == defaults.min_weight);
         assert_int_equal(r.settings.encoding, defaults.encoding);
