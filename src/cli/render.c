@@ -415,7 +415,8 @@ int cli_info(int argc, char **argv)
            file.image.samples == 1 ? "" : "s");
     printf("objects    %zu (%zu meshes: %llu triangles, %llu vertices)\n", s->objects, s->meshes,
            (unsigned long long)s->triangles, (unsigned long long)s->vertices);
-    printf("lights     %zu%s\n", s->lights, file.lights_from_file ? "" : " (the default light)");
+    /* A JSON scene without "lights" has none (an environment may light it); a model file gets one. */
+    printf("lights     %zu%s\n", s->lights, file.lights_from_file || s->lights == 0 ? "" : " (the default light)");
     printf("materials  %zu, textures %zu\n", s->materials, s->textures);
     printf("integrator %s, max_depth %d\n",
            file.settings.integrator == BG_INTEGRATOR_PATH
