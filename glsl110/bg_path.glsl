@@ -209,9 +209,10 @@ void bg_path_f_ray(vec4 hit, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, float
 // One hit of the path (13.3 steps 1-3): adds the miss's or the hit's own light and the lights
 // sampled towards the hit to radiance; false where the path ends: a miss, or a visible area light's
 // object, which emits and does nothing else. On a hit, hit is (position, hit code), the surface is
-// nrm, base, coat, tangent, xparent, and way its shares of the ways on. The lights of every level,
-// the last one's included, are weighed against the f way's density of their direction.
-bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, inout vec3 radiance, out vec4 hit,
+// nrm, base, coat, tangent, xparent, and way its shares of the ways on. The lights are weighed
+// against the f way's density of their direction, except at the last level (cw.a = last): no way
+// on follows there, so they take weight 1.
+bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, float last, inout vec3 radiance, out vec4 hit,
                        out vec4 nrm, out vec4 base, out vec4 coat, out vec4 tangent, out vec2 xparent, out vec4 way)
 {
     hit = vec4(0.0);
@@ -245,6 +246,7 @@ bool bg_fused_path_ray(vec4 ro, vec4 rd, vec4 cw, float pb, inout vec3 radiance,
     way = bg_path_ways(reach, hit, nrm, base, coat, xparent, rd.xyz);
     bool diffuse = nrm.w > 0.0 || coat.w > 0.0;
     if (reach && diffuse)
-        bg_fused_path_direct(p, nrm, base, coat, tangent, view, win, cw.rgb * opaque, cw.a, way, radiance);
+        bg_fused_path_direct(p, nrm, base, coat, tangent, view, win, cw.rgb * opaque, cw.a,
+                             cw.a >= last ? vec4(0.0, way.yzw) : way, radiance);
     return true;
 }

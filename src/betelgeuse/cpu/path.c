@@ -331,6 +331,10 @@ void bgi_cpu_path_ray(const bg_scene_state *state, const bg_render_settings *set
         }
         ways w;
         make_ways(&surface, lit, v.opaque, cos_i, fresnel, &w);
+        /* At the last level no way on follows: the lights are met by their sampling alone, so they
+         * weigh 1 (the f way's share only matters for the weights from here on). */
+        if (level >= settings->max_depth)
+            w.p_f = 0.0;
         if (lit) {
             for (uint32_t k = 0; k < state->light_count; k++)
                 sample_light(state, sample, &v, &w, k, level, ray.beta, out);

@@ -174,9 +174,9 @@ static void emit_way_on(const gpu_fused_layout *l, gpu_text *t)
 
 void bgi_gpu_fused_path_main(const gpu_fused_layout *l, gpu_text *t)
 {
-    const char *ray = "bg_fused_path_ray(bg_ro, bg_rd, bg_cw, bg_pb, bg_radiance, bg_hit, bg_nrm, bg_base, bg_coat, "
-                      "bg_tg, bg_xp, bg_way)";
-    bgi_gpu_text_append(t, "vec4 bg_tg, bg_way;\nfloat bg_pb = 0.0;\n");
+    const char *ray = "bg_fused_path_ray(bg_ro, bg_rd, bg_cw, bg_pb, bg_last, bg_radiance, bg_hit, bg_nrm, bg_base, "
+                      "bg_coat, bg_tg, bg_xp, bg_way)";
+    bgi_gpu_text_printf(t, "vec4 bg_tg, bg_way;\nfloat bg_pb = 0.0;\nconst float bg_last = %d.0;\n", l->max_depth);
     if (l->max_depth == 0) {
         bgi_gpu_text_printf(t, "%s;\n", ray);
         return;
