@@ -1,5 +1,6 @@
 /* Schlick's BRDF (C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
  * Computer Graphics Forum 13(3), 1994) and the dielectric Fresnel term (docs/shading.md section 6). */
+#include "../common/shapes.h"
 #include "cpu_internal.h"
 
 #define PI 3.14159265358979323846264338327950288
@@ -117,4 +118,23 @@ double bgi_cpu_fresnel(double cos_i, double n1, double n2, double *cos_t)
     double rs = (n1 * cos_i - n2 * ct) / rs_den;
     double rp = (n2 * cos_i - n1 * ct) / rp_den;
     return 0.5 * (rs * rs + rp * rp);
+}
+
+bool bgi_cpu_thin(const bg_scene_state *state, const bg_object_data *object)
+{
+    /* An open mesh is thin as a plane is: lit on both sides, passing light straight on. */
+    return bg_shape_thin(object->shape) || (object->mesh && state->materials[object->material].sides == BG_SIDES_BOTH);
+}
+
+void bgi_cpu_interface_at(const bg_cpu_surface *surface, bool thin, bool entering, double cos_i,
+                          bg_cpu_interface *out)
+{
+    out->fresnel = 0.0;
+    out->cos_t = 0.0;
+    out->eta = 1.0;
+    if (!(surface->transparency > 0.0) || thin)
+        return;
+    double n1 = entering ? 1.0 : surface->ior, n2 = entering ? surface->ior : 1.0;
+    out->fresnel = bgi_cpu_fresnel(cos_i, n1, n2, &out->cos_t);
+    out->eta = n1 / n2;
 }

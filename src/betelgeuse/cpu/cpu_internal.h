@@ -293,6 +293,16 @@ void bgi_cpu_rectangle_light_frame(const bg_light *light, double n[3], double *a
  * mesh triangle self_triangle, BG_CPU_NONE for the analytic shapes) (docs/shading.md 2.8). */
 bool bgi_cpu_shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self,
                       uint32_t self_triangle);
+/* Whether an object is thin where it is hit (docs/shading.md 7, 9): a plane or rectangle, or a mesh
+ * of a material seen on both sides; else closed. */
+bool bgi_cpu_thin(const bg_scene_state *state, const bg_object_data *object);
+/* The dielectric interface at a hit (docs/shading.md 6.5): Fresnel's reflectance, the cosine of the
+ * transmitted direction and n1 / n2; (0, 0, 1) on an opaque or thin surface. */
+typedef struct bg_cpu_interface {
+    double fresnel, cos_t, eta;
+} bg_cpu_interface;
+void bgi_cpu_interface_at(const bg_cpu_surface *surface, bool thin, bool entering, double cos_i,
+                          bg_cpu_interface *out);
 /* Whether a secondary ray of path weight w is followed: some channel positive and >= min_weight. */
 bool bgi_cpu_worth_following(const double w[3], double min_weight);
 

@@ -3,7 +3,6 @@
  * multiple importance sampling where a light can be met both ways and Russian roulette deep down. */
 #include <float.h>
 
-#include "../common/shapes.h"
 #include "cpu_internal.h"
 
 #define PI 3.14159265358979323846264338327950288
@@ -319,16 +318,12 @@ void bgi_cpu_path_ray(const bg_scene_state *state, const bg_render_settings *set
                                                                     : 0.0));
 
         double cos_v = bg_v3_dot(n, v.view);
-        bool thin = bg_shape_thin(object->shape) || (object->mesh && state->materials[object->material].sides ==
-                                                                          BG_SIDES_BOTH);
+        bool thin = bgi_cpu_thin(state, object);
         bool lit = v.opaque > 0.0 && cos_v > 0.0 && (thin || hit.entering);
-        double fresnel = 0.0, cos_t = 0.0, eta = 1.0;
         double cos_i = cos_v > 0.0 ? (cos_v < 1.0 ? cos_v : 1.0) : 0.0;
-        if (surface.transparency > 0.0 && !thin) {
-            double n1 = hit.entering ? 1.0 : surface.ior, n2 = hit.entering ? surface.ior : 1.0;
-            fresnel = bgi_cpu_fresnel(cos_i, n1, n2, &cos_t);
-            eta = n1 / n2;
-        }
+        bg_cpu_interface face;
+        bgi_cpu_interface_at(&surface, thin, hit.entering, cos_i, &face);
+        double fresnel = face.fresnel, cos_t = face.cos_t, eta = face.eta;
         ways w;
         make_ways(&surface, lit, v.opaque, cos_i, fresnel, &w);
         /* At the last level no way on follows: the lights are met by their sampling alone, so they

@@ -2,7 +2,6 @@
  * dielectric secondary rays (docs/shading.md sections 7-9). */
 #include <float.h>
 
-#include "../common/shapes.h"
 #include "cpu_internal.h"
 
 #define PI 3.14159265358979323846264338327950288
@@ -190,9 +189,7 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
     const double view[3] = {-d[0], -d[1], -d[2]};
     double v = bg_v3_dot(n, view);
     double opaque = 1.0 - surface.transparency;
-    /* An open mesh is thin as a plane is: lit on both sides, passing light straight on. */
-    bool thin = bg_shape_thin(object->shape) ||
-                (object->mesh && state->materials[object->material].sides == BG_SIDES_BOTH);
+    bool thin = bgi_cpu_thin(state, object);
 
     for (int i = 0; i < 3; i++)
         out[i] += weight[i] * (surface.emission[i] + opaque * state->ambient[i] * surface.ambient[i]);
@@ -224,13 +221,10 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
         return;
 
     /* Interface: exact dielectric Fresnel for closed shapes; thin shapes pass light straight on. */
-    double fresnel = 0.0, cos_t = 0.0, eta = 1.0;
     double cos_i = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0;
-    if (surface.transparency > 0.0 && !thin) {
-        double n1 = hit.entering ? 1.0 : surface.ior, n2 = hit.entering ? surface.ior : 1.0;
-        fresnel = bgi_cpu_fresnel(cos_i, n1, n2, &cos_t);
-        eta = n1 / n2;
-    }
+    bg_cpu_interface face;
+    bgi_cpu_interface_at(&surface, thin, hit.entering, cos_i, &face);
+    double fresnel = face.fresnel, cos_t = face.cos_t, eta = face.eta;
 
     double mirror[3], w_refl[3], w_refr[3];
     bgi_cpu_mirror_weight(&surface, cos_i, mirror);

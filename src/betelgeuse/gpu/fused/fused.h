@@ -275,6 +275,12 @@ const char *bgi_gpu_fused_shape_file(bg_shape shape);
  * into functions, its main into main, and the expression written to the output. False when a
  * library file is missing or memory ran out. */
 bool bgi_gpu_fused_source(const gpu_fused_layout *l, gpu_text *functions, gpu_text *main, const char **output);
+/* Writes one light's term, the light given by its index into the light arrays (a number, or the
+ * loop's i), at an indent. */
+typedef void (*gpu_fused_light_term)(const gpu_fused_layout *l, gpu_text *t, const char *i, const char *indent);
+/* Every light in the scene's order: unrolled, or a loop of the scene's exact size over the light
+ * arrays where unrolling would inline too many shadow tests (layout.light_loop). */
+void bgi_gpu_fused_each_light(const gpu_fused_layout *l, gpu_text *t, gpu_fused_light_term term);
 
 /* ---- fused_path_source.c ---- */
 /* The path integrator's generated functions (after bg_fused_surface): the environment's radiance,

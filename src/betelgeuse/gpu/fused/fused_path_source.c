@@ -101,16 +101,7 @@ static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
 {
     bgi_gpu_text_append(t, "void bg_fused_path_direct(vec3 p, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, vec3 view, "
                            "float self, vec3 lw, float level, vec4 way, inout vec3 radiance)\n{\n");
-    if (l->light_loop) {
-        bgi_gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
-        emit_light_term(l, t, "i", "        ");
-    } else {
-        for (uint32_t i = 0; i < l->light_count; i++) {
-            char k[16];
-            snprintf(k, sizeof k, "%u", (unsigned)i);
-            emit_light_term(l, t, k, "    ");
-        }
-    }
+    bgi_gpu_fused_each_light(l, t, emit_light_term);
     if (l->env_light) {
         int slots = (int)l->light_count + 1;
         int first = BGI_DIMENSION_PATH_LIGHT((int)l->light_count, 0, slots);

@@ -602,23 +602,27 @@ static void emit_light_term(const gpu_fused_layout *l, gpu_text *t, const char *
                     indent, indent, i, i, i, BGI_DIMENSION_LIGHT(0), BGI_DIMENSION_LIGHT(1) - BGI_DIMENSION_LIGHT(0), i, indent, i, i, i, i, i, i, indent);
 }
 
-/* Every light in the scene's order (docs/shading.md 8): unrolled, or a loop of the scene's exact
- * size over the light arrays where unrolling would inline too many shadow tests. */
+void bgi_gpu_fused_each_light(const gpu_fused_layout *l, gpu_text *t, gpu_fused_light_term term)
+{
+    if (l->light_loop) {
+        bgi_gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
+        term(l, t, "i", "        ");
+        return;
+    }
+    for (uint32_t i = 0; i < l->light_count; i++) {
+        char k[16];
+        snprintf(k, sizeof k, "%u", (unsigned)i);
+        term(l, t, k, "    ");
+    }
+}
+
+/* Every light in the scene's order (docs/shading.md 8). */
 static void emit_direct(const gpu_fused_layout *l, gpu_text *t)
 {
     bgi_gpu_text_append(t, "// ---- generated: lights\n"
                        "void bg_fused_direct(vec3 p, vec4 nrm, vec4 base, vec4 coat, vec4 tangent, vec3 view, float self, "
                        "vec3 lw, inout vec3 radiance)\n{\n");
-    if (l->light_loop) {
-        bgi_gpu_text_printf(t, "    for (int i = 0; i < %u; i++)\n", (unsigned)l->light_count);
-        emit_light_term(l, t, "i", "        ");
-    } else {
-        for (uint32_t i = 0; i < l->light_count; i++) {
-            char k[16];
-            snprintf(k, sizeof k, "%u", (unsigned)i);
-            emit_light_term(l, t, k, "    ");
-        }
-    }
+    bgi_gpu_fused_each_light(l, t, emit_light_term);
     /* The environment last, as a directional light of its direction at this sample (7.1). */
     if (l->env_light)
         bgi_gpu_text_printf(t, "    vec3 env_l, env_e;\n"
