@@ -237,6 +237,12 @@ $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
+# bench_path reads the Cornell box scene files, so it links the scene-file library too.
+$(BUILD)/bench/bench_path: bench/bench_path.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(SF_A) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(SF_A) \
+	  $(STATIC_LINK) $(SF_LIBS)
+
 $(EMBREE_PEER_OBJ): ALL_CFLAGS += $(EMBREE_CFLAGS)
 $(EMBREE_BENCH_BIN): $(BUILD)/bench/%: bench/%.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
@@ -515,7 +521,7 @@ valgrind: $(VALGRIND_TESTS) $(BUILD)/tests/probe_headless
 # on stderr.
 BENCH_OUT ?= bench/out
 BENCH_ENV := $(TEST_ENV) QUICK=$(QUICK)
-BENCH_PROGRAMS := bench_paper bench_frame_cost bench_scaling bench_tradeoffs bench_phases bench_recommit bench_mesh bench_primary bench_walk_floor bench_distribution bench_progressive $(if $(EMBREE_LIBS),bench_embree)
+BENCH_PROGRAMS := bench_paper bench_frame_cost bench_scaling bench_tradeoffs bench_phases bench_recommit bench_mesh bench_primary bench_walk_floor bench_distribution bench_progressive bench_path $(if $(EMBREE_LIBS),bench_embree)
 # The benchmark programs built but not run: CI checks that they still compile.
 bench-programs: all $(BENCH_BIN)
 
