@@ -30,6 +30,33 @@ void bgi_cpu_sphere_light_point(const double c[3], double r, const double p[3], 
         q[i] = p[i] + t * dir[i];
 }
 
+void bgi_cpu_area_light_point(const bg_light *light, const double p[3], const double uv[2], double q[3])
+{
+    const double corner[3] = {light->position.x, light->position.y, light->position.z};
+    if (light->type == BG_LIGHT_SPHERE) {
+        bgi_cpu_sphere_light_point(corner, light->radius, p, uv, q);
+        return;
+    }
+    const double eu[3] = {light->edge_u.x, light->edge_u.y, light->edge_u.z};
+    const double ev[3] = {light->edge_v.x, light->edge_v.y, light->edge_v.z};
+    for (int i = 0; i < 3; i++)
+        q[i] = corner[i] + uv[0] * eu[i] + uv[1] * ev[i];
+}
+
+void bgi_cpu_rectangle_light_frame(const bg_light *light, double n[3], double *area)
+{
+    /* From unit edges, so that no edge length in the double range overflows the cross product. */
+    double u[3] = {light->edge_u.x, light->edge_u.y, light->edge_u.z};
+    double v[3] = {light->edge_v.x, light->edge_v.y, light->edge_v.z};
+    double lu = sqrt(bg_v3_dot(u, u)), lv = sqrt(bg_v3_dot(v, v));
+    bg_v3_normalize(u);
+    bg_v3_normalize(v);
+    bg_v3_cross(u, v, n);
+    double sine = sqrt(bg_v3_dot(n, n));
+    bg_v3_normalize(n);
+    *area = lu * lv * sine;
+}
+
 bool bgi_cpu_light_sample(const bg_scene_state *state, uint32_t light, const bgi_sample_point *sample,
                           const double p[3], double l[3], double *t_max, double radiance[3])
 {
@@ -38,15 +65,7 @@ bool bgi_cpu_light_sample(const bg_scene_state *state, uint32_t light, const bgi
         return bgi_cpu_light_arrival(src, p, l, t_max, radiance);
     double uv[2], q[3];
     bgi_sample_square(sample, BGI_DIMENSION_LIGHT((int)light), uv);
-    const double corner[3] = {src->position.x, src->position.y, src->position.z};
-    if (src->type == BG_LIGHT_SPHERE) {
-        bgi_cpu_sphere_light_point(corner, src->radius, p, uv, q);
-    } else {
-        const double eu[3] = {src->edge_u.x, src->edge_u.y, src->edge_u.z};
-        const double ev[3] = {src->edge_v.x, src->edge_v.y, src->edge_v.z};
-        for (int i = 0; i < 3; i++)
-            q[i] = corner[i] + uv[0] * eu[i] + uv[1] * ev[i];
-    }
+    bgi_cpu_area_light_point(src, p, uv, q);
     bg_light point = *src;
     point.type = BG_LIGHT_POINT;
     point.position = bg_vec3_make(q[0], q[1], q[2]);
@@ -55,14 +74,8 @@ bool bgi_cpu_light_sample(const bg_scene_state *state, uint32_t light, const bgi
     if (src->type == BG_LIGHT_SPHERE)
         return true;
     /* The panel's cosine towards p: it shines from its front only. */
-    const double eu[3] = {src->edge_u.x, src->edge_u.y, src->edge_u.z};
-    const double ev[3] = {src->edge_v.x, src->edge_v.y, src->edge_v.z};
-    /* From unit edges, so that no edge length in the double range overflows the cross product. */
-    double u[3] = {eu[0], eu[1], eu[2]}, v[3] = {ev[0], ev[1], ev[2]}, n[3];
-    bg_v3_normalize(u);
-    bg_v3_normalize(v);
-    bg_v3_cross(u, v, n);
-    bg_v3_normalize(n);
+    double n[3], area;
+    bgi_cpu_rectangle_light_frame(src, n, &area);
     double cos_l = -bg_v3_dot(n, l);
     if (!(cos_l > 0.0))
         return false;

@@ -285,6 +285,14 @@ bool bgi_cpu_light_sample(const bg_scene_state *state, uint32_t light, const bgi
 /* The point of a sphere light (centre c, radius r) seen from p for the unit-square point uv: uniform
  * in the solid angle of the cone the sphere fills; c itself when p is inside or on it. */
 void bgi_cpu_sphere_light_point(const double c[3], double r, const double p[3], const double uv[2], double q[3]);
+/* An area light's point (sphere or rectangle) for the unit-square point uv, seen from p. */
+void bgi_cpu_area_light_point(const bg_light *light, const double p[3], const double uv[2], double q[3]);
+/* A rectangle light's unit front normal (edge_u x edge_v) and its area |edge_u x edge_v|. */
+void bgi_cpu_rectangle_light_frame(const bg_light *light, double n[3], double *area);
+/* Whether the shadow segment p + t l, t in (0, t_max), is blocked for a hit on object self (and
+ * mesh triangle self_triangle, BG_CPU_NONE for the analytic shapes) (docs/shading.md 2.8). */
+bool bgi_cpu_shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self,
+                      uint32_t self_triangle);
 /* Whether a secondary ray of path weight w is followed: some channel positive and >= min_weight. */
 bool bgi_cpu_worth_following(const double w[3], double min_weight);
 
@@ -299,6 +307,10 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
 void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *settings,
                        const bgi_sample_point *sample, const double o[3], const double d[3], double rgb[3]);
 
+/* The path integrator's radiance along one camera ray (path.c, docs/shading.md 13). */
+void bgi_cpu_path_ray(const bg_scene_state *state, const bg_render_settings *settings, const bgi_sample_point *sample,
+                      const double o[3], const double d[3], double out[3]);
+
 /* What a ray of unit direction d that meets nothing sees of the environment (environment_sample.c,
  * docs/shading.md 7.1): the texture filtered at d, times the intensity. */
 void bgi_cpu_environment_radiance(const bg_scene_state *state, const double d[3], double rgb[3]);
@@ -306,6 +318,14 @@ void bgi_cpu_environment_radiance(const bg_scene_state *state, const double d[3]
  * brings nothing (the shadow segment is unbounded). */
 bool bgi_cpu_environment_light(const bg_scene_state *state, const bgi_sample_point *sample, double l[3],
                                double radiance[3]);
+
+/* The environment's direction l for the unit-square point xi by its sampling rule (7.1), the density
+ * pdf of that direction (per steradian) and the stored texel it falls in (before the intensity);
+ * false when the rule gives none. */
+bool bgi_cpu_environment_draw(const bg_scene_state *state, const double xi[2], double l[3], double *pdf,
+                              double texel[3]);
+/* The density with which bgi_cpu_environment_draw gives the unit direction d (docs/shading.md 13.3). */
+double bgi_cpu_environment_pdf(const bg_scene_state *state, const double d[3]);
 
 /* The glossy reflection of the unit direction d off unit normal n (facing the ray) for roughness
  * r > 0 and the unit-square point uv (docs/shading.md 9.1): d mirrored about a normal drawn from

@@ -17,14 +17,14 @@ static int first_above(const double *table, int n, double xi)
     return lo;
 }
 
+static void direction_uv(const double d[3], double *u, double *v);
+
 void bgi_cpu_environment_radiance(const bg_scene_state *state, const double d[3], double rgb[3])
 {
     const bg_environment_data *e = &state->environment;
     const bg_texture_data *t = &state->textures[e->texture - 1];
-    double y = d[1] < -1.0 ? -1.0 : (d[1] > 1.0 ? 1.0 : d[1]);
-    /* Straight up or down the azimuth is any: the centre column. */
-    double u = fabs(d[0]) + fabs(d[2]) > 0.0 ? 0.5 + atan2(d[0], -d[2]) / (2.0 * PI) : 0.5;
-    double v = 1.0 - acos(y) / PI;
+    double u, v;
+    direction_uv(d, &u, &v);
     /* Kept half a texel off the poles, so that a repeating texture does not blend the top and bottom
      * rows there. */
     double lo = 0.5 / t->height, hi = 1.0 - lo;
@@ -38,11 +38,54 @@ void bgi_cpu_environment_radiance(const bg_scene_state *state, const double d[3]
 bool bgi_cpu_environment_light(const bg_scene_state *state, const bgi_sample_point *sample, double l[3],
                                double radiance[3])
 {
+    double xi[2], pdf, texel[3];
+    bgi_sample_square(sample, BGI_DIMENSION_LIGHT((int)state->light_count), xi);
+    if (!bgi_cpu_environment_draw(state, xi, l, &pdf, texel))
+        return false;
+    /* As a light of 7, E_l = L / (pi pdf): then pi f E_l v' = f L v' / pdf estimates the integral. */
+    double k = state->environment.intensity / (PI * pdf);
+    for (int c = 0; c < 3; c++)
+        radiance[c] = texel[c] * k;
+    return radiance[0] > 0.0 || radiance[1] > 0.0 || radiance[2] > 0.0;
+}
+
+/* The (u, v) of a direction, v not yet kept off the poles (7.1). */
+static void direction_uv(const double d[3], double *u, double *v)
+{
+    double y = d[1] < -1.0 ? -1.0 : (d[1] > 1.0 ? 1.0 : d[1]);
+    /* Straight up or down the azimuth is any: the centre column. */
+    *u = fabs(d[0]) + fabs(d[2]) > 0.0 ? 0.5 + atan2(d[0], -d[2]) / (2.0 * PI) : 0.5;
+    *v = 1.0 - acos(y) / PI;
+}
+
+double bgi_cpu_environment_pdf(const bg_scene_state *state, const double d[3])
+{
+    const bg_environment_data *e = &state->environment;
+    if (!e->marginal)
+        return 1.0 / (4.0 * PI);
+    const bg_texture_data *t = &state->textures[e->texture - 1];
+    int w = t->width, h = t->height;
+    double u, v;
+    direction_uv(d, &u, &v);
+    int i = (int)floor(u * w), j = (int)floor(v * h);
+    i = i < w ? (i < 0 ? 0 : i) : w - 1;
+    j = j < h ? (j < 0 ? 0 : j) : h - 1;
+    const double *row = e->conditional + (size_t)j * (size_t)w;
+    double dm = e->marginal[j] - (j > 0 ? e->marginal[j - 1] : 0.0);
+    double dc = row[i] - (i > 0 ? row[i - 1] : 0.0);
+    double sin_t = sin(PI * v);
+    if (!(sin_t > 0.0) || !(dm > 0.0) || !(dc > 0.0))
+        return 0.0;
+    return dm * dc * w * h / (2.0 * PI * PI * sin_t);
+}
+
+bool bgi_cpu_environment_draw(const bg_scene_state *state, const double xi[2], double l[3], double *pdf_out,
+                              double texel[3])
+{
     const bg_environment_data *e = &state->environment;
     const bg_texture_data *t = &state->textures[e->texture - 1];
     int w = t->width, h = t->height, i, j;
-    double xi[2], u, v, pdf;
-    bgi_sample_square(sample, BGI_DIMENSION_LIGHT((int)state->light_count), xi);
+    double u, v, pdf;
     if (e->marginal) {
         j = first_above(e->marginal, h, xi[0]);
         double m0 = j > 0 ? e->marginal[j - 1] : 0.0, dm = e->marginal[j] - m0;
@@ -73,9 +116,8 @@ bool bgi_cpu_environment_light(const bg_scene_state *state, const bgi_sample_poi
     bg_v3_set(l, sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
     double px[4];
     bgi_texture_texel(t, (size_t)j * (size_t)w + (size_t)i, px);
-    /* As a light of 7, E_l = L / (pi pdf): then pi f E_l v' = f L v' / pdf estimates the integral. */
-    double k = e->intensity / (PI * pdf);
     for (int c = 0; c < 3; c++)
-        radiance[c] = px[c] * k;
-    return radiance[0] > 0.0 || radiance[1] > 0.0 || radiance[2] > 0.0;
+        texel[c] = px[c];
+    *pdf_out = pdf;
+    return true;
 }

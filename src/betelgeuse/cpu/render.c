@@ -41,9 +41,10 @@ void bgi_cpu_render_texel(const bg_scene_state *state, const bg_render_settings 
         bgi_sample_position(view->samples, s, &px, &py);
         bgi_cpu_frame_ray(&state->camera, view->frame_width, view->frame_height, (double)(view->x0 + x) + px,
                           (double)(view->y0 + y) + py, o, d);
-        /* The sample points cost a few hashes a sample: only a scene that spends them makes them. */
+        /* The sample points cost a few hashes a sample: only a scene or an integrator that spends
+         * them makes them. */
         bgi_sample_point sample = {0};
-        if (state->distribution)
+        if (state->distribution || settings->integrator == BG_INTEGRATOR_PATH)
             bgi_sample_point_make(view->x0 + x, view->y0 + y, s, view->samples, &sample);
         if (state->camera.camera.aperture_radius > 0.0)
             bgi_cpu_lens_ray(&state->camera, &sample, o, d);

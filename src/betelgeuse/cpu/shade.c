@@ -115,8 +115,8 @@ static bool test_tree_blocker(void *user, uint32_t prim, double *t_max)
     return !s->blocked;
 }
 
-static bool shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self,
-                     uint32_t self_triangle)
+bool bgi_cpu_shadowed(const bg_scene_state *state, const double p[3], const double l[3], double t_max, uint32_t self,
+                      uint32_t self_triangle)
 {
     shadow_search s = {state, p, l, t_max, self, self_triangle, false};
     for (uint32_t k = 0; k < state->always_count; k++)
@@ -211,7 +211,7 @@ void bgi_cpu_trace(const bg_scene_state *state, const bg_render_settings *settin
                 continue; /* facing away from the light: none of it */
             double from[3];
             bgi_cpu_leave_origin(&hit, l, from);
-            if (shadowed(state, from, l, t_max, hit.object, hit.triangle))
+            if (bgi_cpu_shadowed(state, from, l, t_max, hit.object, hit.triangle))
                 continue;
             double f[3];
             bgi_cpu_brdf(&surface, n, hit.tangent, view, l, f);
@@ -289,6 +289,10 @@ void bgi_cpu_shade_ray(const bg_scene_state *state, const bg_render_settings *se
     if (!sample) {
         bgi_sample_point_make(0, 0, 0, 1, &first);
         sample = &first;
+    }
+    if (settings->integrator == BG_INTEGRATOR_PATH) {
+        bgi_cpu_path_ray(state, settings, sample, o, d, rgb);
+        return;
     }
     bg_v3_set(rgb, 0.0, 0.0, 0.0);
     bgi_cpu_trace(state, settings, sample, o, d, 0, one, BG_CPU_NONE, BG_CPU_NONE, BG_CPU_NONE, rgb);
