@@ -38,7 +38,8 @@ views and lights, dimmer-relative at normal ones).
 
 Usage: python3 bench/mitsuba_compare.py [--scene FILE] [--size N] [--spp N] [--out PNG]
                                         [--bench build/release/bench/bench_path] [--work build/mitsuba]
-                                        [--no-matched] [--mitsuba-only]
+                                        [--no-matched] [--mitsuba-only] [--schlick-size N]
+                                        [--reuse-ours]
 Defaults: examples/scenes/json/cornell_box.json, 512, 1024, docs/cornell_vs_mitsuba.png.
 """
 import argparse
@@ -229,12 +230,68 @@ def mitsuba_scene(scene, size, spp, max_depth, reflectance_map=None):
     return d
 
 
+def register_schlick():
+    """Schlick's Lambertian layer as a Mitsuba BSDF written in Python (scalar variants only):
+    f = S(u) / pi, S(u) = C + (1 - C)(1 - u)^5, u = V.H (docs/shading.md 6.2, 6.3 at r = 1), drawn by the
+    cosine as Mitsuba's diffuse is. A Python call per BSDF query makes it about 40 times slower than
+    the built-in diffuse, so it runs at a smaller size (--schlick-size)."""
+    import mitsuba as mi
+
+    class SchlickLambert(mi.BSDF):
+        def __init__(self, props):
+            mi.BSDF.__init__(self, props)
+            self.c = [props["r"], props["g"], props["b"]]
+            self.m_flags = mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.FrontSide
+            self.m_components = [self.m_flags]
+
+        def f(self, wi, wo):
+            if mi.Frame3f.cos_theta(wi) <= 0 or mi.Frame3f.cos_theta(wo) <= 0:
+                return mi.Color3f(0.0)
+            h = [wi[k] + wo[k] for k in range(3)]
+            n = math.sqrt(sum(x * x for x in h))
+            u = min(max(sum(wi[k] * h[k] for k in range(3)) / n, 0.0), 1.0) if n > 0 else 1.0
+            k5 = (1.0 - u) ** 5
+            return mi.Color3f([(c + (1.0 - c) * k5) / math.pi for c in self.c])
+
+        def sample(self, ctx, si, sample1, sample2, active=True):
+            bs = mi.BSDFSample3f()
+            bs.wo = mi.warp.square_to_cosine_hemisphere(sample2)
+            bs.pdf = mi.warp.square_to_cosine_hemisphere_pdf(bs.wo)
+            bs.eta = 1.0
+            bs.sampled_type = mi.UInt32(+mi.BSDFFlags.DiffuseReflection)
+            bs.sampled_component = 0
+            if bs.pdf <= 0 or mi.Frame3f.cos_theta(si.wi) <= 0:
+                return bs, mi.Color3f(0.0)
+            return bs, self.f(si.wi, bs.wo) * mi.Frame3f.cos_theta(bs.wo) / bs.pdf
+
+        def eval(self, ctx, si, wo, active=True):
+            return self.f(si.wi, wo) * max(mi.Frame3f.cos_theta(wo), 0.0)
+
+        def pdf(self, ctx, si, wo, active=True):
+            if mi.Frame3f.cos_theta(si.wi) <= 0:
+                return 0.0
+            return mi.warp.square_to_cosine_hemisphere_pdf(wo)
+
+        def eval_pdf(self, ctx, si, wo, active=True):
+            return self.eval(ctx, si, wo, active), self.pdf(ctx, si, wo, active)
+
+        def to_string(self):
+            return "SchlickLambert[%s]" % self.c
+
+    mi.register_bsdf("schlick_lambert", lambda props: SchlickLambert(props))
+
+
 def render_mitsuba(work, scene, size, spp, max_depth, seed, reflectance_map=None, tag="plain"):
     """Mitsuba's image, kept in work/ under a name of everything it depends on, so that a second run
     (another output, ours rebuilt) reuses it. Returns the image and the seconds it took (0: reused)."""
     import mitsuba as mi
     import numpy as np
     d = mitsuba_scene(scene, size, spp, max_depth, reflectance_map)
+    if tag == "schlick":
+        for v in d.values():
+            if isinstance(v, dict) and v.get("bsdf", {}).get("type") == "diffuse" and "emitter" not in v:
+                c = v["bsdf"]["reflectance"]["value"]
+                v["bsdf"] = {"type": "schlick_lambert", "r": c[0], "g": c[1], "b": c[2]}
     key = hashlib.sha1(json.dumps([scene, size, spp, max_depth, seed, tag, mi.__version__],
                                   sort_keys=True).encode()).hexdigest()[:12]
     path = os.path.join(work, f"mitsuba_{tag}_{size}_{spp}_{key}.npy")
@@ -271,7 +328,12 @@ def compare(ours, theirs, label):
                     "rel_all": float(a.mean() / b.mean() - 1.0),
                     "rel_lit": float(a[lit].mean() / b[lit].mean() - 1.0),
                     "mean_ours": float(a[lit].mean()), "mean_mitsuba": float(b[lit].mean())}
-    print(f"{label}: pixels without emitters {int(lit.sum())} of {lit.size}")
+    d = (ours - theirs)[lit]
+    se = d.std(axis=0) / math.sqrt(len(d))
+    for k, ch in enumerate("RGB"):
+        rows[ch]["se_rel"] = float(se[k] / rows[ch]["mean_mitsuba"])
+    print(f"{label}: pixels without emitters {int(lit.sum())} of {lit.size}; the relative differences' noise "
+          f"(standard error): " + " ".join(f"{ch} {100 * rows[ch]['se_rel']:.2f}%" for ch in "RGB"))
     print(f"  {'ch':2} {'RMSE':>9} {'mean ours':>10} {'mean Mitsuba':>12} {'rel. diff (lit)':>16} {'rel. diff (all)':>16}")
     for ch, r in rows.items():
         print(f"  {ch:2} {r['rmse']:9.5f} {r['mean_ours']:10.5f} {r['mean_mitsuba']:12.5f} "
@@ -324,6 +386,10 @@ def main():
     p.add_argument("--work", default=os.path.join(TOP, "build/mitsuba"))
     p.add_argument("--no-matched", action="store_true", help="skip the albedo-matched Mitsuba render")
     p.add_argument("--mitsuba-only", action="store_true", help="render (and keep) Mitsuba's images only")
+    p.add_argument("--reuse-ours", action="store_true",
+                   help="take our images from an earlier run in --work when they are there")
+    p.add_argument("--schlick-size", type=int, default=64,
+                   help="size of the run with Schlick's layer as a Python BSDF in Mitsuba (0: none)")
     a = p.parse_args()
     import mitsuba as mi
     import numpy as np
@@ -345,12 +411,18 @@ def main():
         matched, secs = render_mitsuba(a.work, scene, a.size, a.spp, max_depth, seed=2,
                                        reflectance_map=lambda c: gain[c], tag="matched")
         print(f"Mitsuba, albedo-matched: {secs:.1f} s" if secs else "Mitsuba, albedo-matched: reused", flush=True)
+    if a.schlick_size:
+        register_schlick()
+        schlick, secs = render_mitsuba(a.work, scene, a.schlick_size, a.spp, max_depth, seed=3, tag="schlick")
+        print(f"Mitsuba with Schlick's layer at {a.schlick_size}x{a.schlick_size}: {secs:.1f} s" if secs else
+              "Mitsuba with Schlick's layer: reused", flush=True)
     if a.mitsuba_only:
         return
 
-    ours_pfm = os.path.join(a.work, "ours.pfm")
+    ours_pfm = os.path.join(a.work, f"ours_{a.size}_{a.spp}.pfm")
     t0 = time.time()
-    subprocess.check_call([a.bench, "--render", a.scene, str(a.size), str(a.spp), ours_pfm])
+    if not (a.reuse_ours and os.path.exists(ours_pfm)):
+        subprocess.check_call([a.bench, "--render", a.scene, str(a.size), str(a.spp), ours_pfm])
     ours = read_pfm(ours_pfm)
     print(f"ours: {time.time() - t0:.1f} s (CPU reference, bench_path --render)", flush=True)
 
@@ -370,6 +442,17 @@ def main():
     if matched is not None:
         compare(ours, matched, "ours against Mitsuba with C replaced by Schlick's mean albedo")
         region_table(ours, matched, boxes)
+    if a.schlick_size:
+        small_pfm = os.path.join(a.work, f"ours_{a.schlick_size}_{a.spp}.pfm")
+        if not (a.reuse_ours and os.path.exists(small_pfm)):
+            subprocess.check_call([a.bench, "--render", a.scene, str(a.schlick_size), str(a.spp), small_pfm])
+        small = read_pfm(small_pfm)
+        rows_s = compare(small, schlick, f"ours against Mitsuba with Schlick's layer (a Python BSDF), "
+                                         f"{a.schlick_size}x{a.schlick_size}")
+        d = (small - schlick)[(small.max(axis=2) < 2.0) & (schlick.max(axis=2) < 2.0)]
+        se = d.std(axis=0) / math.sqrt(len(d))
+        print("  the noise of those relative differences (standard error of the mean difference): " +
+              " ".join(f"{ch} {100 * se[k] / rows_s[ch]['mean_mitsuba']:.2f}%" for k, ch in enumerate("RGB")))
     write_side_by_side(a.out, ours, theirs)
     print(f"wrote {os.path.relpath(a.out, TOP)} (ours | Mitsuba | 4 x (ours - Mitsuba): red brighter, blue dimmer)")
     worst = max(abs(r["rel_lit"]) for r in rows.values())
