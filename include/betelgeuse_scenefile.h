@@ -113,7 +113,7 @@ typedef struct bg_scenefile_result {
     bg_camera camera;              /* also set on the scene */
     bg_scenefile_image image;
     bg_render_settings settings;   /* bg_render_settings_init() with the file's max_depth,
-                                      background and encoding */
+                                      background, encoding, integrator and path_ambient */
     double ambient[3];             /* also set on the scene */
     bool camera_from_file;         /* false: the default camera (JSON) or one framing the bounds (model) */
     int file_cameras;              /* the cameras the file holds (a JSON scene: 1 with "camera", else 0) */

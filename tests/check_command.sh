@@ -40,7 +40,7 @@ echo "== check-command: $cli"
 # A scene that reads no other file, for checks that copy it around.
 printf '{"objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}}]}' >"$out/sphere.json"
 expect 0 "--help" "$cli" --help
-for option in -o --size --samples --renderer --backend --crop --tile --max-depth --linear --float --quiet --strict --timings assemble info \
+for option in -o --size --samples --renderer --backend --crop --tile --max-depth --integrator --linear --float --quiet --strict --timings assemble info \
 	--up --smooth --camera --look-from --look-at --fov --aperture --focus-distance; do
 	grep -qF -- "$option" "$out/stdout" || fail "--help does not mention $option"
 done
@@ -63,6 +63,10 @@ for scene in area_lights depth_of_field glossy environment; do
 	expect 0 "render $scene" "$cli" render "$json/$scene.json" --size 64x48 -o "$out/$scene.png" --quiet
 	[ -s "$out/$scene.png" ] || fail "render $scene wrote no image"
 done
+# The path integrator's shipped scene, on the CPU (test_scenefile_environment checks its light).
+expect 0 "render window_room (cpu)" "$cli" render "$json/window_room.json" --size 32x24 --samples 2 --renderer cpu \
+	-o "$out/window_room.png" --quiet
+[ -s "$out/window_room.png" ] || fail "render window_room wrote no image"
 expect 0 "render an OBJ model" "$cli" render "$root/tests/data/two_boxes.obj" --size 48x36 -o "$out/obj.png" \
 	--renderer cpu --float "$out/obj.pfm"
 head -c 2 "$out/obj.pfm" | grep -q PF || fail "--float wrote no PFM"
@@ -172,6 +176,50 @@ for crop in 0,0,4294967312,4294967312 -1,0,4,4 0,0,4,4x 0,,4,4 0,0,4 0,0,4,4, " 
 	said "--crop" "--crop '$crop'"
 done
 [ -e "$out/x.png" ] && fail "a refused --size, --samples, --max-depth, --tile or --crop wrote $out/x.png"
+
+# --integrator overrides the scene file's settings.integrator both ways: a file that asks for path renders
+# as --integrator path on a file without it (the same bytes: the samples are the same), and
+# --integrator whitted undoes it. The CPU draws path; the GPU either draws it or refuses it (exit 1)
+# naming the integrator and --renderer cpu, writing nothing.
+lit='"lights": [{"position": [3, 6, 4]}], "objects": [{"sphere": {"center": [0, 0, -3], "radius": 1}},
+	{"plane": {"point": [0, -1, 0], "normal": [0, 1, 0]}}]'
+printf '{%s}' "$lit" >"$out/lit.json"
+printf '{"settings": {"integrator": "path"}, %s}' "$lit" >"$out/lit_path.json"
+for scene in lit lit_path; do
+	for integrator in whitted path; do
+		expect 0 "render $scene --integrator $integrator (cpu)" "$cli" render "$out/$scene.json" --size 32x24 \
+			--samples 2 --renderer cpu --integrator $integrator -o "$out/${scene}_$integrator.png" --quiet
+	done
+done
+expect 0 "render lit_path (cpu)" "$cli" render "$out/lit_path.json" --size 32x24 --samples 2 --renderer cpu \
+	-o "$out/lit_path_file.png" --quiet
+cmp -s "$out/lit_path_file.png" "$out/lit_path.png" || fail "a file's \"integrator\": \"path\" differs from --integrator path"
+cmp -s "$out/lit_path_file.png" "$out/lit_whitted.png" && fail "\"integrator\": \"path\" rendered Whitted's image"
+cmp -s "$out/lit_path_whitted.png" "$out/lit_whitted.png" || fail "--integrator whitted did not undo the file's path"
+# The GPU: exit 0 once a plan draws path, until then exit 1 with the refusal; never anything else.
+checks=$((checks + 1))
+rm -f "$out/gpu_path.png"
+"$cli" render "$out/lit.json" --size 32x24 --integrator path -o "$out/gpu_path.png" --quiet >"$out/stdout" 2>"$out/err"
+got=$?
+if [ "$got" = 1 ]; then
+	said "BG_INTEGRATOR_PATH" "render --integrator path (gpu)"
+	said "--renderer cpu" "render --integrator path (gpu)"
+	[ -e "$out/gpu_path.png" ] && fail "a refused GPU render of path wrote an image"
+elif [ "$got" != 0 ]; then
+	fail "render --integrator path (gpu): exit $got, want 0 or 1; stderr: $(cat "$out/err")"
+fi
+expect 2 "--integrator bidirectional" "$cli" render "$out/lit.json" --integrator bidirectional -o "$out/x.png"
+said "--integrator: 'bidirectional' is neither whitted nor path" "--integrator bidirectional"
+expect 2 "--integrator without a value" "$cli" render "$out/lit.json" --integrator
+said "--integrator needs a value" "--integrator without a value"
+printf '{"settings": {"integrator": "photon"}}' >"$out/bad_integrator.json"
+expect 2 "a file's unknown integrator" "$cli" render "$out/bad_integrator.json" --renderer cpu -o "$out/x.png"
+said "settings.integrator: \"photon\" is not one of \"whitted\", \"path\"" "a file's unknown integrator"
+expect 0 "info of a path scene" "$cli" info "$out/lit_path.json" --renderer cpu
+grep -qF "integrator path" "$out/stdout" || fail "info of a path scene: $(cat "$out/stdout")"
+expect 0 "info --integrator whitted" "$cli" info "$out/lit_path.json" --renderer cpu --integrator=whitted
+grep -qF "integrator whitted" "$out/stdout" || fail "info --integrator whitted: $(cat "$out/stdout")"
+[ -e "$out/x.png" ] && fail "a refused --integrator wrote $out/x.png"
 
 # An output that names an input is refused (exit 2, naming the option and the input) and the input is
 # left as it was, however the path spells it: the same name, ./, .., a symbolic or a hard link.

@@ -15,7 +15,7 @@ checks=0
 started=$(date +%s)
 
 if ! command -v xvfb-run >/dev/null 2>&1 || ! command -v Xvfb >/dev/null 2>&1; then
-	echo "check-view: SKIPPED 9 checks: no xvfb-run/Xvfb (Debian: apt-get install xvfb xauth xdotool)"
+	echo "check-view: SKIPPED 11 checks: no xvfb-run/Xvfb (Debian: apt-get install xvfb xauth xdotool)"
 	rm -rf "$out"
 	exit 0
 fi
@@ -55,7 +55,7 @@ echo "== check-view: $cli"
 
 # 1. The command line: --help lists every option and key; bad usage exits 2 and names what it refused.
 "$cli" --help >"$out/help" || fail "--help"
-for word in "betelgeuse view" --frame-ms --script --benchmark "left drag" "right or middle drag" wheel " F " " R " " P " Esc; do
+for word in "betelgeuse view" --frame-ms --script --benchmark --integrator "left drag" "right or middle drag" wheel " F " " R " " P " " I " Esc; do
 	grep -qF -- "$word" "$out/help" || fail "--help does not mention '$word'"
 done
 checks=$((checks + 1))
@@ -137,5 +137,29 @@ grep -q "^exit 0$" "$out/x_result" || fail "xdotool: $(cat "$out/x_result") $(ow
 [ -s "$out/betelgeuse-view-1.png" ] || fail "xdotool: key p saved no betelgeuse-view-1.png"
 grep -q "frames drawn: [1-9][0-9]* moving" "$out/x_stdout" || fail "xdotool: the drag drew no moving frame: $(cat "$out/x_stdout")"
 echo "   xdotool: the window found by title, a drag, p saved a screenshot, Escape quit (exit 0), no process left"
+
+# 6. The integrator: I switches to path and back, and back at Whitted the frame at rest is the first one
+#    byte for byte. --integrator path starts the viewer on path: its frame at rest is render's (GPU)
+#    file, or, while no GPU plan draws path, the GPU's refusal is shown (naming the integrator and the
+#    CPU renderer) and rendering goes on after I.
+script integrator.txt "wait-rest" "screenshot $out/whitted.png" "key I" "wait 300" "screenshot $out/path.png" \
+	"key i" "wait-rest" "expect-error none" "screenshot $out/back.png" "quit"
+view 0 "the I key" "$json/glass.json" --size $size --samples 2 --script "$out/integrator.txt"
+cmp -s "$out/whitted.png" "$out/back.png" || fail "I twice did not bring Whitted's frame back"
+if grep -qF "BG_INTEGRATOR_PATH" "$out/err"; then
+	grep -qF -- "--renderer cpu" "$out/err" || fail "the GPU's refusal of path does not name --renderer cpu: $(cat "$out/err")"
+	said_path="the GPU's refusal of path shown"
+	script path.txt "wait 300" "expect-error BG_INTEGRATOR_PATH" "key I" "wait-rest" "expect-error none" "quit"
+	view 0 "--integrator path" "$json/glass.json" --size $size --samples 2 --integrator path --script "$out/path.txt"
+else
+	cmp -s "$out/whitted.png" "$out/path.png" && fail "I left the frame as it was"
+	"$cli" render "$json/glass.json" --size $size --samples 2 --integrator path -o "$out/render_path.png" --quiet \
+		2>/dev/null || fail "render --integrator path (gpu)"
+	script path.txt "wait-rest" "expect-error none" "screenshot $out/rest_path.png" "quit"
+	view 0 "--integrator path" "$json/glass.json" --size $size --samples 2 --integrator path --script "$out/path.txt"
+	cmp -s "$out/render_path.png" "$out/rest_path.png" || fail "--integrator path at rest differs from render's file"
+	said_path="path at rest is render's file"
+fi
+echo "   I switched to path and back to the same frame; $said_path"
 
 echo "check-view: $checks checks passed in $(($(date +%s) - started)) s"

@@ -1,7 +1,8 @@
 /* "settings.environment" of a JSON scene: a Radiance .hdr (stb_image) or a PNG around the scene.
  * The shipped environment.json loads and renders its sky where rays meet nothing, the same on the
  * CPU and the GPU; a truncated .hdr, a file of another kind and a missing one are refused with the
- * file and the reason; bad keys are refused by path. */
+ * file and the reason; bad keys are refused by path. The shipped window_room.json is lit by its sky
+ * through the window only, and its path integrator lights the ceiling the sun cannot reach. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -148,6 +149,119 @@ static void png_environment_loads(void **state)
     }
 }
 
+/* The file's text with add inserted at the start of its "objects" array; malloc'ed. */
+static char *scene_text_with(const char *path, const char *add)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static char text[16384];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    assert_true(n > 0 && n < sizeof text - 1);
+    text[n] = '\0';
+    const char *key = "\"objects\": [";
+    char *at = strstr(text, key);
+    assert_non_null(at);
+    size_t head = (size_t)(at - text) + strlen(key);
+    char *out = malloc(n + strlen(add) + 1);
+    assert_non_null(out);
+    memcpy(out, text, head);
+    strcpy(out + head, add);
+    strcat(out, text + head);
+    return out;
+}
+
+/* The linear radiance of the scene's frame at W x H, 16 samples, on the CPU; malloc'ed RGBA floats. */
+static float *room_radiance(bg_scene *s, const bg_scenefile_result *r, bg_integrator integrator)
+{
+    bg_render_settings set = r->settings;
+    set.integrator = integrator;
+    set.samples = 16;
+    set.frame_width = W;
+    set.frame_height = H;
+    float *px = malloc(sizeof(float) * 4 * W * H);
+    assert_non_null(px);
+    bg_image im = {W, H, BG_PIXEL_RGBA32F, 0, px};
+    if (bg_render_cpu(s, &set, &im) != BG_OK)
+        fail_msg("%s", bg_scene_error_message(s));
+    return px;
+}
+
+/* The mean of R, G and B over rows [y0, y1). */
+static double mean_rows(const float *px, int y0, int y1)
+{
+    double sum = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < 3; c++)
+                sum += px[4 * (y * W + x) + c];
+    return sum / (3.0 * W * (y1 - y0));
+}
+
+/* window_room.json: a room of rectangles whose seams overlap, closed but for a window in its far wall,
+ * with no light, no ambient and no emission: its only light is the sky through the window. With a pane
+ * over the window every pixel is exactly 0 under either integrator; open, the sun and the sky light
+ * it. The top rows see the ceiling, which the sun (35 degrees up, through a window below it) cannot
+ * reach and which sees only the ground of the sky (radiance about 0.1) through the window, in about
+ * 0.1 sr at a grazing angle: Whitted's ceiling is near 0.001. Under path it gets the light the sunlit
+ * floor and walls reflect: the sun puts about 5 W through the window onto 120 m^2 of walls of albedo
+ * about 0.7, some 0.02 in radiance after a few bounces. The test asks for 4 times Whitted's, with room
+ * for those estimates being off several-fold, and for more light in the whole frame (the bounces only
+ * add; the light sampled at the first hit is the same, 13.2). */
+static void window_room_is_lit_through_its_window(void **state)
+{
+    (void)state;
+    static const char path[] = SCENES "/window_room.json";
+    char message[1024];
+    bg_scenefile_result r;
+    bg_scene *s = NULL;
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    if (bg_scenefile_load(path, NULL, s, &r, message, sizeof message) != BG_OK)
+        fail_msg("%s", message);
+    assert_int_equal(r.settings.integrator, BG_INTEGRATOR_PATH);
+    assert_false(r.settings.path_ambient);
+    assert_true(r.ambient[0] == 0 && r.ambient[1] == 0 && r.ambient[2] == 0);
+    assert_int_equal(r.summary.lights, 0);
+    float *path_px = room_radiance(s, &r, BG_INTEGRATOR_PATH);
+    float *whitted_px = room_radiance(s, &r, BG_INTEGRATOR_WHITTED);
+    bg_scene_destroy(s);
+
+    /* The pane: the window's opening, x in [-1.6, 0.4] and y in [0.9, 2.2] at z = -5, and 0.1 more
+       on each side. */
+    char *closed = scene_text_with(path, "{\"rectangle\": {}, \"transform\": [{\"scale\": [1.1, 1, 0.75]}, "
+                                         "{\"rotate\": {\"axis\": [1, 0, 0], \"degrees\": 90}}, "
+                                         "{\"translate\": [-0.6, 1.55, -5]}]},\n");
+    bg_scenefile_desc d;
+    memset(&d, 0, sizeof d);
+    d.base_dir = SCENES;
+    d.name = "window_room.json with a pane";
+    assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+    if (bg_scenefile_load_string(closed, &d, s, &r, message, sizeof message) != BG_OK)
+        fail_msg("%s", message);
+    free(closed);
+    for (int i = 0; i < 2; i++) {
+        bg_integrator integrator = i ? BG_INTEGRATOR_PATH : BG_INTEGRATOR_WHITTED;
+        float *px = room_radiance(s, &r, integrator);
+        for (int k = 0; k < W * H; k++)
+            if (px[4 * k] != 0 || px[4 * k + 1] != 0 || px[4 * k + 2] != 0)
+                fail_msg("the closed room (%s) has light at pixel (%d, %d): %g %g %g", i ? "path" : "whitted", k % W,
+                         k / W, px[4 * k], px[4 * k + 1], px[4 * k + 2]);
+        free(px);
+    }
+    bg_scene_destroy(s);
+
+    double path_all = mean_rows(path_px, 0, H), whitted_all = mean_rows(whitted_px, 0, H);
+    double path_top = mean_rows(path_px, 0, H / 8), whitted_top = mean_rows(whitted_px, 0, H / 8);
+    print_message("window_room: mean radiance %.4f path, %.4f whitted; the ceiling's (top %d rows) %.4f path, "
+                  "%.5f whitted\n", path_all, whitted_all, H / 8, path_top, whitted_top);
+    assert_true(whitted_all > 0);
+    if (!(path_all > whitted_all && path_top > 4 * whitted_top))
+        fail_msg("the path integrator adds too little light: whole frame %.4f (whitted %.4f), ceiling %.4f "
+                 "(whitted %.5f)", path_all, whitted_all, path_top, whitted_top);
+    free(path_px);
+    free(whitted_px);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -155,6 +269,7 @@ int main(void)
         cmocka_unit_test(bad_files_are_refused),
         cmocka_unit_test(bad_keys_are_refused),
         cmocka_unit_test(png_environment_loads),
+        cmocka_unit_test(window_room_is_lit_through_its_window),
     };
     return cmocka_run_group_tests_name("scenefile_environment", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

@@ -95,6 +95,15 @@ static const broken cases[] = {
      {"settings.background[1]: must be >= 0 (got -1)", NULL}},
     {"{\"settings\": {\"encoding\": \"gamma\"}}", BG_ERR_INVALID_ARGUMENT,
      {"settings.encoding: \"gamma\" is not one of \"srgb\", \"linear\"", NULL}},
+    {"{\"settings\": {\"integrator\": \"bidirectional\"}}", BG_ERR_INVALID_ARGUMENT,
+     {"settings.integrator: \"bidirectional\" is not one of \"whitted\", \"path\"", NULL}},
+    {"{\"settings\": {\"integrator\": \"Path\"}}", BG_ERR_INVALID_ARGUMENT,
+     {"settings.integrator: \"Path\" is not one of", NULL}},
+    {"{\"settings\": {\"integrator\": 1}}", BG_ERR_INVALID_ARGUMENT, {"settings.integrator: must be a string", NULL}},
+    {"{\"settings\": {\"path_ambient\": 1}}", BG_ERR_INVALID_ARGUMENT,
+     {"settings.path_ambient: must be true or false (got a number)", NULL}},
+    {"{\"settings\": {\"integrator_\": \"path\"}}", BG_ERR_INVALID_ARGUMENT,
+     {"settings.integrator_: unknown key", "integrator, path_ambient", NULL}},
     {"{\"lights\": [{}, {\"attenuation\": [0, 0, 0]}]}", BG_ERR_INVALID_ARGUMENT,
      {"lights[1].attenuation: must not be all zero", NULL}},
     {"{\"lights\": [{\"spot_cutoff_degrees\": 120, \"direction\": [0, -1, 0]}]}", BG_ERR_INVALID_ARGUMENT,
@@ -231,6 +240,8 @@ static void an_empty_scene_has_the_defaults(void **state)
     assert_memory_equal(&r.camera, &cam, sizeof cam);
     bg_render_settings defaults = bg_render_settings_init();
     assert_int_equal(r.settings.max_depth, defaults.max_depth);
+    assert_int_equal(r.settings.integrator, BG_INTEGRATOR_WHITTED);
+    assert_false(r.settings.path_ambient);
     assert_false(r.camera_from_file);
     assert_false(r.summary.bounded);
     assert_int_equal(r.summary.objects, 0);

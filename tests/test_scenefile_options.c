@@ -3,7 +3,8 @@
  * y, with its cameras; normals computed where a file has none, smooth across soft edges and creased
  * at sharp ones; the file's Nth camera or the framing one; the caller's camera parts (lens included)
  * over the chosen camera; and every bad value refused by its field. The models are tests/data's
- * (tests/data/README.md). */
+ * (tests/data/README.md). Also the integrator a JSON scene's settings choose, which the command's
+ * --integrator overrides as these options override a camera. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -413,6 +414,46 @@ static void smoothing_shades_a_faceted_sphere_and_keeps_a_cube(void **state)
     free(smooth);
 }
 
+/* settings.integrator and settings.path_ambient reach bg_scenefile_result.settings as written; absent,
+ * they are bg_render_settings_init()'s. path_ambient is kept under "whitted" too, for a caller that
+ * switches to path (test_scenefile_errors holds the bad values). */
+static void the_settings_choose_the_integrator(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *settings;
+        bg_integrator integrator;
+        bool path_ambient;
+    } cases[] = {
+        {"{}", BG_INTEGRATOR_WHITTED, false},
+        {"{\"integrator\": \"whitted\"}", BG_INTEGRATOR_WHITTED, false},
+        {"{\"integrator\": \"path\"}", BG_INTEGRATOR_PATH, false},
+        {"{\"integrator\": \"path\", \"path_ambient\": true}", BG_INTEGRATOR_PATH, true},
+        {"{\"path_ambient\": true, \"integrator\": \"path\", \"max_depth\": 7}", BG_INTEGRATOR_PATH, true},
+        {"{\"integrator\": \"path\", \"path_ambient\": false}", BG_INTEGRATOR_PATH, false},
+        {"{\"path_ambient\": true}", BG_INTEGRATOR_WHITTED, true},
+    };
+    bg_render_settings defaults = bg_render_settings_init();
+    assert_int_equal(defaults.integrator, BG_INTEGRATOR_WHITTED);
+    assert_false(defaults.path_ambient);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char json[256], message[512];
+        snprintf(json, sizeof json, "{\"settings\": %s, \"objects\": [{\"sphere\": {}}]}", cases[i].settings);
+        bg_scene *s = NULL;
+        assert_int_equal(bg_scene_create(NULL, &s), BG_OK);
+        bg_scenefile_result r;
+        if (bg_scenefile_load_string(json, NULL, s, &r, message, sizeof message) != BG_OK)
+            fail_msg("%s: %s", json, message);
+        if (r.settings.integrator != cases[i].integrator || r.settings.path_ambient != cases[i].path_ambient)
+            fail_msg("%s: integrator %d, path_ambient %d", json, (int)r.settings.integrator,
+                     (int)r.settings.path_ambient);
+        /* The rest of the settings stay the defaults the file does not change. */
+        assert_true(r.settings.min_weight == defaults.min_weight);
+        assert_int_equal(r.settings.encoding, defaults.encoding);
+        bg_scene_destroy(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -423,6 +464,7 @@ int main(void)
         cmocka_unit_test(bad_values_are_refused_by_field),
         cmocka_unit_test(a_crease_keeps_a_cubes_faces_flat),
         cmocka_unit_test(smoothing_shades_a_faceted_sphere_and_keeps_a_cube),
+        cmocka_unit_test(the_settings_choose_the_integrator),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -47,6 +47,7 @@ bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *
     const bool render = command == CLI_COMMAND_RENDER, view = command == CLI_COMMAND_VIEW;
     memset(o, 0, sizeof *o);
     o->max_depth = -1;
+    o->integrator = -1;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         /* Options with a value take it from the next argument or after '='. */
@@ -105,6 +106,14 @@ bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *
                 return fail(why, size, "%s: '%s' is neither egl nor osmesa", a, value);
         } else if (strcmp(a, "--strict") == 0) {
             o->strict = true;
+        } else if (strcmp(a, "--integrator") == 0) {
+            VALUE();
+            if (strcmp(value, "whitted") == 0)
+                o->integrator = BG_INTEGRATOR_WHITTED;
+            else if (strcmp(value, "path") == 0)
+                o->integrator = BG_INTEGRATOR_PATH;
+            else
+                return fail(why, size, "%s: '%s' is neither whitted nor path", a, value);
         } else if (command == CLI_COMMAND_INFO && a[0] == '-' && a[1] != '\0') {
             return fail(why, size, "unknown option %s for info%s", a, NULL);
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {

@@ -20,6 +20,7 @@ typedef struct cli_options {
     int width, height;      /* --size; 0: the scene file's */
     int samples;            /* --samples; 0: the scene file's */
     int max_depth;          /* --max-depth; -1: the scene file's */
+    int integrator;         /* --integrator: a bg_integrator; -1: the scene file's */
     cli_renderer renderer;
     cli_backend backend;
     bool crop;              /* --crop X0,Y0,X1,Y1 (x1, y1 exclusive) */
@@ -38,8 +39,8 @@ typedef struct cli_options {
 } cli_options;
 
 /* Parses argv (after the subcommand's name); render wants -o, info takes only SCENE,
- * --renderer/--backend and the model options, view SCENE, --size, --samples, --max-depth, -q, the model
- * options and its own. False with the reason in why (a usage error). */
+ * --renderer/--backend, --integrator and the model options, view SCENE, --size, --samples, --max-depth,
+ * --integrator, -q, the model options and its own. False with the reason in why (a usage error). */
 bool cli_options_parse(int argc, char **argv, cli_command command, cli_options *out, char *why, size_t why_size);
 
 /* The window of the frame the options ask for: the crop rectangle (or the whole frame), then the

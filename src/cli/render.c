@@ -125,7 +125,12 @@ static bg_status render_once(const cli_options *o, gpu *g, bg_scene *scene, cons
             snprintf(why, size, "%s", bg_scene_error_message(scene));
     } else {
         st = bg_render_gpu(g->renderer, scene, settings, image);
-        if (st != BG_OK)
+        /* A limit is the GPU's alone (a float range, a budget, the path integrator before a GPU plan
+           draws it): the CPU reference has none of them, so the message says how to get the image. */
+        if (st == BG_ERR_LIMIT)
+            snprintf(why, size, "%s (a limit of the GPU renderer: --renderer cpu renders without it)",
+                     bg_renderer_error_message(g->renderer));
+        else if (st != BG_OK)
             snprintf(why, size, "%s", bg_renderer_error_message(g->renderer));
     }
     return st;
@@ -160,6 +165,8 @@ static bool plan_render(const cli_options *o, const bg_scenefile_result *file, b
     settings->samples = o->samples ? o->samples : file->image.samples;
     if (o->max_depth >= 0)
         settings->max_depth = o->max_depth;
+    if (o->integrator >= 0)
+        settings->integrator = (bg_integrator)o->integrator;
     if (o->linear)
         settings->encoding = BG_ENCODING_LINEAR;
     settings->frame_width = frame_w;
@@ -399,14 +406,23 @@ int cli_info(int argc, char **argv)
     int loaded = cli_scene_load(o.scene, &o.model, &logs, NULL, &scene, &file, NULL, 0);
     if (loaded != CLI_EXIT_OK)
         return loaded;
+    /* The integrator render would use, so that the plan below is the one it would get. */
+    if (o.integrator >= 0)
+        file.settings.integrator = (bg_integrator)o.integrator;
     const bg_scenefile_summary *s = &file.summary;
     printf("scene      %s\n", o.scene);
     printf("image      %dx%d, %d sample%s per pixel\n", file.image.width, file.image.height, file.image.samples,
            file.image.samples == 1 ? "" : "s");
     printf("objects    %zu (%zu meshes: %llu triangles, %llu vertices)\n", s->objects, s->meshes,
            (unsigned long long)s->triangles, (unsigned long long)s->vertices);
-    printf("lights     %zu%s\n", s->lights, file.lights_from_file ? "" : " (the default light)");
+    /* A JSON scene without "lights" has none (an environment may light it); a model file gets one. */
+    printf("lights     %zu%s\n", s->lights, file.lights_from_file || s->lights == 0 ? "" : " (the default light)");
     printf("materials  %zu, textures %zu\n", s->materials, s->textures);
+    printf("integrator %s, max_depth %d\n",
+           file.settings.integrator == BG_INTEGRATOR_PATH
+               ? (file.settings.path_ambient ? "path, with the ambient term" : "path")
+               : "whitted",
+           file.settings.max_depth);
     if (s->bounded)
         printf("bounds     (%g, %g, %g) .. (%g, %g, %g)%s\n", s->bounds_min.x, s->bounds_min.y, s->bounds_min.z,
                s->bounds_max.x, s->bounds_max.y, s->bounds_max.z, s->unbounded ? ", and unbounded planes" : "");

@@ -54,8 +54,9 @@ static void show_title(viewer *v, double now)
         snprintf(state, sizeof state, "moving (1/%d size)", v->divisor);
     else
         snprintf(state, sizeof state, "at rest");
-    snprintf(title, sizeof title, "betelgeuse view: %s | %s | %.1f ms | %d/%d samples | %s", name, plan,
-             v->last_frame_ms, v->frames.samples, v->samples, state);
+    const char *integrator = v->settings.integrator == BG_INTEGRATOR_PATH ? "path" : "whitted";
+    snprintf(title, sizeof title, "betelgeuse view: %s | %s | %s | %.1f ms | %d/%d samples | %s", name, plan,
+             integrator, v->last_frame_ms, v->frames.samples, v->samples, state);
     glfwSetWindowTitle(v->window, title);
 }
 
@@ -99,11 +100,20 @@ static void render_frame(viewer *v, view_display *d, bool moving)
         return;
     }
     if (st != BG_OK) {
-        snprintf(v->error, sizeof v->error, "%s", bg_renderer_error_message(v->frames.renderer));
+        /* A limit is the GPU renderer's alone (render says the same): the viewer has no other. */
+        snprintf(v->error, sizeof v->error, "%s%s", bg_renderer_error_message(v->frames.renderer),
+                 st == BG_ERR_LIMIT ? " (a limit of the GPU renderer: betelgeuse render --renderer cpu renders "
+                                      "without it)"
+                                    : "");
+        v->error_of_render = true;
         fprintf(stderr, "betelgeuse view: %s\n", v->error);
         bg_renderer_clear_error(v->frames.renderer);
         v->render_failed = true;
         return;
+    }
+    if (v->error_of_render) {
+        v->error[0] = '\0';
+        v->error_of_render = false;
     }
     /* The frame's time is the render's and the display's together, up to the frame on the screen. */
     view_display_show(d, v->window, v->frames.shown, v->window_width, v->window_height);
@@ -202,6 +212,8 @@ static void plan_session(viewer *v, const cli_options *o)
     v->settings.samples = v->samples;
     if (o->max_depth >= 0)
         v->settings.max_depth = o->max_depth;
+    if (o->integrator >= 0)
+        v->settings.integrator = (bg_integrator)o->integrator;
     v->settings.frame_width = v->width;
     v->settings.frame_height = v->height;
     v->camera = v->loaded = v->file.camera;

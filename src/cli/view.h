@@ -26,6 +26,7 @@ typedef enum view_action_kind {
     VIEW_FRAME,      /* frame the scene's bounds */
     VIEW_RESET,      /* back to the camera the file gave */
     VIEW_SCREENSHOT, /* save the shown frame: path, or NULL for the next free betelgeuse-view-N.png */
+    VIEW_INTEGRATOR, /* switch between the Whitted and the path integrator; the samples start again */
     VIEW_QUIT
 } view_action_kind;
 
@@ -78,6 +79,8 @@ typedef struct viewer {
     bool render_failed;    /* the last render failed: none again until the camera or the scene changes */
     double target_ms;      /* the moving frames' time to hold (--frame-ms) */
     char error[1024];      /* the last render or reload error, shown in the title ("" if none) */
+    bool error_of_render;  /* error is a render's: the next frame that renders clears it (a reload's
+                              stays until a good edit) */
     int exit_code;
     /* Counts, for the title, the script's report and --benchmark. */
     double last_frame_ms;

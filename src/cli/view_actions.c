@@ -34,6 +34,13 @@ void view_act(viewer *v, const view_action *a)
     case VIEW_QUIT:
         v->quit = true;
         return;
+    case VIEW_INTEGRATOR:
+        v->settings.integrator =
+            v->settings.integrator == BG_INTEGRATOR_PATH ? BG_INTEGRATOR_WHITTED : BG_INTEGRATOR_PATH;
+        /* The frame starts again as after a move (the loop restarts the samples and cancels a render
+           in progress), but at rest: nothing moved, so no reduced frames come first. */
+        v->camera_changed = true;
+        return;
     }
     v->camera_changed = true;
     v->last_input = cli_now();

@@ -14,6 +14,8 @@ const char view_input_help[] = "  left drag              orbit about the point l
                                "  R                      reset to the camera the file gave\n"
                                "  P                      save the shown frame as betelgeuse-view-N.png (the\n"
                                "                         first N free, in the current folder)\n"
+                               "  I                      switch between the Whitted and the path integrator\n"
+                               "                         (docs/shading.md 13); the samples start again\n"
                                "  Esc, closing the window  quit (exit 0)\n";
 
 void view_input_button(viewer *v, view_button b, bool pressed, double x, double y)
@@ -44,26 +46,34 @@ void view_input_scroll(viewer *v, double dy)
         view_act(v, &(view_action){VIEW_DOLLY, 0, dy, NULL});
 }
 
+/* The keys and their actions: the mapping and the script's check read this one table. */
+static const struct {
+    int key;
+    view_action_kind kind;
+} keys[] = {
+    {VIEW_KEY_ESCAPE, VIEW_QUIT}, {'F', VIEW_FRAME}, {'R', VIEW_RESET}, {'P', VIEW_SCREENSHOT}, {'I', VIEW_INTEGRATOR},
+};
+
+static int key_row(int key)
+{
+    int k = key == VIEW_KEY_ESCAPE ? key : toupper(key);
+    for (int i = 0; i < (int)(sizeof keys / sizeof keys[0]); i++)
+        if (keys[i].key == k)
+            return i;
+    return -1;
+}
+
+bool view_input_has_key(int key)
+{
+    return key_row(key) >= 0;
+}
+
 bool view_input_key(viewer *v, int key)
 {
-    view_action a = {VIEW_QUIT, 0, 0, NULL};
-    switch (key == VIEW_KEY_ESCAPE ? key : toupper(key)) {
-    case VIEW_KEY_ESCAPE:
-        a.kind = VIEW_QUIT;
-        break;
-    case 'F':
-        a.kind = VIEW_FRAME;
-        break;
-    case 'R':
-        a.kind = VIEW_RESET;
-        break;
-    case 'P':
-        a.kind = VIEW_SCREENSHOT;
-        break;
-    default:
+    int row = key_row(key);
+    if (row < 0)
         return false;
-    }
-    view_act(v, &a);
+    view_act(v, &(view_action){keys[row].kind, 0, 0, NULL});
     return true;
 }
 

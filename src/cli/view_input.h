@@ -8,7 +8,7 @@
 
 #include "view.h"
 
-/* Keys by their letter ('F', 'R', 'P'), or these. */
+/* Keys by their letter ('F', 'R', 'P', 'I'), or these. */
 enum { VIEW_KEY_ESCAPE = 27 };
 
 /* A button pressed or released at (x, y) window pixels. */
@@ -19,6 +19,8 @@ void view_input_move(viewer *v, double x, double y);
 void view_input_scroll(viewer *v, double dy);
 /* A key pressed; false for a key that does nothing. */
 bool view_input_key(viewer *v, int key);
+/* Whether key (a letter in either case, or VIEW_KEY_ESCAPE) does something: the script's check. */
+bool view_input_has_key(int key);
 
 /* The lines of --help that list the controls (the same table the mapping reads). */
 extern const char view_input_help[];

@@ -31,6 +31,7 @@ void view_reload(viewer *v)
         view_watch_set(&v->watch, &inputs);
     if (status != CLI_EXIT_OK) {
         snprintf(v->error, sizeof v->error, "%s", why);
+        v->error_of_render = false;
         v->reload_errors++;
         cli_inputs_free(&inputs);
         return;
@@ -44,16 +45,24 @@ void view_reload(viewer *v)
     v->scene = scene;
     int samples = v->settings.samples;
     int width = v->settings.frame_width, height = v->settings.frame_height;
+    /* The integrator the user shows (--integrator, or the I key) stays too, unless the edit changed
+       the file's; --max-depth still overrides the file's. */
+    bg_integrator integrator =
+        file.settings.integrator != v->file.settings.integrator ? file.settings.integrator : v->settings.integrator;
     v->file = file;
     v->settings = file.settings;
     v->settings.samples = samples;
     v->settings.frame_width = width;
     v->settings.frame_height = height;
+    v->settings.integrator = integrator;
+    if (v->options->max_depth >= 0)
+        v->settings.max_depth = v->options->max_depth;
     cli_inputs_free(&v->inputs);
     v->inputs = inputs;
     v->camera_changed = true;
     v->render_failed = false;
     v->error[0] = '\0';
+    v->error_of_render = false;
     v->reloads++;
     if (v->options->verbose)
         fprintf(stderr, "betelgeuse view: reloaded %s\n", v->options->scene);

@@ -28,7 +28,7 @@ static const struct {
     {"wait", STEP_WAIT, 1, 1, "wait MS"},
     {"drag", STEP_DRAG, 5, 6, "drag left|right|middle X0 Y0 X1 Y1 [STEPS]"},
     {"scroll", STEP_SCROLL, 1, 1, "scroll DY"},
-    {"key", STEP_KEY, 1, 1, "key F|R|P|ESC"},
+    {"key", STEP_KEY, 1, 1, "key F|R|P|I|ESC"},
     {"screenshot", STEP_SCREENSHOT, 1, 1, "screenshot PATH"},
     {"wait-rest", STEP_WAIT_REST, 0, 0, "wait-rest"},
     {"wait-reload", STEP_WAIT_RELOAD, 0, 0, "wait-reload"},
@@ -136,10 +136,10 @@ static bool parse_line(char *line, int number, const char *name, step *s, char *
     case STEP_KEY:
         if (strcmp(words[1], "ESC") == 0 || strcmp(words[1], "Esc") == 0 || strcmp(words[1], "esc") == 0)
             s->count = VIEW_KEY_ESCAPE;
-        else if (strlen(words[1]) == 1 && strchr("FRPfrp", words[1][0]))
+        else if (strlen(words[1]) == 1 && view_input_has_key((unsigned char)words[1][0]))
             s->count = words[1][0];
         else
-            return bad(why, size, name, number, "key: '%s' is not F, R, P or ESC%s", words[1], "");
+            return bad(why, size, name, number, "key: '%s' is not F, R, P, I or ESC%s", words[1], "");
         break;
     case STEP_EXPECT_ERROR:
         s->word = strdup(rest ? rest : "");

@@ -40,11 +40,20 @@ bg_status bgi_sf_read_image(bgi_sf_ctx *ctx, const cJSON *v)
 
 bg_status bgi_sf_read_settings(bgi_sf_ctx *ctx, const cJSON *v)
 {
-    static const char *const keys[] = {"max_depth", "background", "ambient", "encoding", "environment", NULL};
+    static const char *const keys[] = {"max_depth", "background", "ambient", "encoding", "environment",
+                                       "integrator", "path_ambient", NULL};
     static const char *const encodings[] = {"srgb", "linear", NULL};
+    /* In bg_integrator's order: the index is the value. */
+    static const char *const integrators[] = {"whitted", "path", NULL};
     BGI_SF_TRY(bgi_sf_check_object(ctx, v, keys));
     bg_render_settings *s = &ctx->out->settings;
     BGI_SF_TRY(bgi_sf_field_int(ctx, v, "max_depth", 0, BG_MAX_DEPTH, &s->max_depth));
+    int integrator = (int)s->integrator;
+    BGI_SF_TRY(bgi_sf_field_enum(ctx, v, "integrator", integrators, &integrator));
+    s->integrator = (bg_integrator)integrator;
+    /* Read whatever the integrator: a caller that switches to path later (the command's
+       --integrator) gets the file's wish with it. */
+    BGI_SF_TRY(bgi_sf_field_bool(ctx, v, "path_ambient", &s->path_ambient));
     BGI_SF_TRY(bgi_sf_field_rgb(ctx, v, "background", bgi_sf_nonneg, s->background));
     BGI_SF_TRY(bgi_sf_field_rgb(ctx, v, "ambient", bgi_sf_nonneg, ctx->out->ambient));
     int e = (int)s->encoding;
