@@ -26,7 +26,7 @@
  *
  * Sizes: TIME_SIZE 512 always. The error series costs (REFERENCE_SCALE^2 x 256 + 2047) camera paths a
  * pixel, 18431, and the CPU reference traces about 2e5 paths a second a core on the Cornell box (a
- * 2-core Xeon), so `make bench` runs it at 32 x 32 (19e6 paths a scene, about a minute and a half);
+ * 2-core Xeon), so `make bench` runs it at 32 x 32 (19e6 paths a scene, one to two minutes);
  * QUICK=1 at 16 x 16 up to 256 samples against 4096; BENCH_PATH_FULL=1 at 512 x 512 (4.8e9 paths a
  * scene: hours on 2 cores, about an hour on 16) with 16 samples a timed frame and 7 rounds.
  *
