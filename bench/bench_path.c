@@ -257,7 +257,8 @@ static void write_png(const char *path, const bg_image *image)
     for (long i = 0; i < (long)image->width * image->height; i++)
         for (int c = 0; c < 4; c++) {
             double v = p[4 * i + c];
-            v = !(v > 0.0) ? 0.0 : v >= 1.0 ? 1.0 : c == 3 ? v : v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+            v = !(v > 0.0) ? 0.0 : v >= 1.0 ? 1.0 : c == 3 ? v
+                : v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055; /* sRGB's curve */
             q[4 * i + c] = (unsigned char)floor(255.0 * v + 0.5);
         }
     char message[256];
@@ -281,8 +282,8 @@ typedef struct time_run {
 
 /* gpu NULL: no GPU session, every GPU column empty. whitted_renderer: a second renderer on gpu's
  * context for the Whitted frames, so that each keeps its compiled programs between rounds. */
-static bool time_case(time_run *run, bench_gpu *gpu, bg_renderer *whitted_renderer, bg_scene *scene, const bg_scenefile_result *r,
-                      const char *label, const run_config *cfg)
+static bool time_case(time_run *run, bench_gpu *gpu, bg_renderer *whitted_renderer, bg_scene *scene,
+                      const bg_scenefile_result *r, const char *label, const run_config *cfg)
 {
     memset(run, 0, sizeof *run);
     bool ok = true;

@@ -354,7 +354,8 @@ def compare(ours, theirs, label):
         rows[ch]["se_rel"] = float(se[k] / rows[ch]["mean_mitsuba"])
     print(f"{label}: pixels away from the light {int(lit.sum())} of {lit.size}; the relative differences' noise "
           f"(standard error): " + " ".join(f"{ch} {100 * rows[ch]['se_rel']:.2f}%" for ch in "RGB"))
-    print(f"  {'ch':2} {'RMSE':>9} {'mean ours':>10} {'mean Mitsuba':>12} {'rel. diff (lit)':>16} {'rel. diff (all)':>16}")
+    print(f"  {'ch':2} {'RMSE':>9} {'mean ours':>10} {'mean Mitsuba':>12} {'rel. diff (lit)':>16} "
+          f"{'rel. diff (all)':>16}")
     for ch, r in rows.items():
         print(f"  {ch:2} {r['rmse']:9.5f} {r['mean_ours']:10.5f} {r['mean_mitsuba']:12.5f} "
               f"{100 * r['rel_lit']:+15.2f}% {100 * r['rel_all']:+15.2f}%")
