@@ -237,6 +237,12 @@ $(BUILD)/bench/%: bench/%.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(STATIC_LINK)
 
+# bench_path reads the Cornell box scene files, so it links the scene-file library too.
+$(BUILD)/bench/bench_path: bench/bench_path.c $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(SF_A) $(BG_A) $(MACS_A)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(DEPFLAGS) -Ibench $(ALL_LDFLAGS) -o $@ $< $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(SF_A) \
+	  $(STATIC_LINK) $(SF_LIBS)
+
 $(EMBREE_PEER_OBJ): ALL_CFLAGS += $(EMBREE_CFLAGS)
 $(EMBREE_BENCH_BIN): $(BUILD)/bench/%: bench/%.c $(EMBREE_PEER_OBJ) $(BENCH_LIB_OBJ) $(SCENES_OBJ) $(BG_A) $(MACS_A)
 	@mkdir -p $(dir $@)

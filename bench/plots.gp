@@ -141,6 +141,44 @@ if (!have(distribution)) {
     set format y '% h'
 }
 
+# The path integrator (bench_path): RMSE against samples per pixel on the Cornell box files, one colour
+# per scene: over the pixels away from the light (solid, the path noise) and over all pixels (dashed:
+# the light's edge, at radiance 17 against walls below 1, adds the pixel pattern's coverage error),
+# the CPU reference's as lines and the GPU's as open circles where a GPU plan draws the path integrator
+# (an empty column otherwise, which gnuplot skips), beside a line of slope -1/2 through the largest
+# 1-sample error away from the light. Columns of path_error.csv: 1 scene, 2 size, 3 samples, 4 CPU
+# RMSE, 5 GPU RMSE, 8 reference samples, 10 CPU RMSE away from the light, 11 GPU RMSE away.
+path_error = dir.'/path_error.csv'
+if (!have(path_error)) {
+    print 'no path_error.csv: no path_error.png'
+} else {
+    set xrange [*:*]
+    set yrange [*:*]
+    pscenes = system(sprintf("tail -n +2 '%s' | cut -d, -f1 | uniq | tr '\\n' ' '", path_error))
+    stats path_error using ($3 == 1 ? $10 : 1/0) nooutput
+    anchor = STATS_max
+    stats path_error using 2:8 nooutput
+    set output dir.'/path_error.png'
+    set terminal pngcairo size 900,600 font 'sans,10' noenhanced
+    set title sprintf('Path integrator: RMSE against samples per pixel at %.0fx%.0f (linear radiance, against a CPU reference of %.0f samples)', \
+                     STATS_max_x, STATS_max_x, STATS_max_y)
+    set xlabel 'samples per pixel'
+    set ylabel 'RMSE'
+    set logscale x 2
+    set logscale y
+    set format y '%g'
+    set key bottom left
+    plot for [i=1:words(pscenes)] path_error using (strcol(1) eq word(pscenes, i) ? $3 : 1/0):10 \
+             with linespoints lc i pt 7 title word(pscenes, i).', away from the light (CPU reference)', \
+         for [i=1:words(pscenes)] '' using (strcol(1) eq word(pscenes, i) ? $3 : 1/0):4 \
+             with linespoints lc i dt 2 pt 1 title word(pscenes, i).', all pixels (CPU reference)', \
+         for [i=1:words(pscenes)] '' using (strcol(1) eq word(pscenes, i) ? $3 : 1/0):11 with points lc i pt 6 ps 1.6 \
+             title word(pscenes, i).', away from the light (GPU)', \
+         anchor / sqrt(x) with lines dt 3 lc 'black' title 'slope -1/2'
+    unset logscale
+    set format y '% h'
+}
+
 # Time against triangle count (bench_mesh's closed series): the GPU path (BG_PLAN_AUTO) and the Embree
 # peer on icospheres of 5120 to 1310720 triangles, a line per renderer and image size (min-max bars),
 # with the 10^6-triangle terrain as lone points. Both axes are logarithmic: equal steps up mean equal
