@@ -1,6 +1,7 @@
 /* The example scenes of the distribution effects (examples/scenes/json: area_lights, depth_of_field,
- * glossy, environment) at 16 samples: every GPU plan follows the CPU reference within the
- * distribution thresholds, and the multipass refuses the environment by name. */
+ * glossy, environment) and of the path integrator (cornell_box, window_room) at 16 samples: every
+ * GPU plan follows the CPU reference within the distribution thresholds, and the multipass refuses
+ * the environment and the path integrator by name. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -36,12 +37,15 @@ static void scene_follows_cpu(const char *name)
     unsigned char *cpu = util_cpu_reference(s, &set, W, H);
     static const bg_gpu_plan plans[] = {BG_PLAN_FUSED, BG_PLAN_FUSED_TREE, BG_PLAN_MULTIPASS};
     static const char *const names[] = {"fused", "tree", "multipass"};
-    bool environment = strcmp(name, "environment") == 0;
+    /* What the multipass refuses, the first reason it finds: an environment, then the integrator. */
+    const char *refused = strcmp(name, "environment") == 0 || strcmp(name, "window_room") == 0 ? "environment"
+                          : set.integrator == BG_INTEGRATOR_PATH                               ? "settings.integrator"
+                                                                                               : NULL;
     for (int p = 0; p < 3; p++) {
         char label[64];
         snprintf(label, sizeof label, "%s, %s", name, names[p]);
-        if (environment && plans[p] == BG_PLAN_MULTIPASS) {
-            util_expect_multipass_refuses_environment(s, &set);
+        if (refused && plans[p] == BG_PLAN_MULTIPASS) {
+            util_expect_multipass_refuses(s, &set, refused);
             continue;
         }
         unsigned char *gpu = util_gpu_plan_image(s, &set, plans[p], W, H, label);
@@ -77,6 +81,18 @@ static void environment(void **state)
     scene_follows_cpu("environment");
 }
 
+static void cornell_box(void **state)
+{
+    (void)state;
+    scene_follows_cpu("cornell_box");
+}
+
+static void window_room(void **state)
+{
+    (void)state;
+    scene_follows_cpu("window_room");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -84,6 +100,8 @@ int main(void)
         cmocka_unit_test(depth_of_field),
         cmocka_unit_test(glossy),
         cmocka_unit_test(environment),
+        cmocka_unit_test(cornell_box),
+        cmocka_unit_test(window_room),
     };
     return cmocka_run_group_tests_name("scenefile_effects", tests, util_gpu_group_setup, util_gpu_group_teardown);
 }

@@ -267,16 +267,25 @@ bg_scene *util_tube_scene(void)
     return s;
 }
 
-void util_expect_multipass_refuses_environment(bg_scene *s, const bg_render_settings *set)
+void util_expect_multipass_refuses(bg_scene *s, const bg_render_settings *set, const char *named)
 {
     unsigned char px[16 * 12 * 4];
+    memset(px, 0x5a, sizeof px);
     bg_image img = {16, 12, BG_PIXEL_RGBA8, 0, px};
     bg_render_settings own = *set;
     own.gpu_plan = BG_PLAN_MULTIPASS;
     bg_renderer *r = util_renderer(util_fx.ctx);
     assert_int_equal(bg_render_gpu(r, s, &own, &img), BG_ERR_LIMIT);
-    assert_non_null(strstr(bg_renderer_error_message(r), "environment"));
+    if (!strstr(bg_renderer_error_message(r), named))
+        fail_msg("the multipass's refusal does not name %s: %s", named, bg_renderer_error_message(r));
+    for (size_t i = 0; i < sizeof px; i++)
+        assert_int_equal(px[i], 0x5a);
     bg_renderer_destroy(r);
+}
+
+void util_expect_multipass_refuses_environment(bg_scene *s, const bg_render_settings *set)
+{
+    util_expect_multipass_refuses(s, set, "environment");
 }
 
 bg_render_settings util_plan_settings(bg_gpu_plan plan, int samples)

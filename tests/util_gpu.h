@@ -80,6 +80,9 @@ unsigned char *util_cpu_reference(bg_scene *s, const bg_render_settings *set, in
  * test on an error or when another plan ran. */
 unsigned char *util_gpu_plan_image(bg_scene *s, const bg_render_settings *set, bg_gpu_plan plan, int width,
                                    int height, const char *label);
+/* The multipass plan forced on the scene fails with BG_ERR_LIMIT, its message naming `named`, and
+ * leaves the image untouched. */
+void util_expect_multipass_refuses(bg_scene *s, const bg_render_settings *set, const char *named);
 /* Fails the test unless the multipass plan refuses s (BG_ERR_LIMIT) with a message naming the
  * environment, which it does not draw. */
 void util_expect_multipass_refuses_environment(bg_scene *s, const bg_render_settings *set);
