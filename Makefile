@@ -328,8 +328,11 @@ PROFILE_SCENE_TESTS := $(filter $(BUILD)/tests/test_bg_gpu_scenes $(BUILD)/tests
                          $(BUILD)/tests/test_bg_gpu_plans $(BUILD)/tests/test_bg_gpu_mesh,$(TEST_BIN))
 CHECK_PROFILES ?= radeon_x1600 gl21
 ALL_PROFILES := geforce7 radeon_x1600 gma_x3100 gl21
+# The profiles make check-profiles runs: every one unless told fewer (CI, which runs make check as
+# well, names only those CHECK_PROFILES leaves out).
+PROFILES_RUN ?= $(ALL_PROFILES)
 check-profiles: all $(PROFILE_SCENE_TESTS) $(BUILD)/tests/probe_headless
-	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless PROFILES="$(ALL_PROFILES)" \
+	@TEST_ENV="$(TEST_ENV)" PROBE=$(BUILD)/tests/probe_headless PROFILES="$(PROFILES_RUN)" \
 	  PROFILE_SUITES="$(PROFILE_SCENE_TESTS)" sh tests/run_suites.sh "" ""
 check-profile: all $(PROFILE_TESTS) $(BUILD)/tests/probe_headless
 	@test -n "$(PROFILE)" || { echo "make check-profile: PROFILE=name is required: geforce7, radeon_x1600, gma_x3100 or gl21"; exit 2; }
