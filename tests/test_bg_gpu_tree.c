@@ -198,7 +198,9 @@ static void walks_that_run_out_at_several_samples(void **state)
     td.format = MACS_FORMAT_RGBA8;
     macs_texture *t = NULL;
     assert_int_equal(macs_texture_create(util_fx.ctx, &td, &t), MACS_OK);
-    for (int samples = 4; samples <= 16; samples *= 4) {
+    /* 2 and 4 samples: each sample of a pixel that runs out walks the whole step budget, so 16
+     * samples took 70 s of the suite's 85 and showed nothing 4 do not. */
+    for (int samples = 2; samples <= 4; samples *= 2) {
         char label[64];
         snprintf(label, sizeof label, "tube, %d samples", samples);
         bg_render_settings set = util_plan_settings(BG_PLAN_FUSED_TREE, samples);
