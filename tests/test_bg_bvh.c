@@ -962,6 +962,24 @@ static void test_view_nodes(void **state)
         /* Reordering happened: some node's first child now spans another count of nodes. */
         if (n >= 100)
             assert_true(swapped > 0);
+        /* The order alone (what the mesh textures lay out unshifted): a permutation that puts each
+         * view node's old node there, root first, the miss links following from the old spans. */
+        uint32_t *order = malloc((size_t)bvh.node_count * sizeof *order);
+        unsigned char *seen = calloc(bvh.node_count, 1);
+        assert_non_null(order);
+        assert_non_null(seen);
+        assert_int_equal(bgi_bvh_view_order(&bvh, eye, order), BG_OK);
+        assert_int_equal(order[0], 0);
+        for (uint32_t at = 0; at < bvh.node_count; at++) {
+            uint32_t old = order[at];
+            assert_true(old < bvh.node_count);
+            if (seen[old]++)
+                fail_msg("%u objects: node %u placed twice", n, old);
+            assert_true(NODE(&bvh, old)[BG_BVH_NODE_PRIM] == out[(size_t)at * BG_BVH_NODE_FLOATS + BG_BVH_NODE_PRIM]);
+            assert_int_equal(field(&view, at, BG_BVH_NODE_MISS), at + (field(&bvh, old, BG_BVH_NODE_MISS) - old));
+        }
+        free(order);
+        free(seen);
         free(ids);
         free(renamed);
         free(out);

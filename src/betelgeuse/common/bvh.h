@@ -87,6 +87,14 @@ void bgi_bvh_destroy(bg_bvh *bvh);
  * boxes gives back the built floats bit for bit. */
 bg_status bgi_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
 
+/* The order in which bgi_bvh_view_nodes lays the nodes out for origin: order[at] is the node of the
+ * tree that goes to index at (node_count entries). Each interior node's nearer child, by the distance
+ * from origin to its box, comes first; the rest follows from the subtree sizes, so a node at index
+ * at whose old index is old has miss link at + (miss - old). Origin is in the frame of the boxes (a
+ * mesh's object space for a mesh's tree). Borrows
+ * 8 bytes per tree level from the tree's allocator: BG_ERR_OUT_OF_MEMORY when they are refused. */
+bg_status bgi_bvh_view_order(const bg_bvh *bvh, const double origin[3], uint32_t *order);
+
 /* Writes the tree's node_count nodes into out as seen from origin, for walks of rays that start
  * there: every box minus origin, computed in double and rounded outward again (the invariant holds
  * for the shifted boxes); each interior node's children swapped where the second one's box is nearer
@@ -94,8 +102,8 @@ bg_status bgi_bvh_refit(bg_bvh *bvh, const bg_bvh_box *boxes, uint32_t count);
  * each leaf's primitive replaced by prim_ids[primitive] when prim_ids is not NULL (ids below 2^24
  * stay exact). The GPU keeps its world frame at the camera, where a float box far from the origin
  * would cost the ray its precision, and uploads this copy. Borrows 8 bytes per tree level from the
- * tree's allocator while it runs: BG_ERR_OUT_OF_MEMORY when they are refused (out then partly
- * written). */
+ * tree's allocator while it runs, and 4 bytes per node for the order: BG_ERR_OUT_OF_MEMORY when they
+ * are refused (out then partly written or not written). */
 bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out);
 
 /* Fills *stats for the tree. */

@@ -553,7 +553,7 @@ static void write_shifted(const bg_bvh *bvh, uint32_t old, uint32_t at, const do
  * something in the nearer child then skips the farther one's boxes beyond that hit. The order is
  * chosen per node by the distance from the viewpoint to each child's box, the tree's first child on
  * a tie. The depth-first order leaves at most one pending subtree per level. */
-bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
+bg_status bgi_bvh_view_order(const bg_bvh *bvh, const double origin[3], uint32_t *order)
 {
     if (bvh->node_count == 0)
         return BG_OK;
@@ -568,7 +568,7 @@ bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const ui
     while (n > 0) {
         n--;
         uint32_t old = pending_old[n], at = pending_at[n];
-        write_shifted(bvh, old, at, origin, prim_ids, out);
+        order[at] = old;
         const float *node = bvh->nodes + (size_t)old * BG_BVH_NODE_FLOATS;
         if (node[BG_BVH_NODE_PRIM] >= 0.0f)
             continue;
@@ -587,4 +587,16 @@ bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const ui
     }
     bgi_free(&bvh->allocator, pending_old);
     return BG_OK;
+}
+
+bg_status bgi_bvh_view_nodes(const bg_bvh *bvh, const double origin[3], const uint32_t *prim_ids, float *out)
+{
+    if (bvh->node_count == 0)
+        return BG_OK;
+    uint32_t *order = bgi_alloc(&bvh->allocator, (size_t)bvh->node_count * sizeof *order);
+    bg_status st = order ? bgi_bvh_view_order(bvh, origin, order) : BG_ERR_OUT_OF_MEMORY;
+    for (uint32_t at = 0; st == BG_OK && at < bvh->node_count; at++)
+        write_shifted(bvh, order[at], at, origin, prim_ids, out);
+    bgi_free(&bvh->allocator, order);
+    return st;
 }

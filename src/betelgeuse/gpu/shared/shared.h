@@ -42,13 +42,16 @@ enum { GPU_WIDEST_ROW = 4096, GPU_NODE_TEXELS = 2 };
 
 /* The meshes' textures (meshes.c), one copy that every plan reads: every distinct mesh's own tree
  * in one texture, its triangles in the other, each addressed by texel index (bg_mesh.glsl). */
+enum { GPU_MESH_KEYS = 3 };
+
 typedef struct gpu_meshes {
     macs_texture *nodes;     /* every distinct mesh's tree; NULL without meshes */
     macs_texture *triangles; /* and its triangles */
     float dims[4];           /* (texels per row, its inverse, 1 / triangle rows, 1 / node rows): bg_mesh_dims */
     float *base;             /* per object: 2 floats, its mesh's root node and first triangle texel */
     uint32_t base_count;     /* objects base has room for */
-    uint64_t *keys;          /* per copy the textures hold, in order: its mesh's serial, its filter's key */
+    uint64_t *keys;          /* per copy the textures hold, in order, GPU_MESH_KEYS each: its mesh's serial,
+                              * its filter's key, its tree's order for the camera (meshes.c) */
     uint32_t key_count, key_room;
     uint64_t serial;         /* the commit (bg_scene_state.serial) they were made for; 0 none */
     uint64_t uploads;        /* grows whenever the textures are remade or written: a pass that bound them
