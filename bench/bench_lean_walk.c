@@ -11,10 +11,18 @@
  *   PLAN: auto (default), fused, tree or multipass.
  * After one untimed frame (compilation), FRAMES frames of SIZE x SIZE (RGBA8) are timed;
  * prints "CASE plan median_ms min_ms checksum", the checksum an FNV-1a hash of the last image's bytes,
- * so that two builds' images can be compared bit for bit. */
+ * so that two builds' images can be compared bit for bit.
+ *
+ * BENCH_MOVE=1 times what camera moves cost instead (docs/benchmarks.md, "Mesh trees in view
+ * order"): FRAMES rounds of a cached frame, a frame after the camera moved sideways by 0.01 (for a
+ * mesh, within the eye's cell: its tree keeps its order), and a frame after it moved by 0.4 (into
+ * another cell: the tree is ordered again and its node texture rewritten), each move followed by an
+ * untimed frame back at the built camera; prints
+ * "CASE plan cached_ms small_move_ms big_move_ms", the medians. */
 #include <stdlib.h>
 #include <string.h>
 
+#include "betelgeuse/scene/scene_internal.h"
 #include "lib/bench_measure.h"
 #include "lib/mesh_scene.h"
 #include "scenes/bunny_scene.h"
@@ -90,6 +98,54 @@ static unsigned long long fnv1a(const unsigned char *p, size_t n)
     return h;
 }
 
+/* The camera as built, read back from the committed state (the API has setters only). */
+static bg_camera built_camera(const bg_scene *scene)
+{
+    return bgi_scene_committed(scene)->camera.camera;
+}
+
+/* BENCH_MOVE=1: per round a cached frame, then per step the frame after the camera moved sideways by
+ * it (0.01, then 0.4 units along x), each followed by an untimed frame back at the built camera. */
+static int time_moves(bench_gpu *gpu, bg_scene *scene, const bg_render_settings *settings, bg_image *image,
+                      const char *name, int frames)
+{
+    static const double steps[2] = {0.01, 0.4};
+    bg_camera built = built_camera(scene);
+    double cached[64], moved[2][64];
+    bg_status st = bg_render_gpu(gpu->renderer, scene, settings, image);
+    for (int f = 0; f < frames && st == BG_OK; f++) {
+        double t0 = bench_now_ms();
+        st = bg_render_gpu(gpu->renderer, scene, settings, image);
+        cached[f] = bench_now_ms() - t0;
+        for (int k = 0; k < 2 && st == BG_OK; k++) {
+            bg_camera c = built;
+            c.position.x += steps[k];
+            c.look_at.x += steps[k];
+            st = bg_scene_set_camera(scene, &c);
+            if (st == BG_OK)
+                st = bg_scene_commit(scene);
+            t0 = bench_now_ms();
+            if (st == BG_OK)
+                st = bg_render_gpu(gpu->renderer, scene, settings, image);
+            moved[k][f] = bench_now_ms() - t0;
+            /* Back to the built camera, its frame untimed. */
+            if (st == BG_OK && (st = bg_scene_set_camera(scene, &built)) == BG_OK &&
+                (st = bg_scene_commit(scene)) == BG_OK)
+                st = bg_render_gpu(gpu->renderer, scene, settings, image);
+        }
+    }
+    if (st != BG_OK) {
+        fprintf(stderr, "bench_lean_walk: %s: %s %s\n", name, bg_renderer_error_message(gpu->renderer),
+                bg_scene_error_message(scene));
+        return 1;
+    }
+    bg_render_stats stats;
+    bg_renderer_get_stats(gpu->renderer, &stats);
+    printf("%s %s %.2f %.2f %.2f\n", name, bench_plan_name(stats.plan), bench_times_of(cached, frames).median,
+           bench_times_of(moved[0], frames).median, bench_times_of(moved[1], frames).median);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static const char *const plans[] = {"auto", "fused", "multipass", "tree"}; /* bg_gpu_plan's order */
@@ -118,6 +174,14 @@ int main(int argc, char **argv)
     }
     bg_render_settings settings = bg_render_settings_init();
     settings.gpu_plan = (bg_gpu_plan)plan;
+    const char *move = getenv("BENCH_MOVE");
+    if (move && strcmp(move, "1") == 0) {
+        int code = time_moves(&gpu, scene, &settings, &image, argv[1], frames);
+        bench_image_free(&image);
+        bg_scene_destroy(scene);
+        bench_gpu_close(&gpu);
+        return code;
+    }
     bg_render_stats stats;
     memset(&stats, 0, sizeof stats);
     double times[64];

@@ -5,12 +5,12 @@
  * for good, so a commit that keeps the meshes, and the order their trees are laid out in, uploads
  * nothing here, whichever plan renders it.
  *
- * Each tree goes up ordered for the camera (bgi_bvh_view_order, from near the eye in the object space
- * of the first object that shows the copy, order_point): a walk then meets the nearer child of every
- * node first, and a camera ray that hits the near side of a closed mesh skips the far side's boxes.
- * A walk in the build's order took twice the steps on an icosphere's camera rays (docs/benchmarks.md,
- * "Mesh trees in view order"). The order changes no hit: the walk's tie rule (distance, then the
- * lower triangle) does not depend on it. */
+ * Each tree goes up ordered for the camera (bgi_bvh_view_order, for a point chosen by where the eye
+ * lies in the object space of the first object that shows the copy, order_point): a walk then meets
+ * the nearer child of every node first, and a camera ray that hits the near side of a closed mesh
+ * skips the far side's boxes. A walk in the build's order took twice the steps on an icosphere's
+ * camera rays (docs/benchmarks.md, "Mesh trees in view order"). The order changes no hit: the walk's
+ * tie rule (distance, then the lower triangle) does not depend on it. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -215,31 +215,48 @@ bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char 
     return true;
 }
 
-/* A mesh tree's order is made for a point of a grid of ORDER_CELLS cells across the mesh's box
- * (and on beyond it), the centre of the cell that holds the camera's eye in the object space of the
- * first object that shows the copy: a camera move within the cell keeps the order and costs nothing
- * here, and only a move into another cell rewrites the tree (a pass over its nodes, about 40 ms for
- * a million triangles, and the node texture's upload). The cell's centre orders the nodes nearly as
- * well as the eye itself. Key names the cell. */
+/* The point a copy's tree is ordered for, and a key that names it, from the camera's eye in the
+ * object space of the first object that shows the copy. An eye outside the mesh's box gets a point
+ * far out along the diagonal of its octant around the box's centre: eight orders per mesh, which a
+ * camera orbiting the mesh changes at most every quarter turn. Measured by step counts (docs/
+ * benchmarks.md, "Mesh trees in view order"), the octant's order costs a camera ray 0-5 % more
+ * steps than one made for the exact eye, from any side, while the exact eye's order would change at
+ * every move and each change costs a pass over the tree and the node texture's upload (about 200 ms
+ * for 1.3 million triangles). An eye inside the box (a walk through a building, a flight low over a
+ * terrain) gets the centre of its cell on a grid of ORDER_CELLS cells across the box's largest
+ * extent, since there the octant says little about which boxes are near. */
 enum { ORDER_CELLS = 16 };
+#define ORDER_FAR 1024.0 /* the octant's point: this many extents from the centre along each axis */
 
 static void order_point(const bg_scene_state *state, uint32_t i, double point[3], uint64_t *key)
 {
     const double *o = &state->camera.camera.position.x;
     const double(*m)[4] = state->objects[i].to_object;
     const bg_bvh *tree = &state->objects[i].mesh->tree;
-    double extent = 0.0;
-    for (int a = 0; a < 3 && tree->node_count > 0; a++) {
-        double e = (double)tree->nodes[BG_BVH_NODE_MAX + a] - tree->nodes[BG_BVH_NODE_MIN + a];
-        extent = e > extent ? e : extent;
-    }
-    double cell = extent > 0.0 && extent < 1e300 ? extent / ORDER_CELLS : 1.0;
-    uint64_t h = 0x243f6a8885a308d3ull;
+    double eye[3], lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0}, extent = 0.0;
+    bool inside = true;
     for (int r = 0; r < 3; r++) {
-        double eye = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + m[r][3];
-        double c = floor(eye / cell);
-        c = c < -1e15 ? -1e15 : (c > 1e15 ? 1e15 : c); /* an eye out of all proportion: one far cell */
-        point[r] = (c + 0.5) * cell;
+        eye[r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + m[r][3];
+        if (tree->node_count > 0) {
+            lo[r] = tree->nodes[BG_BVH_NODE_MIN + r];
+            hi[r] = tree->nodes[BG_BVH_NODE_MAX + r];
+        }
+        extent = hi[r] - lo[r] > extent ? hi[r] - lo[r] : extent;
+        inside = inside && eye[r] >= lo[r] && eye[r] <= hi[r];
+    }
+    double unit = extent > 0.0 && extent < 1e300 ? extent : 1.0;
+    uint64_t h = bgi_gpu_hash_mix(0x243f6a8885a308d3ull, inside ? 2u : 1u);
+    for (int r = 0; r < 3; r++) {
+        double c;
+        if (inside) {
+            double cell = unit / ORDER_CELLS;
+            c = floor(eye[r] / cell);
+            point[r] = (c + 0.5) * cell;
+        } else {
+            double centre = 0.5 * (lo[r] + hi[r]);
+            c = eye[r] >= centre ? 1.0 : -1.0;
+            point[r] = centre + c * ORDER_FAR * unit;
+        }
         h = bgi_gpu_hash_mix(h, (uint64_t)(int64_t)c);
     }
     *key = h;
