@@ -14,11 +14,12 @@
  * so that two builds' images can be compared bit for bit.
  *
  * BENCH_MOVE=1 times what camera moves cost instead (docs/benchmarks.md, "Mesh trees in view
- * order"): FRAMES rounds of a cached frame, a frame after the camera moved sideways by 0.01 (for a
- * mesh, within the eye's cell: its tree keeps its order), and a frame after it moved by 0.4 (into
- * another cell: the tree is ordered again and its node texture rewritten), each move followed by an
- * untimed frame back at the built camera; prints
- * "CASE plan cached_ms small_move_ms big_move_ms", the medians. */
+ * order"): three blocks of FRAMES rounds, each round a cached frame and a frame after a move of the
+ * camera along x, between x = 0.01 and 0 in the first block, 0.4 and 0.5 in the second, 0.4 and -0.4
+ * in the third. The mesh cases' cameras stand over the mesh's centre (x = 0): the first two blocks
+ * keep the side of the centre the mesh tree is ordered for, the third crosses it at every move (the
+ * tree is ordered again and its node texture rewritten). Prints "CASE plan cached_ms small_ms
+ * one_side_ms across_ms", the medians. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -104,36 +105,35 @@ static bg_camera built_camera(const bg_scene *scene)
     return bgi_scene_committed(scene)->camera.camera;
 }
 
-/* BENCH_MOVE=1: per round a cached frame, then per step the frame after the camera moved sideways by
- * it (0.01, then 0.4 units along x), each followed by an untimed frame back at the built camera. */
+/* BENCH_MOVE=1: three blocks of FRAMES rounds, each round a cached frame and then a frame after the
+ * camera moved along x: to 0.01 and back to 0 (small), between 0.4 and 0.5 (one side), between 0.4
+ * and -0.4 (across the centre). */
+enum { MOVES = 3 };
+
 static int time_moves(bench_gpu *gpu, bg_scene *scene, const bg_render_settings *settings, bg_image *image,
                       const char *name, int frames)
 {
-    static const double steps[2] = {0.01, 0.4};
+    static const double at[MOVES][2] = {{0.01, 0.0}, {0.4, 0.5}, {0.4, -0.4}};
     bg_camera built = built_camera(scene);
-    double cached[64], moved[2][64];
+    double cached[MOVES * 64], moved[MOVES][64];
     bg_status st = bg_render_gpu(gpu->renderer, scene, settings, image);
-    for (int f = 0; f < frames && st == BG_OK; f++) {
-        double t0 = bench_now_ms();
-        st = bg_render_gpu(gpu->renderer, scene, settings, image);
-        cached[f] = bench_now_ms() - t0;
-        for (int k = 0; k < 2 && st == BG_OK; k++) {
+    for (int k = 0; k < MOVES; k++)
+        for (int f = 0; f < frames && st == BG_OK; f++) {
+            double t0 = bench_now_ms();
+            st = bg_render_gpu(gpu->renderer, scene, settings, image);
+            cached[k * frames + f] = bench_now_ms() - t0;
             bg_camera c = built;
-            c.position.x += steps[k];
-            c.look_at.x += steps[k];
-            st = bg_scene_set_camera(scene, &c);
+            c.position.x += at[k][f % 2];
+            c.look_at.x += at[k][f % 2];
+            if (st == BG_OK)
+                st = bg_scene_set_camera(scene, &c);
             if (st == BG_OK)
                 st = bg_scene_commit(scene);
             t0 = bench_now_ms();
             if (st == BG_OK)
                 st = bg_render_gpu(gpu->renderer, scene, settings, image);
             moved[k][f] = bench_now_ms() - t0;
-            /* Back to the built camera, its frame untimed. */
-            if (st == BG_OK && (st = bg_scene_set_camera(scene, &built)) == BG_OK &&
-                (st = bg_scene_commit(scene)) == BG_OK)
-                st = bg_render_gpu(gpu->renderer, scene, settings, image);
         }
-    }
     if (st != BG_OK) {
         fprintf(stderr, "bench_lean_walk: %s: %s %s\n", name, bg_renderer_error_message(gpu->renderer),
                 bg_scene_error_message(scene));
@@ -141,8 +141,9 @@ static int time_moves(bench_gpu *gpu, bg_scene *scene, const bg_render_settings 
     }
     bg_render_stats stats;
     bg_renderer_get_stats(gpu->renderer, &stats);
-    printf("%s %s %.2f %.2f %.2f\n", name, bench_plan_name(stats.plan), bench_times_of(cached, frames).median,
-           bench_times_of(moved[0], frames).median, bench_times_of(moved[1], frames).median);
+    printf("%s %s %.2f %.2f %.2f %.2f\n", name, bench_plan_name(stats.plan),
+           bench_times_of(cached, MOVES * frames).median, bench_times_of(moved[0], frames).median,
+           bench_times_of(moved[1], frames).median, bench_times_of(moved[2], frames).median);
     return 0;
 }
 

@@ -215,51 +215,84 @@ bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char 
     return true;
 }
 
-/* The point a copy's tree is ordered for, and a key that names it, from the camera's eye in the
- * object space of the first object that shows the copy. An eye outside the mesh's box gets a point
- * far out along the diagonal of its octant around the box's centre: eight orders per mesh, which a
- * camera orbiting the mesh changes at most every quarter turn. Measured by step counts (docs/
- * benchmarks.md, "Mesh trees in view order"), the octant's order costs a camera ray 0-5 % more
- * steps than one made for the exact eye, from any side, while the exact eye's order would change at
- * every move and each change costs a pass over the tree and the node texture's upload (about 200 ms
- * for 1.3 million triangles). An eye inside the box (a walk through a building, a flight low over a
- * terrain) gets the centre of its cell on a grid of ORDER_CELLS cells across the box's largest
- * extent, since there the octant says little about which boxes are near. */
+/* The point a copy's tree is ordered for, named by a key, from the camera's eye in the object space
+ * of the first object that shows the copy.
+ * - An eye outside the mesh's box orders for its octant around the box's centre: a point far out
+ *   along the octant's diagonal. Eight orders per mesh, which a camera orbiting the mesh changes at
+ *   most every quarter turn. Measured by step counts (docs/benchmarks.md, "Mesh trees in view
+ *   order"), the octant's order costs a camera ray 0-5 % more steps than one made for the exact eye,
+ *   from any side; the exact eye's order would change at every move, and each change costs a pass
+ *   over the tree and the node texture's upload (180 ms for 1.3 million triangles). An eye within
+ *   ORDER_MARGIN of the box's extent of a plane through the centre keeps the side the held order has
+ *   on that axis, so that a camera standing over the centre, as many do, does not flip the order at
+ *   every small move.
+ * - An eye inside the box (a walk through a building, a flight low over a terrain) orders for the
+ *   centre of its cell on a grid of ORDER_CELLS cells across the box's largest extent: there the
+ *   octant says little about which boxes are near.
+ * An octant's key is 1 + 2 (x side) + 4 (y side) + 8 (z side), a side 1 for the positive one; a
+ * cell's is a hash of its coordinates, even. */
 enum { ORDER_CELLS = 16 };
-#define ORDER_FAR 1024.0 /* the octant's point: this many extents from the centre along each axis */
+#define ORDER_FAR 1024.0   /* the octant's point: this many extents from the centre along each axis */
+#define ORDER_MARGIN 0.125 /* of the extent, around the centre's planes */
 
-static void order_point(const bg_scene_state *state, uint32_t i, double point[3], uint64_t *key)
+typedef struct mesh_frame {
+    double eye[3], lo[3], hi[3], unit; /* unit: the largest extent, or 1 for a point */
+    bool inside;
+} mesh_frame;
+
+static void frame_of(const bg_scene_state *state, uint32_t i, mesh_frame *f)
 {
     const double *o = &state->camera.camera.position.x;
     const double(*m)[4] = state->objects[i].to_object;
     const bg_bvh *tree = &state->objects[i].mesh->tree;
-    double eye[3], lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0}, extent = 0.0;
-    bool inside = true;
+    double extent = 0.0;
+    f->inside = true;
     for (int r = 0; r < 3; r++) {
-        eye[r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + m[r][3];
-        if (tree->node_count > 0) {
-            lo[r] = tree->nodes[BG_BVH_NODE_MIN + r];
-            hi[r] = tree->nodes[BG_BVH_NODE_MAX + r];
-        }
-        extent = hi[r] - lo[r] > extent ? hi[r] - lo[r] : extent;
-        inside = inside && eye[r] >= lo[r] && eye[r] <= hi[r];
+        f->eye[r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + m[r][3];
+        f->lo[r] = tree->node_count > 0 ? tree->nodes[BG_BVH_NODE_MIN + r] : 0.0;
+        f->hi[r] = tree->node_count > 0 ? tree->nodes[BG_BVH_NODE_MAX + r] : 0.0;
+        extent = f->hi[r] - f->lo[r] > extent ? f->hi[r] - f->lo[r] : extent;
+        f->inside = f->inside && f->eye[r] >= f->lo[r] && f->eye[r] <= f->hi[r];
     }
-    double unit = extent > 0.0 && extent < 1e300 ? extent : 1.0;
-    uint64_t h = bgi_gpu_hash_mix(0x243f6a8885a308d3ull, inside ? 2u : 1u);
+    f->unit = extent > 0.0 && extent < 1e300 ? extent : 1.0;
+}
+
+/* The key of copy i's order, given the key its texture holds (held; 0 none). */
+static uint64_t order_key(const bg_scene_state *state, uint32_t i, uint64_t held)
+{
+    mesh_frame f;
+    frame_of(state, i, &f);
+    if (f.inside) {
+        uint64_t h = 0x243f6a8885a308d3ull;
+        for (int r = 0; r < 3; r++)
+            h = bgi_gpu_hash_mix(h, (uint64_t)(int64_t)floor(f.eye[r] / (f.unit / ORDER_CELLS)));
+        return h & ~(uint64_t)1;
+    }
+    uint64_t key = 1;
     for (int r = 0; r < 3; r++) {
-        double c;
-        if (inside) {
-            double cell = unit / ORDER_CELLS;
-            c = floor(eye[r] / cell);
-            point[r] = (c + 0.5) * cell;
+        double centre = 0.5 * (f.lo[r] + f.hi[r]);
+        bool positive = f.eye[r] >= centre;
+        if ((held & 1) && held < 16 && fabs(f.eye[r] - centre) <= ORDER_MARGIN * f.unit)
+            positive = (held >> (r + 1)) & 1;
+        key |= positive ? (uint64_t)2 << r : 0;
+    }
+    return key;
+}
+
+/* The point copy i's order of key is made for. */
+static void order_point(const bg_scene_state *state, uint32_t i, uint64_t key, double point[3])
+{
+    mesh_frame f;
+    frame_of(state, i, &f);
+    for (int r = 0; r < 3; r++) {
+        if (key & 1) {
+            double side = (key >> (r + 1)) & 1 ? 1.0 : -1.0;
+            point[r] = 0.5 * (f.lo[r] + f.hi[r]) + side * ORDER_FAR * f.unit;
         } else {
-            double centre = 0.5 * (lo[r] + hi[r]);
-            c = eye[r] >= centre ? 1.0 : -1.0;
-            point[r] = centre + c * ORDER_FAR * unit;
+            double cell = f.unit / ORDER_CELLS;
+            point[r] = (floor(f.eye[r] / cell) + 0.5) * cell;
         }
-        h = bgi_gpu_hash_mix(h, (uint64_t)(int64_t)c);
     }
-    *key = h;
 }
 
 /* The most nodes of any distinct mesh's tree: the room the view orders need. */
@@ -278,19 +311,20 @@ static uint32_t most_nodes(const bg_scene_state *state, const uint32_t *first)
  * their two texels with the miss links turned into texel indices of the node texture, each leaf as
  * its triangle's corners {v0, triangle}, {v1, miss}, {v2, 0}; and its triangles' attributes into tris
  * (docs/gpu_pipeline.md, "Meshes"). A subtree over k triangles has 2k - 1 nodes and takes
- * mesh_tree_texels(k) texels, which turns a miss link's node span into a texel span. With tris NULL
- * only the trees. */
+ * mesh_tree_texels(k) texels, which turns a miss link's node span into a texel span. Each tree goes
+ * in the order of its copy's key in m->keys (meshes_held writes them first). With tris NULL only the
+ * trees. */
 static bg_status fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_meshes *m,
                              uint32_t *order, float *nodes, float *tris)
 {
+    uint32_t copy = 0;
     for (uint32_t i = 0; i < state->object_count; i++) {
         const bg_mesh_data *mesh = state->objects[i].mesh;
         if (!mesh || first[i] != i)
             continue;
-        double eye[3];
-        uint64_t key;
-        order_point(state, i, eye, &key);
-        bg_status st = bgi_bvh_view_order(&mesh->tree, eye, order);
+        double point[3];
+        order_point(state, i, m->keys[GPU_MESH_KEYS * (size_t)copy++ + 2], point);
+        bg_status st = bgi_bvh_view_order(&mesh->tree, point, order);
         if (st != BG_OK)
             return st;
         uint64_t at = (uint64_t)m->base[2 * (size_t)i];
@@ -392,8 +426,9 @@ static bg_status meshes_held(bg_renderer *r, gpu_meshes *m, const bg_scene_state
         return BG_ERR_OUT_OF_MEMORY;
     for (uint32_t i = 0, k = 0; i < state->object_count; i++)
         if (state->objects[i].mesh && first[i] == i) {
-            double point[3];
-            order_point(state, i, point, &views[k++]);
+            bool same_copy = m->keys && k < m->key_count && m->keys[KEYS * k] == state->objects[i].mesh->serial;
+            views[k] = order_key(state, i, same_copy ? m->keys[KEYS * k + 2] : 0);
+            k++;
         }
     bool same = m->nodes && m->keys && n == m->key_count, same_orders = same;
     for (uint32_t i = 0, k = 0; i < state->object_count && same; i++)
