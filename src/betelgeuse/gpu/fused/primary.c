@@ -38,7 +38,8 @@ enum { FLOATS = 12, BOX_VERTICES = 36 };
  * pixels) and 0.69 at 1024x1024 (per 12.8), one of 1310720 triangles 4.5 at 512x512; many_spheres
  * (64 and 1024 boxes) 0.96-1.05, since its camera rays' walks are about 6 % of its frame: analytic
  * scenes keep the walk. With the mesh trees in view order (shared/meshes.c) the walk got cheaper and
- * the icospheres measured 0.81 / 0.76, 1.54 / 0.96 and 6.9 / 2.7 (512 / 1024): the same choices. */
+ * the icospheres measured 0.81-0.95 / 0.76, 1.55 / 0.96-1.05 and 6.8-6.9 / 2.7 (512 / 1024, two
+ * runs): the same choices, the 81920-triangle sphere at 1024 now at break-even within the noise. */
 #define AUTO_PIXELS_PER_TRIANGLE 8.0
 
 typedef struct primary_mesh {
