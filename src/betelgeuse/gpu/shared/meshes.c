@@ -222,7 +222,7 @@ bool bgi_gpu_meshes_fit(const bg_renderer *r, const bg_scene_state *state, char 
  *   most every quarter turn. Measured by step counts (docs/benchmarks.md, "Mesh trees in view
  *   order"), the octant's order costs a camera ray 0-5 % more steps than one made for the exact eye,
  *   from any side; the exact eye's order would change at every move, and each change costs a pass
- *   over the tree and the node texture's upload (180 ms for 1.3 million triangles). An eye within
+ *   over the tree and the node texture's upload (about 170 ms for 1.3 million triangles). An eye within
  *   ORDER_MARGIN of the box's extent of a plane through the centre keeps the side the held order has
  *   on that axis, so that a camera standing over the centre, as many do, does not flip the order at
  *   every small move.
@@ -264,8 +264,11 @@ static uint64_t order_key(const bg_scene_state *state, uint32_t i, uint64_t held
     frame_of(state, i, &f);
     if (f.inside) {
         uint64_t h = 0x243f6a8885a308d3ull;
-        for (int r = 0; r < 3; r++)
-            h = bgi_gpu_hash_mix(h, (uint64_t)(int64_t)floor(f.eye[r] / (f.unit / ORDER_CELLS)));
+        for (int r = 0; r < 3; r++) {
+            double c = floor(f.eye[r] / (f.unit / ORDER_CELLS));
+            c = c < -1e15 ? -1e15 : (c > 1e15 ? 1e15 : c); /* a tiny mesh far out: one far cell */
+            h = bgi_gpu_hash_mix(h, (uint64_t)(int64_t)c);
+        }
         return h & ~(uint64_t)1;
     }
     uint64_t key = 1;
@@ -307,13 +310,13 @@ static uint32_t most_nodes(const bg_scene_state *state, const uint32_t *first)
     return most;
 }
 
-/* Every distinct mesh once: its tree in common/bvh.h's pre-order, ordered for the camera, into nodes, interior nodes as
- * their two texels with the miss links turned into texel indices of the node texture, each leaf as
- * its triangle's corners {v0, triangle}, {v1, miss}, {v2, 0}; and its triangles' attributes into tris
- * (docs/gpu_pipeline.md, "Meshes"). A subtree over k triangles has 2k - 1 nodes and takes
- * mesh_tree_texels(k) texels, which turns a miss link's node span into a texel span. Each tree goes
- * in the order of its copy's key in m->keys (meshes_held writes them first). With tris NULL only the
- * trees. */
+/* Every distinct mesh once: its tree in common/bvh.h's pre-order, ordered for the camera, into
+ * nodes, interior nodes as their two texels with the miss links turned into texel indices of the
+ * node texture, each leaf as its triangle's corners {v0, triangle}, {v1, miss}, {v2, 0}; and its
+ * triangles' attributes into tris (docs/gpu_pipeline.md, "Meshes"). A subtree over k triangles has
+ * 2k - 1 nodes and takes mesh_tree_texels(k) texels, which turns a miss link's node span into a
+ * texel span. Each tree goes in the order its copy's key in m->keys names (meshes_held writes the
+ * keys first). With tris NULL only the trees. */
 static bg_status fill_meshes(const bg_scene_state *state, const uint32_t *first, const gpu_meshes *m,
                              uint32_t *order, float *nodes, float *tris)
 {
@@ -410,10 +413,11 @@ static uint64_t filter_key(const bg_scene_state *state, uint32_t i)
 }
 
 /* Whether the mesh textures already hold the scene's distinct copies in their order (a mesh's
- * serial names its contents for good, and a copy is also keyed by its filter and by the cell its
- * tree is ordered for, so a commit that moves the camera or objects within the cells keeps them, and
- * the ten million texels of a million triangles need neither a rebuild nor a comparison); otherwise
- * records them as what they are about to hold. *orders_only: only some cell changed. */
+ * serial names its contents for good, and a copy is also keyed by its filter and by the octant or
+ * cell its tree is ordered for, so a commit that moves the camera or objects within them keeps the
+ * textures, and the ten million texels of a million triangles need neither a rebuild nor a
+ * comparison); otherwise records them as what they are about to hold. *orders_only: only some order
+ * changed. */
 static bg_status meshes_held(bg_renderer *r, gpu_meshes *m, const bg_scene_state *state, const uint32_t *first,
                              bool *held, bool *orders_only)
 {
