@@ -366,11 +366,12 @@ static unsigned char *frame_of(bg_renderer *r, bg_scene *s, bg_gpu_plan plan, in
     return px;
 }
 
-/* The mesh trees go up ordered for the camera (shared/meshes.c): a camera move to the far side
- * rewrites the node texture in place with the other order. The frame after it equals, byte for
- * byte, a fresh renderer's frame of the same commit (which uploads that order at once), on the
- * tree plan and on the multipass, whose passes keep their bindings and compile nothing; and it
- * stays within the suite's bounds of the CPU. Two instances of one mesh share one order. */
+/* The mesh trees go up ordered for the camera's octant around the mesh (shared/meshes.c). Small
+ * moves across a centre plane keep the order and upload no node texture; a camera move to the far
+ * side rewrites the node texture in place with the other order, and only it. The frame after it
+ * equals, byte for byte, a fresh renderer's frame of the same commit (which uploads that order at
+ * once), on the tree plan and on the multipass, whose passes keep their bindings and compile
+ * nothing; and it stays within the suite's bounds of the CPU. Two instances share one order. */
 static void mesh_order_follows_the_camera(void **state)
 {
     (void)state;
@@ -383,6 +384,9 @@ static void mesh_order_follows_the_camera(void **state)
     assert_int_equal(bg_scene_add_mesh_instance(s, first, &t, material(s, 0.2, 0.4, 0.9, 0.0), true, &id), BG_OK);
     commit(s);
     static const bg_gpu_plan plans[] = {BG_PLAN_FUSED_TREE, BG_PLAN_MULTIPASS};
+    /* RGBA32F texels of the tree (5n - 2) and of the triangles (6 each) */
+    const uint64_t node_bytes = (5 * (uint64_t)m.triangle_count - 2) * 16;
+    const uint64_t triangle_bytes = 6 * (uint64_t)m.triangle_count * 16;
     for (int k = 0; k < 2; k++) {
         bg_camera c = bg_camera_init();
         c.position = bg_vec3_make(0.3, 0.6, 3.2);
@@ -392,13 +396,31 @@ static void mesh_order_follows_the_camera(void **state)
         commit(s);
         bg_renderer *r = util_renderer(util_fx.ctx);
         free(frame_of(r, s, plans[k], W, H, "mesh order, front"));
+        /* Across the first mesh's centre plane x = -0.5 (0.05 in its object space, within an eighth
+         * of its extent of 2): the order and the node texture stay. */
+        c.position = bg_vec3_make(-0.47, 0.6, 3.2);
+        assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+        commit(s);
+        free(frame_of(r, s, plans[k], W, H, "mesh order, over the centre"));
+        c.position = bg_vec3_make(-0.53, 0.6, 3.2);
+        assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
+        commit(s);
+        free(frame_of(r, s, plans[k], W, H, "mesh order, just across the centre"));
+        bg_render_stats st;
+        bg_renderer_get_stats(r, &st);
+        if (st.gl_work.upload_bytes >= node_bytes)
+            fail_msg("%s: %llu bytes uploaded after a move within the margin", plan_name(plans[k]),
+                     (unsigned long long)st.gl_work.upload_bytes);
         c.position = bg_vec3_make(-0.4, -0.5, -3.1);
         assert_int_equal(bg_scene_set_camera(s, &c), BG_OK);
         commit(s);
         unsigned char *moved = frame_of(r, s, plans[k], W, H, "mesh order, camera behind");
-        bg_render_stats st;
         bg_renderer_get_stats(r, &st);
         assert_int_equal(st.programs_compiled, 0);
+        /* The node texture again, rows padded to at most 4096 texels, and not the triangles. */
+        if (st.gl_work.upload_bytes < node_bytes || st.gl_work.upload_bytes >= node_bytes + 4096 * 16 + triangle_bytes)
+            fail_msg("%s: %llu bytes uploaded after the order changed, not the node texture's %llu alone",
+                     plan_name(plans[k]), (unsigned long long)st.gl_work.upload_bytes, (unsigned long long)node_bytes);
         bg_renderer *fresh = util_renderer(util_fx.ctx);
         unsigned char *once = frame_of(fresh, s, plans[k], W, H, "mesh order, fresh renderer");
         if (memcmp(moved, once, 4 * (size_t)W * H) != 0)
